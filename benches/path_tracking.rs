@@ -1,0 +1,2 @@
+//! Benchmarks of path tracking.
+fn main() {}

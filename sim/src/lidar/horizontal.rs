@@ -1,0 +1,1 @@
+//! Horizontal 2D LiDAR ray-cast against hedges, walls and posts.

@@ -1,0 +1,1 @@
+//! Inclined 2D LiDAR hitting ground and plants.

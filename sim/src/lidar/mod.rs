@@ -1,0 +1,4 @@
+//! Simulated 2D LiDARs.
+
+pub mod horizontal;
+pub mod inclined;

@@ -1,0 +1,2 @@
+//! The `fieldguide` program.
+fn main() {}

@@ -1,0 +1,5 @@
+//! Output: CSV traces, JSON summaries, SVG plots.
+
+pub mod csv;
+pub mod json;
+pub mod svg;

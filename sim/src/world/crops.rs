@@ -1,0 +1,1 @@
+//! Crop plots: plants with position, radius and height.

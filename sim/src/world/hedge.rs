@@ -1,0 +1,1 @@
+//! Hedges, walls and post rows.

@@ -1,0 +1,3 @@
+//! Control laws.
+
+pub mod backstepping;

@@ -1,0 +1,1 @@
+//! Reference paths built from waypoints and the Frénet projection of a pose.

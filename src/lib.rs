@@ -1,0 +1,43 @@
+//! # fieldguide
+//!
+//! Verification-first guidance for agricultural field robots: path tracking with
+//! sideslip (Pierre et al. 2022), edge following and furrow pursuing on 2D
+//! LiDAR scans, and the switching between them.
+//!
+//! The core is `no_std`, allocates nothing, never panics and never returns a
+//! NaN: functions with a restricted domain return `Result<_, Precondition>`
+//! naming the requirement of `spec/` they protect.
+//!
+//! ## One tick, as data flows through the core
+//!
+//! 1. A LiDAR scan goes to a detector in [`perception`], which returns a line
+//!    or parabola in the robot frame and a quality verdict.
+//! 2. The robot pose goes to [`geometry::path::ReferencePath::project`], which
+//!    returns the Frénet error (s, y, θ̃, c(s), c(s + vT)).
+//! 3. Verdicts and localisation status go to [`supervisor`], which selects the
+//!    behaviour.
+//! 4. The selected behaviour's error goes to a law in [`control`], which returns
+//!    a saturated steering command.
+//!
+//! ## Conventions
+//!
+//! Frames are x forward, y left, z up; angles counter-clockwise positive,
+//! wrapped to (−π, π]; lateral error positive when the robot is left of the
+//! path; curvature positive for a left turn; steering positive to the left
+//! (`spec/library.md`). Units are types ([`geometry::units`]); points carry
+//! their frame in their type ([`geometry::frame`]).
+#![no_std]
+#![forbid(unsafe_code)]
+
+pub mod control;
+pub mod error;
+pub mod geometry;
+pub mod model;
+pub mod perception;
+pub mod supervisor;
+
+pub use error::Precondition;
+pub use geometry::frame::{Frame, Odom, Point2, Pose2, Robot, Sensor, Transform2, World};
+pub use geometry::units::{
+    Curvature, Meters, MetersPerSecond, Radians, RadiansPerSecond, Seconds,
+};

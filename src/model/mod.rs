@@ -1,0 +1,3 @@
+//! Kinematic models of the vehicles, as pure functions.
+
+pub mod bicycle;

@@ -1,0 +1,3 @@
+//! Supervision: the switching between behaviours.
+
+pub mod switching;
