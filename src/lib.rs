@@ -38,6 +38,6 @@ pub mod supervisor;
 
 pub use error::Precondition;
 pub use geometry::frame::{Frame, Odom, Point2, Pose2, Robot, Sensor, Transform2, World};
-pub use geometry::units::{
-    Curvature, Meters, MetersPerSecond, Radians, RadiansPerSecond, Seconds,
-};
+pub use geometry::tracking::TrackingError;
+pub use geometry::units::{Curvature, Meters, MetersPerSecond, Radians, RadiansPerSecond, Seconds};
+pub use perception::Verdict;

@@ -221,7 +221,10 @@ impl<A: Frame, B: Frame> Transform2<A, B> {
     }
 
     /// `other ∘ self`: first `self` (A → B), then `other` (B → C).
-    pub fn then<C: Frame>(&self, other: &Transform2<B, C>) -> Result<Transform2<A, C>, Precondition> {
+    pub fn then<C: Frame>(
+        &self,
+        other: &Transform2<B, C>,
+    ) -> Result<Transform2<A, C>, Precondition> {
         Ok(Transform2 {
             cos: other.cos * self.cos - other.sin * self.sin,
             sin: other.sin * self.cos + other.cos * self.sin,

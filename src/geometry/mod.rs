@@ -4,4 +4,5 @@
 pub mod fit;
 pub mod frame;
 pub mod path;
+pub mod tracking;
 pub mod units;
