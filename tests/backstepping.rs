@@ -1,0 +1,445 @@
+//! Example and property tests of the extended kinematic model (Pierre 2022,
+//! eq. 1) and the backstepping law (eqs. 2-7): `spec/pierre2022.md`, PT-*.
+
+use approx::assert_relative_eq;
+use fieldguide::control::backstepping::{
+    steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Inversion,
+    SteeringLimit,
+};
+use fieldguide::control::Gains;
+use fieldguide::model::bicycle::{frenet_rates, yaw_rate, Sideslip, Wheelbase};
+use fieldguide::{Curvature, Meters, MetersPerSecond, Radians, TrackingError};
+use proptest::prelude::*;
+
+fn tracking(y: f64, theta: f64, c: f64, c_ahead: f64) -> TrackingError {
+    TrackingError {
+        y: Meters::new(y).unwrap(),
+        angular_deviation: Radians::new(theta).unwrap(),
+        curvature: Curvature::new(c).unwrap(),
+        curvature_ahead: Curvature::new(c_ahead).unwrap(),
+    }
+}
+
+fn config(k_y: f64, k_theta: f64, inversion: Inversion) -> BacksteppingConfig {
+    BacksteppingConfig {
+        gains: Gains::new(k_y, k_theta, 1.0).unwrap(),
+        wheelbase: Wheelbase::new(2.0).unwrap(),
+        max_steering: SteeringLimit::new(1.5).unwrap(),
+        inversion,
+    }
+}
+
+fn speed(v: f64) -> MetersPerSecond {
+    MetersPerSecond::new(v).unwrap()
+}
+
+/// Inputs inside the law's domain: |y c| < 1, |θ̃₂| < π/2, v > 0, |β| small.
+fn in_domain() -> impl Strategy<Value = (f64, f64, f64, f64, f64, f64, f64, f64)> {
+    (
+        -2.0..2.0f64,   // y
+        -1.0..1.0f64,   // θ̃
+        -0.4..0.4f64,   // c
+        -0.4..0.4f64,   // c(s + vT)
+        -0.2..0.2f64,   // β_F
+        -0.2..0.2f64,   // β_R
+        -3.0..-0.05f64, // k_y
+        0.1..8.0f64,    // speed
+    )
+}
+
+/// A hand computation from the formulas of eqs. 3, 5, 6 and 7 (done
+/// independently in Python with the same inputs): L = 2 m, k_y = −0.5,
+/// k_θ = −2, y = 0.1 m, θ̃ = 0.05 rad, c = 0.1, c(s+vT) = 0.12, β_F = 0.02,
+/// β_R = 0.03, v = 0.8 m/s.
+//= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
+//= type=test
+//# The steering angle MUST be
+//# δ = arctan(tan β_R + L [k_θ e + c(s + vT)] cos θ̃₂ / ((1 − y c(s)) cos β_R)) − β_F
+//# in the exact reading, the library's default.
+//= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
+//= type=test
+//# The law as printed in eq. 6, without the factor cos θ̃₂ / cos β_R, SHOULD be
+//# available as an explicit option for comparison with the paper.
+//= spec/pierre2022.md#pt-target-target-angular-deviation
+//= type=test
+//# The target angular deviation MUST be
+//# θ̃_obj = arctan(k_y y / (1 − y c(s))) − β_R.
+//= spec/pierre2022.md#pt-yaw-objective-yaw-rate-objective
+//= type=test
+//# The yaw-rate objective MUST be u_θ^obj = [k_θ e + c(s + vT)] v cos θ̃₂ / (1 − y c(s)),
+//# with e = θ̃ − θ̃_obj.
+#[test]
+fn hand_computed_example() {
+    let error = tracking(0.1, 0.05, 0.1, 0.12);
+    let slip = Sideslip::new(0.02, 0.03).unwrap();
+    let exact = steering_command(
+        &config(-0.5, -2.0, Inversion::Exact),
+        &error,
+        slip,
+        speed(0.8),
+    )
+    .unwrap();
+    let printed = steering_command(
+        &config(-0.5, -2.0, Inversion::Printed),
+        &error,
+        slip,
+        speed(0.8),
+    )
+    .unwrap();
+    assert_relative_eq!(
+        exact.target_angular_deviation.get(),
+        -0.080_462_174_016_855_85,
+        epsilon = 1e-12
+    );
+    assert_relative_eq!(
+        exact.steering.get(),
+        -0.268_649_496_169_632_35,
+        epsilon = 1e-12
+    );
+    assert_relative_eq!(
+        printed.steering.get(),
+        -0.269_384_739_917_258_75,
+        epsilon = 1e-12
+    );
+    assert_relative_eq!(
+        exact.yaw_rate_objective.get(),
+        -0.113_514_044_912_798_4,
+        epsilon = 1e-12
+    );
+    assert!(!exact.saturated);
+}
+
+//= spec/pierre2022.md#pt-gains-gain-sign-and-ratio
+//= type=test
+//# Both gains MUST be finite and strictly negative (convergent in equation
+//# form), and |k_θ| MUST be at least a configured ratio r ≥ 1 times |k_y|;
+//# other gains MUST be refused at construction.
+#[test]
+fn gains_are_validated_once() {
+    assert!(Gains::new(-0.7, -1.4, 2.0).is_ok());
+    for (k_y, k_theta) in [(0.7, -1.4), (-0.7, 1.4), (0.0, -1.0), (-0.7, f64::NAN)] {
+        assert_eq!(
+            Gains::new(k_y, k_theta, 1.0).unwrap_err().requirement,
+            "PT-GAINS-SIGN"
+        );
+    }
+    assert_eq!(
+        Gains::new(-0.7, -1.0, 2.0).unwrap_err().requirement,
+        "PT-GAINS-RATIO"
+    );
+    assert_eq!(
+        Gains::new(-0.7, -1.4, 0.5).unwrap_err().requirement,
+        "PT-GAINS-RATIO"
+    );
+    assert_eq!(
+        Gains::new(-0.7, -1.4, f64::INFINITY)
+            .unwrap_err()
+            .requirement,
+        "PT-GAINS-RATIO"
+    );
+}
+
+//= spec/pierre2022.md#pt-denom-robot-inside-the-radius-of-curvature
+//= type=test
+//# Where 1 − y c(s) ≤ 0 the model and the law MUST return the `PT-DENOM`
+//# error instead of a value.
+//= spec/pierre2022.md#pt-heading-robot-heading-along-the-path
+//= type=test
+//# Where cos θ̃₂ ≤ 0 the model and the law MUST return the `PT-HEADING` error
+//# instead of a value.
+//= spec/pierre2022.md#pt-speed-forward-speed
+//= type=test
+//# Where v ≤ 0 the law MUST return the `PT-SPEED` error instead of a value.
+//= spec/pierre2022.md#pt-sideslip-sideslip-angles-below-a-right-angle
+//= type=test
+//# The sideslip angles β_F and β_R MUST satisfy |β| < π/2; a larger angle
+//# MUST be the `PT-SIDESLIP` error.
+//= spec/pierre2022.md#pt-wheelbase-positive-wheelbase
+//= type=test
+//# The wheelbase L MUST be finite and strictly positive.
+#[test]
+fn preconditions_name_their_requirement() {
+    let cfg = config(-0.7, -1.4, Inversion::Exact);
+    let law = |e: TrackingError, s: Sideslip, v: f64| {
+        steering_command(&cfg, &e, s, speed(v))
+            .unwrap_err()
+            .requirement
+    };
+    // 1 − y c = 0 and < 0.
+    assert_eq!(
+        law(tracking(2.0, 0.0, 0.5, 0.5), Sideslip::ZERO, 1.0),
+        "PT-DENOM"
+    );
+    assert_eq!(
+        law(tracking(3.0, 0.0, 0.5, 0.5), Sideslip::ZERO, 1.0),
+        "PT-DENOM"
+    );
+    // cos θ̃₂ = 0 and < 0.
+    let right_angle = core::f64::consts::FRAC_PI_2;
+    assert_eq!(
+        law(tracking(0.0, right_angle, 0.0, 0.0), Sideslip::ZERO, 1.0),
+        "PT-HEADING"
+    );
+    assert_eq!(
+        law(tracking(0.0, 2.5, 0.0, 0.0), Sideslip::ZERO, 1.0),
+        "PT-HEADING"
+    );
+    let slip = Sideslip::new(0.0, 0.3).unwrap();
+    assert_eq!(
+        law(tracking(0.0, right_angle - 0.2, 0.0, 0.0), slip, 1.0),
+        "PT-HEADING"
+    );
+    // v = 0 and v < 0.
+    assert_eq!(
+        law(tracking(0.1, 0.0, 0.0, 0.0), Sideslip::ZERO, 0.0),
+        "PT-SPEED"
+    );
+    assert_eq!(
+        law(tracking(0.1, 0.0, 0.0, 0.0), Sideslip::ZERO, -1.0),
+        "PT-SPEED"
+    );
+    assert_eq!(
+        Sideslip::new(1.6, 0.0).unwrap_err().requirement,
+        "PT-SIDESLIP"
+    );
+    assert_eq!(Wheelbase::new(0.0).unwrap_err().requirement, "PT-WHEELBASE");
+    assert_eq!(
+        Wheelbase::new(f64::NAN).unwrap_err().requirement,
+        "PT-WHEELBASE"
+    );
+    let e = tracking(0.1, 0.0, 0.0, 0.0);
+    assert_eq!(
+        frenet_rates(&e, speed(0.0), Radians::ZERO, Sideslip::ZERO, cfg.wheelbase)
+            .unwrap_err()
+            .requirement,
+        "PT-SPEED"
+    );
+}
+
+//= spec/pierre2022.md#pt-steer-domain-steering-within-the-models-domain
+//= type=test
+//# Where |δ + β_F| ≥ π/2 the model MUST return the `PT-STEER-DOMAIN` error
+//# instead of a value.
+#[test]
+fn model_refuses_steering_beyond_a_right_angle() {
+    let r = yaw_rate(
+        speed(1.0),
+        Radians::new(1.5).unwrap(),
+        Sideslip::new(0.1, 0.0).unwrap(),
+        Wheelbase::new(2.0).unwrap(),
+    );
+    assert_eq!(r.unwrap_err().requirement, "PT-STEER-DOMAIN");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// Step 1: with θ̃ = θ̃_obj, the first row of eq. 1 gives y' = k_y y (eq. 2).
+    //= spec/pierre2022.md#pt-target-target-angular-deviation
+    //= type=test
+    //# The target angular deviation MUST be
+    //# θ̃_obj = arctan(k_y y / (1 − y c(s))) − β_R.
+    //= spec/pierre2022.md#pt-model-extended-kinematic-model-with-sideslip
+    //= type=test
+    //# The model MUST give y' = (1 − y c(s)) tan θ̃₂ and
+    //# θ̃' = u_θ (1 − y c(s)) / (v cos θ̃₂) − c(s), with θ̃₂ = θ̃ + β_R.
+    #[test]
+    fn target_deviation_gives_exponential_lateral_convergence(
+        (y, _theta, c, _c_ahead, beta_f, beta_r, k_y, v) in in_domain()
+    ) {
+        prop_assume!(1.0 - y * c > 0.05);
+        let gains = Gains::new(k_y, 2.0 * k_y, 2.0).unwrap();
+        let slip = Sideslip::new(beta_f, beta_r).unwrap();
+        let target = target_angular_deviation(&gains, &tracking(y, 0.0, c, c), slip).unwrap();
+        let at_target = tracking(y, target.get(), c, c);
+        let rates = frenet_rates(&at_target, speed(v), Radians::ZERO, slip,
+            Wheelbase::new(2.0).unwrap()).unwrap();
+        prop_assert!((rates.y - k_y * y).abs() <= 1e-9 * (1.0 + (k_y * y).abs()));
+    }
+
+    /// Step 2: the exact law put into eq. 1 gives the yaw rate of eq. 5 and so
+    /// θ̃' = k_θ e + c(s + vT) − c(s), which is e' = k_θ e − θ̃_obj' with no look-ahead.
+    //= spec/pierre2022.md#pt-yaw-rate-yaw-rate-of-the-model
+    //= type=test
+    //# The yaw rate MUST be u_θ = v cos β_R (tan(δ + β_F) − tan β_R) / L.
+    //= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
+    //= type=test
+    //# The steering angle MUST be
+    //# δ = arctan(tan β_R + L [k_θ e + c(s + vT)] cos θ̃₂ / ((1 − y c(s)) cos β_R)) − β_F
+    //# in the exact reading, the library's default.
+    //= spec/pierre2022.md#pt-feedforward-curvature-feed-forward
+    //= type=test
+    //# The law MUST feed forward the curvature c(s + vT) in the numerator and use
+    //# 1 − y c(s) in the denominator.
+    #[test]
+    fn exact_law_closes_the_angular_loop(
+        (y, theta, c, c_ahead, beta_f, beta_r, k_y, v) in in_domain()
+    ) {
+        prop_assume!(1.0 - y * c > 0.05 && (theta + beta_r).cos() > 0.05);
+        let cfg = config(k_y, 3.0 * k_y, Inversion::Exact);
+        let slip = Sideslip::new(beta_f, beta_r).unwrap();
+        let error = tracking(y, theta, c, c_ahead);
+        let cmd = steering_command(&cfg, &error, slip, speed(v)).unwrap();
+        prop_assume!(!cmd.saturated);
+        let u = yaw_rate(speed(v), cmd.steering, slip, cfg.wheelbase).unwrap();
+        let u_obj = yaw_rate_objective(&cfg.gains, &error, slip, speed(v)).unwrap();
+        prop_assert!((u.get() - u_obj.get()).abs() <= 1e-9 * (1.0 + u_obj.get().abs()));
+        let rates = frenet_rates(&error, speed(v), cmd.steering, slip, cfg.wheelbase).unwrap();
+        let e = theta - cmd.target_angular_deviation.get();
+        let wanted = cfg.gains.k_theta() * e + c_ahead - c;
+        prop_assert!((rates.angular_deviation - wanted).abs() <= 1e-8 * (1.0 + wanted.abs()),
+            "theta' = {} but k_theta e + c_ahead - c = {}", rates.angular_deviation, wanted);
+    }
+
+    /// The printed law misses k_θ e by exactly (k_θ e + c)(cos β_R / cos θ̃₂ − 1),
+    /// below 0.6 % of |k_θ e + c| when |θ̃₂|, |β_R| ≤ 0.1 rad.
+    //= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
+    //= type=test
+    //# The law as printed in eq. 6, without the factor cos θ̃₂ / cos β_R, SHOULD be
+    //# available as an explicit option for comparison with the paper.
+    #[test]
+    fn printed_law_is_exact_only_for_small_angles(
+        (y, theta, c, _c_ahead, beta_f, beta_r, k_y, v) in in_domain()
+    ) {
+        prop_assume!(1.0 - y * c > 0.05 && (theta + beta_r).cos() > 0.05);
+        let cfg = config(k_y, 3.0 * k_y, Inversion::Printed);
+        let slip = Sideslip::new(beta_f, beta_r).unwrap();
+        let error = tracking(y, theta, c, c);
+        let cmd = steering_command(&cfg, &error, slip, speed(v)).unwrap();
+        prop_assume!(!cmd.saturated);
+        let rates = frenet_rates(&error, speed(v), cmd.steering, slip, cfg.wheelbase).unwrap();
+        let drive = cfg.gains.k_theta() * (theta - cmd.target_angular_deviation.get()) + c;
+        let theta2 = theta + beta_r;
+        let miss = drive * (beta_r.cos() / theta2.cos() - 1.0);
+        let got = rates.angular_deviation - (drive - c);
+        prop_assert!((got - miss).abs() <= 1e-8 * (1.0 + drive.abs()));
+        if theta2.abs() <= 0.1 && beta_r.abs() <= 0.1 {
+            prop_assert!(got.abs() <= 0.006 * drive.abs() + 1e-12);
+        }
+    }
+
+    /// β = 0 reduces the law to the classical one, δ = arctan(L [k_θ e + c] cos θ̃ / (1 − y c)).
+    //= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
+    //= type=test
+    //# The steering angle MUST be
+    //# δ = arctan(tan β_R + L [k_θ e + c(s + vT)] cos θ̃₂ / ((1 − y c(s)) cos β_R)) − β_F
+    //# in the exact reading, the library's default.
+    #[test]
+    fn zero_sideslip_gives_the_classical_law(
+        (y, theta, c, c_ahead, _bf, _br, k_y, v) in in_domain()
+    ) {
+        prop_assume!(1.0 - y * c > 0.05 && theta.cos() > 0.05);
+        let cfg = config(k_y, 2.0 * k_y, Inversion::Exact);
+        let cmd = steering_command(&cfg, &tracking(y, theta, c, c_ahead), Sideslip::ZERO, speed(v))
+            .unwrap();
+        let alpha = 1.0 - y * c;
+        let e = theta - (k_y * y / alpha).atan();
+        let classical = (2.0 * (2.0 * k_y * e + c_ahead) * theta.cos() / alpha).atan();
+        let classical = classical.clamp(-1.5, 1.5);
+        prop_assert!((cmd.steering.get() - classical).abs() <= 1e-12);
+    }
+
+    /// Mirror symmetry: y, θ̃, c and β negated give −δ; and |δ| ≤ δ_max always.
+    //= spec/library.md#lib-frames-frames-and-sign-conventions
+    //= type=test
+    //# The lateral error y MUST be positive when the robot is left of the path, the
+    //# path curvature MUST be positive for a left turn, and the steering angle MUST
+    //# be positive to the left.
+    //= spec/pierre2022.md#pt-saturation-steering-saturation
+    //= type=test
+    //# The steering command MUST lie within [−δ_max, δ_max]; a law output
+    //# beyond it MUST be clamped to the nearer bound and reported as saturated.
+    #[test]
+    fn mirror_symmetry_and_saturation(
+        (y, theta, c, c_ahead, beta_f, beta_r, k_y, v) in in_domain(),
+        limit in 0.05..1.5f64,
+        printed in any::<bool>(),
+    ) {
+        prop_assume!(1.0 - y * c > 0.0 && (theta + beta_r).cos() > 0.0);
+        let mut cfg = config(k_y, 2.0 * k_y,
+            if printed { Inversion::Printed } else { Inversion::Exact });
+        cfg.max_steering = SteeringLimit::new(limit).unwrap();
+        let slip = Sideslip::new(beta_f, beta_r).unwrap();
+        let error = tracking(y, theta, c, c_ahead);
+        let cmd = steering_command(&cfg, &error, slip, speed(v)).unwrap();
+        let mirror = steering_command(&cfg, &error.mirrored(), slip.mirrored(), speed(v)).unwrap();
+        prop_assert!((cmd.steering.get() + mirror.steering.get()).abs() <= 1e-12);
+        prop_assert!(cmd.steering.get().abs() <= limit);
+        prop_assert_eq!(cmd.saturated, mirror.saturated);
+        if cmd.saturated {
+            prop_assert!((cmd.steering.get().abs() - limit).abs() <= 0.0);
+        }
+    }
+
+    /// Any f64, NaN and infinities included, gives a finite value or an error.
+    //= spec/library.md#lib-no-panic-no-panic
+    //= type=test
+    //# The core MUST NOT panic for any input: a function whose domain is restricted
+    //# MUST return `Result<_, Precondition>` naming the requirement it protects.
+    //= spec/library.md#lib-finite-no-nan-or-infinity
+    //= type=test
+    //# A value returned by the core MUST be finite: a computation whose result
+    //# would be NaN or infinite MUST return a `Precondition` error instead.
+    //= spec/library.md#lib-units-typed-quantities
+    //= type=test
+    //# Constructors of unit types MUST reject NaN and infinite values with a
+    //# `Precondition` error.
+    #[test]
+    fn any_input_gives_a_value_or_an_error(
+        raw in proptest::collection::vec(proptest::num::f64::ANY, 11),
+    ) {
+        let build = || -> Result<_, fieldguide::Precondition> {
+            let error = TrackingError {
+                y: Meters::new(raw[0])?,
+                angular_deviation: Radians::new(raw[1])?,
+                curvature: Curvature::new(raw[2])?,
+                curvature_ahead: Curvature::new(raw[3])?,
+            };
+            let slip = Sideslip::new(raw[4], raw[5])?;
+            let cfg = BacksteppingConfig {
+                gains: Gains::new(raw[6], raw[7], 1.0)?,
+                wheelbase: Wheelbase::new(raw[8])?,
+                max_steering: SteeringLimit::new(raw[9])?,
+                inversion: Inversion::Exact,
+            };
+            let v = MetersPerSecond::new(raw[10])?;
+            let cmd = steering_command(&cfg, &error, slip, v)?;
+            let rates = frenet_rates(&error, v, cmd.steering, slip, cfg.wheelbase)?;
+            Ok((cmd, rates))
+        };
+        if let Ok((cmd, rates)) = build() {
+            prop_assert!(cmd.steering.get().is_finite());
+            prop_assert!(cmd.target_angular_deviation.get().is_finite());
+            prop_assert!(cmd.yaw_rate_objective.get().is_finite());
+            prop_assert!(rates.y.is_finite() && rates.angular_deviation.is_finite());
+        }
+    }
+}
+
+/// The same, on inputs near the domain's edges (tiny 1 − y c, θ̃₂ near ±π/2,
+/// huge gains), where an unchecked division would overflow.
+#[test]
+fn edges_of_the_domain_give_values_or_errors() {
+    let cfg = BacksteppingConfig {
+        gains: Gains::new(-1e300, -1e301, 1.0).unwrap(),
+        wheelbase: Wheelbase::new(1e300).unwrap(),
+        max_steering: SteeringLimit::new(0.5).unwrap(),
+        inversion: Inversion::Exact,
+    };
+    for (y, theta, c) in [
+        (1e300, 0.0, 0.0),
+        (1.0, 0.0, 1.0 - 1e-16),
+        (0.5, 1.570_796, 0.0),
+        (-1e-300, -1.5, 1e300),
+    ] {
+        match steering_command(
+            &cfg,
+            &tracking(y, theta, c, c),
+            Sideslip::ZERO,
+            speed(1e300),
+        ) {
+            Ok(cmd) => assert!(cmd.steering.get().abs() <= 0.5),
+            Err(e) => assert!(!e.requirement.is_empty()),
+        }
+    }
+}
