@@ -26,8 +26,25 @@
 //! path; curvature positive for a left turn; steering positive to the left
 //! (`spec/library.md`). Units are types ([`geometry::units`]); points carry
 //! their frame in their type ([`geometry::frame`]).
+//= spec/library.md#lib-no-alloc-no-allocation
+//# The core MUST be `no_std` and MUST NOT allocate on the heap: buffers have a
+//# fixed capacity, and a full buffer is a returned value, not a panic.
 #![no_std]
 #![forbid(unsafe_code)]
+
+//= spec/library.md#lib-no-panic-no-panic
+//# The core MUST NOT panic for any input: a function whose domain is restricted
+//# MUST return `Result<_, Precondition>` naming the requirement it protects.
+//
+// Enforced by the lint table of `Cargo.toml` (unwrap, expect, panic, indexing,
+// integer arithmetic and `as` casts denied) and by `panic = "abort"`.
+
+//= spec/library.md#lib-determinism-no-hidden-inputs
+//# Core functions MUST be deterministic functions of their arguments and state:
+//# no clocks, no global randomness; time MUST be counted in control ticks of a
+//# fixed period.
+//
+// `no_std` leaves the core no clock and no random source to reach for.
 
 pub mod control;
 pub mod error;

@@ -10,6 +10,9 @@ use core::marker::PhantomData;
 use super::units::{wrap_angle, Meters, Radians};
 use crate::error::{finite, Precondition};
 
+//= spec/library.md#lib-frames-frames-and-sign-conventions
+//# Frames MUST be right-handed with x forward, y left and z up; world frames are
+//# x east and y north.
 /// A coordinate frame marker. Implemented by the uninhabited frame types below.
 pub trait Frame: Copy + Debug + PartialEq + 'static {
     /// Short name of the frame, for messages.
@@ -245,6 +248,10 @@ impl<A: Frame, B: Frame> Transform2<A, B> {
 mod tests {
     use super::*;
 
+    //= spec/library.md#lib-frames-frames-and-sign-conventions
+    //= type=test
+    //# Frames MUST be right-handed with x forward, y left and z up; world frames are
+    //# x east and y north.
     #[test]
     fn transform_round_trip_and_composition() {
         let robot = Pose2::<World>::new(3.0, -1.0, 0.7).unwrap();
@@ -256,7 +263,10 @@ mod tests {
         // The robot origin lands on the pose's position.
         let o = to_world.apply(Point2::origin()).unwrap();
         assert!((o.x() - 3.0).abs() < 1e-12 && (o.y() + 1.0).abs() < 1e-12);
-        // Forward is along the heading.
+        // Forward is along the heading, and left is a quarter turn counter-clockwise.
+        let l = to_world.apply(Point2::new(0.0, 1.0).unwrap()).unwrap();
+        assert!((l.x() - 3.0 + libm::sin(0.7)).abs() < 1e-12);
+        assert!((l.y() + 1.0 - libm::cos(0.7)).abs() < 1e-12);
         let f = to_world.apply(Point2::new(1.0, 0.0).unwrap()).unwrap();
         assert!((f.x() - 3.0 - libm::cos(0.7)).abs() < 1e-12);
         assert!((f.y() + 1.0 - libm::sin(0.7)).abs() < 1e-12);

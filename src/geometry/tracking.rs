@@ -6,6 +6,10 @@
 
 use super::units::{Curvature, Meters, Radians};
 
+//= spec/library.md#lib-frames-frames-and-sign-conventions
+//# The lateral error y MUST be positive when the robot is left of the path, the
+//# path curvature MUST be positive for a left turn, and the steering angle MUST
+//# be positive to the left.
 /// The error of the controlled point O (middle of the rear axle) relative to the
 /// line to follow, in that line's Frénet frame (`spec/library.md`, LIB-FRAMES).
 #[derive(Debug, Clone, Copy, PartialEq)]

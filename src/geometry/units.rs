@@ -9,6 +9,9 @@ use core::f64::consts::{PI, TAU};
 
 use crate::error::{finite, Precondition};
 
+//= spec/library.md#lib-units-typed-quantities
+//# Quantities that mean different things MUST have different types (`Meters`,
+//# `Radians`, `Curvature`, `MetersPerSecond`, `RadiansPerSecond`, `Seconds`).
 macro_rules! finite_unit {
     ($(#[$doc:meta])* $name:ident, $unit:literal) => {
         $(#[$doc])*
@@ -81,6 +84,8 @@ finite_unit!(
 );
 
 /// Wraps any finite angle to (−π, π].
+///
+/// Unit types hold one meaning each (`spec/library.md`, LIB-UNITS).
 //= spec/library.md#lib-frames-frames-and-sign-conventions
 //# Angles MUST be counter-clockwise positive and, where the core returns an
 //# orientation, wrapped to (−π, π].
@@ -107,6 +112,10 @@ impl Radians {
 mod tests {
     use super::*;
 
+    //= spec/library.md#lib-units-typed-quantities
+    //= type=test
+    //# Constructors of unit types MUST reject NaN and infinite values with a
+    //# `Precondition` error.
     #[test]
     fn constructors_reject_non_finite_values() {
         for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
@@ -120,6 +129,10 @@ mod tests {
         assert_eq!(Meters::new(-2.5).unwrap().get(), -2.5);
     }
 
+    //= spec/library.md#lib-frames-frames-and-sign-conventions
+    //= type=test
+    //# Angles MUST be counter-clockwise positive and, where the core returns an
+    //# orientation, wrapped to (−π, π].
     #[test]
     fn wrapping_lands_in_the_half_open_interval() {
         assert_eq!(wrap_angle(PI), PI);
