@@ -58,3 +58,8 @@ pub use geometry::frame::{Frame, Odom, Point2, Pose2, Robot, Sensor, Transform2,
 pub use geometry::tracking::TrackingError;
 pub use geometry::units::{Curvature, Meters, MetersPerSecond, Radians, RadiansPerSecond, Seconds};
 pub use perception::Verdict;
+
+/// The README's examples, compiled and run as doctests so they cannot rot.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
