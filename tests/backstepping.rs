@@ -1,5 +1,6 @@
 //! Example and property tests of the extended kinematic model (Pierre 2022,
 //! eq. 1) and the backstepping law (eqs. 2-7): `spec/pierre2022.md`, PT-*.
+#![allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 
 use approx::assert_relative_eq;
 use fieldguide::control::backstepping::{
@@ -216,7 +217,7 @@ fn preconditions_name_their_requirement() {
     );
 }
 
-//= spec/pierre2022.md#pt-steer-domain-steering-within-the-models-domain
+//= spec/pierre2022.md#pt-steer-domain-steering-within-the-domain-of-the-model
 //= type=test
 //# Where |δ + β_F| ≥ π/2 the model MUST return the `PT-STEER-DOMAIN` error
 //# instead of a value.
@@ -429,7 +430,7 @@ fn edges_of_the_domain_give_values_or_errors() {
     for (y, theta, c) in [
         (1e300, 0.0, 0.0),
         (1.0, 0.0, 1.0 - 1e-16),
-        (0.5, 1.570_796, 0.0),
+        (0.5, core::f64::consts::FRAC_PI_2 - 1e-7, 0.0),
         (-1e-300, -1.5, 1e300),
     ] {
         match steering_command(

@@ -4,7 +4,12 @@
 //!
 //! This test crate needs `unsafe` to implement `GlobalAlloc`; the core itself
 //! forbids it.
-#![allow(unsafe_code)]
+#![allow(
+    unsafe_code,
+    clippy::unwrap_used,
+    clippy::arithmetic_side_effects,
+    clippy::std_instead_of_core
+)]
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -70,7 +75,10 @@ fn allocations_in(f: impl FnOnce()) -> usize {
 #[test]
 fn path_tracking_tick_does_not_allocate() {
     // The counter works: a Vec allocates.
-    assert_eq!(allocations_in(|| drop(std::hint::black_box(vec![1u8; 8]))), 1);
+    assert_eq!(
+        allocations_in(|| drop(std::hint::black_box(vec![1u8; 8]))),
+        1
+    );
 
     let waypoints: Vec<Point2<World>> = (0..400)
         .map(|i| {
@@ -95,7 +103,12 @@ fn path_tracking_tick_does_not_allocate() {
         let mut s_hint = Meters::ZERO;
         for _ in 0..200 {
             let frenet = path
-                .project_near(&pose, Meters::new(0.8).unwrap(), s_hint, Meters::new(3.0).unwrap())
+                .project_near(
+                    &pose,
+                    Meters::new(0.8).unwrap(),
+                    s_hint,
+                    Meters::new(3.0).unwrap(),
+                )
                 .unwrap();
             s_hint = frenet.s;
             let cmd = steering_command(&config, &TrackingError::from(frenet), slip, speed).unwrap();
@@ -110,5 +123,8 @@ fn path_tracking_tick_does_not_allocate() {
         }
     });
     assert_eq!(steered, 200);
-    assert_eq!(count, 0, "the per-tick path tracking calls allocated {count} times");
+    assert_eq!(
+        count, 0,
+        "the per-tick path tracking calls allocated {count} times"
+    );
 }

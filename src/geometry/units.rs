@@ -109,6 +109,7 @@ impl Radians {
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // exact values are the point of these checks
 mod tests {
     use super::*;
 
