@@ -105,6 +105,9 @@ pub fn yaw_rate(
     wheelbase: Wheelbase,
 ) -> Result<RadiansPerSecond, Precondition> {
     sideslip.check()?;
+    //= spec/pierre2022.md#pt-steer-domain-steering-within-the-domain-of-the-model
+    //# Where |δ + β_F| ≥ π/2 the model MUST return the `PT-STEER-DOMAIN` error
+    //# instead of a value.
     let front = steering.get() + sideslip.front.get();
     if front.abs() >= core::f64::consts::FRAC_PI_2 {
         return Err(Precondition::new(
