@@ -3,8 +3,15 @@
 //! The kinematic simulator around the `fieldguide` core: worlds, simulated
 //! sensors, vehicle plants, scenarios, metrics measured against ground truth,
 //! and CSV / JSON / SVG output.
+//!
+//! A run: [`scenario::Source`] (a built-in or a TOML file) →
+//! [`runner::prepare`] (validated [`scenario::Setup`] and the run's one seeded
+//! generator) → [`runner::run`] (the closed loop, one [`runner::TickRecord`]
+//! per control tick) → [`metrics::summarize`] → [`output::write_run`].
 #![forbid(unsafe_code)]
 
+pub mod error;
+pub mod guidance;
 pub mod lidar;
 pub mod metrics;
 pub mod output;
@@ -14,3 +21,5 @@ pub mod runner;
 pub mod scenario;
 pub mod sensors;
 pub mod world;
+
+pub use error::{ScenarioError, SimError};

@@ -1,1 +1,318 @@
-//! metrics.
+//! Metrics of a run, all against ground truth (the true pose projected on the
+//! reference path), never against the robot's estimate.
+//!
+//! Definitions (also in `sim/scenarios/README.md`):
+//! - `converged_after_m`: distance travelled until |y| stays below the band for
+//!   the rest of the run (the distance of the first tick of the final run of
+//!   ticks inside the band); 0 if |y| never left it; null if the last tick is
+//!   outside it.
+//! - `first_within_band_m`: distance travelled when |y| first enters the band.
+//! - `success`: the run reached its end (path end, or the full duration when it
+//!   does not stop at the path end) without a core error, and
+//!   `converged_after_m` is at most `metrics.converge_within_m`: |y| came
+//!   into the band within that distance and stayed in it to the end.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::runner::{RunEnd, RunOutput, TickRecord};
+use crate::scenario::Setup;
+
+/// Statistics of |error| over ticks.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ErrorStats {
+    /// Mean of |e|.
+    pub mean_abs: f64,
+    /// Root mean square of e.
+    pub rms: f64,
+    /// Largest |e|.
+    pub max_abs: f64,
+    /// 95th percentile of |e| (nearest rank).
+    pub p95_abs: f64,
+}
+
+/// Statistics of `values` (any sign); `None` when there are none.
+#[must_use]
+pub fn error_stats(values: impl IntoIterator<Item = f64>) -> Option<ErrorStats> {
+    let mut abs: Vec<f64> = values.into_iter().map(f64::abs).collect();
+    if abs.is_empty() {
+        return None;
+    }
+    abs.sort_by(f64::total_cmp);
+    let n = abs.len() as f64;
+    let rank = ((0.95 * n).ceil() as usize).clamp(1, abs.len());
+    Some(ErrorStats {
+        mean_abs: abs.iter().sum::<f64>() / n,
+        rms: (abs.iter().map(|a| a * a).sum::<f64>() / n).sqrt(),
+        max_abs: abs.last().copied().unwrap_or(0.0),
+        p95_abs: abs.get(rank - 1).copied().unwrap_or(0.0),
+    })
+}
+
+/// Index of the first error of the final stretch with |y| < `band` (0 when
+/// |y| never left the band); `None` if the last one is outside it or there are none.
+#[must_use]
+pub fn converged_index(errors: &[f64], band: f64) -> Option<usize> {
+    match errors.iter().rposition(|y| outside_band(*y, band)) {
+        None => (!errors.is_empty()).then_some(0),
+        Some(last_out) => (last_out + 1 < errors.len()).then_some(last_out + 1),
+    }
+}
+
+/// Whether `y` is outside the band: |y| ≥ `band`, or not a number.
+fn outside_band(y: f64, band: f64) -> bool {
+    y.abs() >= band || y.is_nan()
+}
+
+/// Index of the first error with |y| < `band`.
+#[must_use]
+pub fn first_within_index(errors: &[f64], band: f64) -> Option<usize> {
+    errors.iter().position(|y| y.abs() < band)
+}
+
+/// The true lateral errors of a trace, metres.
+#[must_use]
+pub fn lateral_errors(trace: &[TickRecord]) -> Vec<f64> {
+    trace.iter().map(|r| r.lateral_error_m).collect()
+}
+
+/// The summary written to `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Scenario name.
+    pub scenario: String,
+    /// Seed of the run.
+    pub seed: u64,
+    /// Distance travelled by O, metres.
+    pub distance_m: f64,
+    /// Simulated time, seconds.
+    pub duration_s: f64,
+    /// Length of the reference path, metres.
+    pub path_length_m: f64,
+    /// |y| statistics over the whole run, metres.
+    pub lateral_error_m: ErrorStats,
+    /// |y| statistics from `converged_after_m` on (null if never converged), metres.
+    pub lateral_error_after_convergence_m: Option<ErrorStats>,
+    /// |y| statistics while O is on a slip patch (null if never), metres.
+    pub lateral_error_on_slip_m: Option<ErrorStats>,
+    /// |θ̃| statistics over the whole run, degrees.
+    pub angular_error_deg: ErrorStats,
+    /// Convergence band, metres.
+    pub band_m: f64,
+    /// Distance until |y| stays below the band (null if never), metres.
+    pub converged_after_m: Option<f64>,
+    /// Distance when |y| first enters the band (null if never), metres.
+    pub first_within_band_m: Option<f64>,
+    /// Distance travelled in each mode, metres.
+    pub mode_distance_m: BTreeMap<&'static str, f64>,
+    /// Number of mode changes.
+    pub mode_switches: usize,
+    /// Plants run over by a wheel.
+    pub plants_crushed: usize,
+    /// Fraction of ticks whose steering command saturated.
+    pub steering_saturated_fraction: f64,
+    /// Whether the run reached its end (path end or full duration).
+    pub reached_end: bool,
+    /// The core error that stopped the run, if any.
+    pub aborted: Option<String>,
+    /// See the module documentation.
+    pub success: bool,
+}
+
+/// The summary of `output`, a run of `setup`.
+#[must_use]
+pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
+    let trace = &output.trace;
+    let band = setup.metrics.band_m;
+    let distance_at = |i: usize| trace.get(i).map(|r| r.distance_m);
+    let ys = lateral_errors(trace);
+    let first = first_within_index(&ys, band);
+    let converged = converged_index(&ys, band);
+    let after = converged
+        .and_then(|i| ys.get(i..))
+        .and_then(|t| error_stats(t.iter().copied()));
+    let mut mode_distance = BTreeMap::new();
+    let mut switches = 0;
+    for pair in trace.windows(2) {
+        let [a, b] = pair else { continue };
+        *mode_distance.entry(a.mode().label()).or_insert(0.0) += b.distance_m - a.distance_m;
+        if a.mode() != b.mode() {
+            switches += 1;
+        }
+    }
+    if let Some(last) = trace.last() {
+        mode_distance.entry(last.mode().label()).or_insert(0.0);
+    }
+    let reached_end = match output.end {
+        RunEnd::PathEnd => true,
+        RunEnd::Duration => !setup.run.stop_at_path_end,
+        RunEnd::Aborted(_) => false,
+    };
+    let first_m = first.and_then(distance_at);
+    let converged_m = converged.and_then(distance_at);
+    let success = reached_end && converged_m.is_some_and(|d| d <= setup.metrics.converge_within_m);
+    let zero = ErrorStats {
+        mean_abs: 0.0,
+        rms: 0.0,
+        max_abs: 0.0,
+        p95_abs: 0.0,
+    };
+    Summary {
+        scenario: setup.name.clone(),
+        seed: setup.seed,
+        distance_m: trace.last().map_or(0.0, |r| r.distance_m),
+        duration_s: trace.last().map_or(0.0, |r| r.t_s),
+        path_length_m: setup.path.length().get(),
+        lateral_error_m: error_stats(trace.iter().map(|r| r.lateral_error_m)).unwrap_or(zero),
+        lateral_error_after_convergence_m: after,
+        lateral_error_on_slip_m: error_stats(
+            trace
+                .iter()
+                .filter(|r| r.patch.is_some())
+                .map(|r| r.lateral_error_m),
+        ),
+        angular_error_deg: error_stats(trace.iter().map(|r| r.angular_error_rad.to_degrees()))
+            .unwrap_or(zero),
+        band_m: band,
+        converged_after_m: converged_m,
+        first_within_band_m: first_m,
+        mode_distance_m: mode_distance,
+        mode_switches: switches,
+        plants_crushed: output.plants_crushed,
+        steering_saturated_fraction: if trace.is_empty() {
+            0.0
+        } else {
+            trace.iter().filter(|r| r.command.saturated).count() as f64 / trace.len() as f64
+        },
+        reached_end,
+        aborted: match &output.end {
+            RunEnd::Aborted(why) => Some(why.clone()),
+            _ => None,
+        },
+        success,
+    }
+}
+
+/// A convergence requirement on a run: from some distance travelled at most
+/// `within_m` on, |y| stays below the band up to `within_m`, and afterwards
+/// stays below it on the given abscissa intervals (for example the straights;
+/// curves may leave it briefly).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConvergenceCheck {
+    /// Band on |y|, metres.
+    pub band_m: f64,
+    /// Distance travelled by which |y| must have settled in the band, metres.
+    pub within_m: f64,
+    /// Abscissa intervals `(s_start, s_end)` where |y| must stay in the band after `within_m`.
+    pub hold_on: Vec<(f64, f64)>,
+}
+
+/// Why a run fails a [`ConvergenceCheck`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConvergenceFailure {
+    /// The run did not reach the end of the path (a core error, or the duration ran out).
+    Incomplete(String),
+    /// |y| was never below the band.
+    NeverWithinBand {
+        /// Smallest |y| seen, metres.
+        min_abs_m: f64,
+    },
+    /// |y| settled in the band only after `within_m`.
+    TooLate {
+        /// Distance from which |y| stayed in the band up to `within_m`, metres.
+        distance_m: f64,
+    },
+    /// After `within_m`, |y| left the band on a hold interval.
+    LeftBand {
+        /// Abscissa where it happened, metres.
+        s_m: f64,
+        /// Lateral error there, metres.
+        y_m: f64,
+    },
+}
+
+/// Checks `output` against `check`; on success returns the distance from
+/// which |y| stayed in the band (up to `within_m`, and on the hold intervals
+/// after). The band is checked first, then that the run reached the path's end.
+pub fn check_convergence(
+    output: &RunOutput,
+    check: &ConvergenceCheck,
+) -> Result<f64, ConvergenceFailure> {
+    let trace = &output.trace;
+    if first_within_index(&lateral_errors(trace), check.band_m).is_none() {
+        let min_abs_m = trace
+            .iter()
+            .map(|r| r.lateral_error_m.abs())
+            .fold(f64::INFINITY, f64::min);
+        return Err(ConvergenceFailure::NeverWithinBand { min_abs_m });
+    }
+    let held = |r: &TickRecord| {
+        check
+            .hold_on
+            .iter()
+            .any(|(a, b)| r.s_m >= *a && r.s_m <= *b)
+    };
+    let outside = |r: &TickRecord| outside_band(r.lateral_error_m, check.band_m);
+    // Ticks that break the requirement if they come after the settling point.
+    let mut violations = trace
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| outside(r) && (r.distance_m <= check.within_m || held(r)));
+    if let Some((_, r)) = violations
+        .clone()
+        .find(|(_, r)| r.distance_m > check.within_m)
+    {
+        return Err(ConvergenceFailure::LeftBand {
+            s_m: r.s_m,
+            y_m: r.lateral_error_m,
+        });
+    }
+    let settled_m = match violations.next_back() {
+        None => trace.first().map_or(0.0, |r| r.distance_m),
+        Some((i, _)) => trace.get(i + 1).map_or(f64::INFINITY, |r| r.distance_m),
+    };
+    if settled_m > check.within_m {
+        return Err(ConvergenceFailure::TooLate {
+            distance_m: settled_m,
+        });
+    }
+    // Checked last, so that a diverging run reports how it diverged.
+    if output.end != RunEnd::PathEnd {
+        return Err(ConvergenceFailure::Incomplete(format!("{:?}", output.end)));
+    }
+    Ok(settled_m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_by_hand() {
+        let s = error_stats([3.0, -4.0, 0.0, 1.0]).unwrap();
+        assert!((s.mean_abs - 2.0).abs() < 1e-12);
+        assert!((s.rms - (26.0_f64 / 4.0).sqrt()).abs() < 1e-12);
+        assert!((s.max_abs - 4.0).abs() < 1e-12);
+        // Nearest rank: ceil(0.95 * 4) = 4th smallest of |e| = 4.
+        assert!((s.p95_abs - 4.0).abs() < 1e-12);
+        let many = error_stats((1..=100).map(f64::from)).unwrap();
+        assert!((many.p95_abs - 95.0).abs() < 1e-12);
+        assert!(error_stats(std::iter::empty()).is_none());
+    }
+
+    #[test]
+    fn convergence_indices() {
+        let band = 0.05;
+        assert_eq!(
+            converged_index(&[0.8, 0.1, 0.01, 0.06, 0.02, 0.01], band),
+            Some(4)
+        );
+        assert_eq!(converged_index(&[0.01, 0.02], band), Some(0));
+        assert_eq!(converged_index(&[0.01, 0.2], band), None);
+        assert_eq!(converged_index(&[0.01, f64::NAN], band), None);
+        assert_eq!(converged_index(&[], band), None);
+        assert_eq!(first_within_index(&[0.8, -0.04, 0.3], band), Some(1));
+        assert_eq!(first_within_index(&[0.8, -0.05], band), None);
+    }
+}

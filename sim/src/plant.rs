@@ -1,1 +1,289 @@
-//! plant.
+//! The vehicle plant: the extended kinematic bicycle of Pierre 2022 (eq. 1,
+//! through the core's `world_rates`), a first-order steering actuator with a
+//! rate limit and saturation, integrated with RK4 sub-steps.
+//!
+//! Pure and deterministic: the next state is a function of the state, the
+//! command held over the control period, the speed and the terrain.
+
+use fieldguide::control::backstepping::SteeringLimit;
+use fieldguide::model::bicycle::{world_rates, Sideslip, Wheelbase};
+use fieldguide::{MetersPerSecond, Pose2, Precondition, Radians, World};
+
+use crate::world::terrain::Terrain;
+
+/// The steering actuator: first-order lag towards the saturated command, rate
+/// limited, saturated.
+///
+/// The lag's time constant is τ = T_s / 3 for a 5 % settling time T_s (a
+/// first-order step response reaches 95 % at 3τ, since e⁻³ ≈ 0.05).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteeringActuator {
+    /// Time constant τ, seconds (0: no lag).
+    pub time_constant_s: f64,
+    /// Rate limit, rad/s (> 0).
+    pub rate_limit_rad_s: f64,
+    /// Saturation |δ| ≤ δ_max.
+    pub limit: SteeringLimit,
+}
+
+impl SteeringActuator {
+    /// The actuator of 5 % settling time `settling_s`, rate limit and saturation.
+    #[must_use]
+    pub fn from_settling(settling_s: f64, rate_limit_rad_s: f64, limit: SteeringLimit) -> Self {
+        Self {
+            time_constant_s: settling_s / 3.0,
+            rate_limit_rad_s,
+            limit,
+        }
+    }
+
+    /// The steering angle after `h` seconds from `current` with `command` held,
+    /// radians: the exact first-order response over `h`, its change limited to
+    /// ±rate·h, then saturated.
+    #[must_use]
+    pub fn advance(&self, current: f64, command: f64, h: f64) -> f64 {
+        let (target, _) = self.limit.clamp(command);
+        let target = target.get();
+        let lagged = if self.time_constant_s > 0.0 {
+            target + (current - target) * (-h / self.time_constant_s).exp()
+        } else {
+            target
+        };
+        let max_step = self.rate_limit_rad_s * h;
+        let next = current + (lagged - current).clamp(-max_step, max_step);
+        self.limit.clamp(next).0.get()
+    }
+}
+
+/// The vehicle's parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VehicleParams {
+    /// Wheelbase L.
+    pub wheelbase: Wheelbase,
+    /// Track (left to right wheel centres), metres.
+    pub track_m: f64,
+    /// Tyre width, metres.
+    pub tyre_width_m: f64,
+    /// The steering actuator.
+    pub actuator: SteeringActuator,
+}
+
+impl VehicleParams {
+    /// Centres of the four wheels' contact patches `[x, y]`, world frame:
+    /// rear left, rear right (on the rear axle, at O), front left, front right
+    /// (a wheelbase ahead).
+    #[must_use]
+    pub fn wheel_centres(&self, pose: &Pose2<World>) -> [[f64; 2]; 4] {
+        let (s, c) = pose.heading.get().sin_cos();
+        let (x, y) = (pose.position.x(), pose.position.y());
+        let half = self.track_m / 2.0;
+        let l = self.wheelbase.get().get();
+        let at = |fwd: f64, left: f64| [x + fwd * c - left * s, y + fwd * s + left * c];
+        [at(0.0, half), at(0.0, -half), at(l, half), at(l, -half)]
+    }
+}
+
+/// The true state of the vehicle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VehicleState {
+    /// Pose of the middle of the rear axle O, world frame.
+    pub pose: Pose2<World>,
+    /// Actual steering angle δ, radians, positive to the left.
+    pub steering: f64,
+    /// The sideslip acting at the start of the last sub-step.
+    pub sideslip: Sideslip,
+    /// Distance travelled by O since the start, metres.
+    pub distance_m: f64,
+}
+
+impl VehicleState {
+    /// The state at rest pose `pose`, wheels straight, sideslip of the terrain there.
+    #[must_use]
+    pub fn at(pose: Pose2<World>, terrain: &Terrain) -> Self {
+        Self {
+            pose,
+            steering: 0.0,
+            sideslip: terrain.sideslip_at(pose.position.x(), pose.position.y()),
+            distance_m: 0.0,
+        }
+    }
+}
+
+/// Advances the vehicle by `period` seconds in `substeps` equal sub-steps with
+/// `command` (radians) held and constant `speed`. In each sub-step the steering
+/// actuator moves first, then the pose is integrated by RK4 with that steering
+/// and the sideslip of the terrain at the sub-step's start.
+///
+/// Errors: the core's preconditions (`PT-STEER-DOMAIN` when δ + β_F reaches
+/// ±π/2, `LIB-FINITE` on overflow).
+pub fn step(
+    params: &VehicleParams,
+    state: &VehicleState,
+    command: f64,
+    speed: MetersPerSecond,
+    terrain: &Terrain,
+    period: f64,
+    substeps: u32,
+) -> Result<VehicleState, Precondition> {
+    let n = substeps.max(1);
+    let h = period / f64::from(n);
+    let mut next = *state;
+    for _ in 0..n {
+        next.steering = params.actuator.advance(next.steering, command, h);
+        let p = next.pose;
+        next.sideslip = terrain.sideslip_at(p.position.x(), p.position.y());
+        next.pose = rk4(
+            params,
+            &p,
+            Radians::new(next.steering)?,
+            next.sideslip,
+            speed,
+            h,
+        )?;
+        next.distance_m += speed.get().abs() * h;
+    }
+    Ok(next)
+}
+
+/// One RK4 step of length `h` of the world-frame model.
+fn rk4(
+    params: &VehicleParams,
+    pose: &Pose2<World>,
+    steering: Radians,
+    sideslip: Sideslip,
+    speed: MetersPerSecond,
+    h: f64,
+) -> Result<Pose2<World>, Precondition> {
+    let f = |p: &Pose2<World>| world_rates(p, speed, steering, sideslip, params.wheelbase);
+    let (x, y, th) = (pose.position.x(), pose.position.y(), pose.heading.get());
+    let shift = |k: &fieldguide::model::bicycle::WorldRates, a: f64| {
+        Pose2::<World>::new(x + a * k.x_dot, y + a * k.y_dot, th + a * k.heading_dot)
+    };
+    let k1 = f(pose)?;
+    let k2 = f(&shift(&k1, h / 2.0)?)?;
+    let k3 = f(&shift(&k2, h / 2.0)?)?;
+    let k4 = f(&shift(&k3, h)?)?;
+    let w = h / 6.0;
+    Pose2::new(
+        x + w * (k1.x_dot + 2.0 * k2.x_dot + 2.0 * k3.x_dot + k4.x_dot),
+        y + w * (k1.y_dot + 2.0 * k2.y_dot + 2.0 * k3.y_dot + k4.y_dot),
+        th + w * (k1.heading_dot + 2.0 * k2.heading_dot + 2.0 * k3.heading_dot + k4.heading_dot),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::world::terrain::SlipPatch;
+
+    fn params(settling: f64, rate: f64) -> VehicleParams {
+        VehicleParams {
+            wheelbase: Wheelbase::new(2.0).unwrap(),
+            track_m: 1.5,
+            tyre_width_m: 0.3,
+            actuator: SteeringActuator::from_settling(
+                settling,
+                rate,
+                SteeringLimit::new(0.5).unwrap(),
+            ),
+        }
+    }
+
+    #[test]
+    fn actuator_settles_to_95_percent_at_the_settling_time() {
+        let a = params(1.0, 100.0).actuator;
+        let mut d = 0.0;
+        for _ in 0..50 {
+            d = a.advance(d, 0.2, 0.02);
+        }
+        // After T_s = 1 s: 1 − e⁻³ of the step.
+        assert!((d - 0.2 * (1.0 - (-3.0_f64).exp())).abs() < 1e-12);
+    }
+
+    #[test]
+    fn actuator_rate_limit_and_saturation() {
+        let a = params(0.0, 0.35).actuator;
+        // No lag: moves at the rate limit.
+        let d = a.advance(0.0, 0.3, 0.1);
+        assert!((d - 0.035).abs() < 1e-12);
+        // Saturated command: never beyond the limit.
+        let mut d = 0.0;
+        for _ in 0..1000 {
+            d = a.advance(d, 3.0, 0.02);
+            assert!(d <= 0.5);
+        }
+        assert!((d - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn straight_and_circle_without_slip() {
+        let p = params(0.0, 100.0);
+        let terrain = Terrain::default();
+        let v = MetersPerSecond::new(1.0).unwrap();
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        for _ in 0..100 {
+            s = step(&p, &s, 0.0, v, &terrain, 0.02, 5).unwrap();
+        }
+        assert!((s.pose.position.x() - 2.0).abs() < 1e-9 && s.pose.position.y().abs() < 1e-12);
+        assert!((s.distance_m - 2.0).abs() < 1e-9);
+        // Full lock from rest steering 0 with no lag reaches δ at once: a circle
+        // of radius L / tan δ, so after a quarter turn O is at (R, R).
+        let delta: f64 = 0.4;
+        let r = 2.0 / delta.tan();
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        s.steering = delta;
+        let quarter = r * std::f64::consts::FRAC_PI_2;
+        let ticks = (quarter / 0.02).round() as u32;
+        let period = quarter / f64::from(ticks);
+        for _ in 0..ticks {
+            s = step(&p, &s, delta, v, &terrain, period, 4).unwrap();
+        }
+        assert!((s.pose.position.x() - r).abs() < 1e-6, "{:?}", s.pose);
+        assert!((s.pose.position.y() - r).abs() < 1e-6);
+        assert!((s.pose.heading.get() - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn rear_sideslip_turns_the_velocity() {
+        let p = params(0.0, 100.0);
+        let beta_r = -0.05;
+        let terrain = Terrain {
+            base: Sideslip::ZERO,
+            patches: vec![SlipPatch {
+                name: "wet".into(),
+                polygon: vec![[-10.0, -10.0], [10.0, -10.0], [10.0, 10.0], [-10.0, 10.0]],
+                sideslip: Sideslip::new(-beta_r, beta_r).unwrap(),
+            }],
+        };
+        // Steering straight, β_F = −β_R: tan(β_F) − tan(β_R) = 2 tan|β| gives
+        // a yaw rate; with β_F = β_R the yaw rate is zero and O crabs at β_R.
+        let crab = Terrain {
+            base: Sideslip::new(beta_r, beta_r).unwrap(),
+            patches: vec![],
+        };
+        let v = MetersPerSecond::new(1.0).unwrap();
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &crab);
+        for _ in 0..50 {
+            s = step(&p, &s, 0.0, v, &crab, 0.02, 2).unwrap();
+        }
+        assert!(s.pose.heading.get().abs() < 1e-12);
+        assert!((s.pose.position.y() - beta_r.sin()).abs() < 1e-9);
+        assert!((s.pose.position.x() - beta_r.cos()).abs() < 1e-9);
+        // On the patch the yaw rate is v cos β_R (tan β_F − tan β_R) / L.
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        s = step(&p, &s, 0.0, v, &terrain, 0.02, 1).unwrap();
+        let expected = beta_r.cos() * (2.0 * (-beta_r).tan()) / 2.0 * 0.02;
+        assert!((s.pose.heading.get() - expected).abs() < 1e-9);
+        assert_eq!(s.sideslip.rear.get(), beta_r);
+    }
+
+    #[test]
+    fn wheel_centres_follow_the_pose() {
+        let p = params(0.0, 1.0);
+        let w = p.wheel_centres(&Pose2::new(1.0, 1.0, std::f64::consts::FRAC_PI_2).unwrap());
+        // Heading north: left is west.
+        assert!((w[0][0] - 0.25).abs() < 1e-12 && (w[0][1] - 1.0).abs() < 1e-12);
+        assert!((w[1][0] - 1.75).abs() < 1e-12);
+        assert!((w[2][1] - 3.0).abs() < 1e-12 && (w[3][0] - 1.75).abs() < 1e-12);
+    }
+}

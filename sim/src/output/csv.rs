@@ -1,1 +1,78 @@
-//! csv output.
+//! The per-tick CSV trace (`trace.csv`).
+//!
+//! One line per control tick. Angles in radians, distances in metres, world
+//! frame unless the column says `odom_`. `y_true_m` and the other `_true`
+//! columns are ground truth; `est_` columns are what the robot's sensors said.
+
+use std::fmt::Write as _;
+
+use crate::runner::TickRecord;
+
+/// The header line of the trace.
+pub const HEADER: &str = "t_s,x_true_m,y_true_m,heading_true_rad,\
+est_x_m,est_y_m,est_heading_rad,odom_x_m,odom_y_m,odom_heading_rad,\
+distance_m,s_m,lateral_error_true_m,angular_error_true_rad,curvature_1_m,\
+lateral_error_est_m,angular_error_est_rad,\
+steering_cmd_rad,steering_rad,saturated,\
+beta_front_true_rad,beta_rear_true_rad,beta_front_used_rad,beta_rear_used_rad,\
+slip_patch,mode";
+
+/// The whole trace as CSV text, header first.
+#[must_use]
+pub fn trace_csv(trace: &[TickRecord], patch_names: &[String]) -> String {
+    let mut out = String::with_capacity(trace.len().saturating_mul(260));
+    out.push_str(HEADER);
+    out.push('\n');
+    for r in trace {
+        let g = &r.readings.gnss;
+        let o = &r.readings.odometry;
+        let (ey, eth) = r.command.estimated_error.map_or((f64::NAN, f64::NAN), |e| {
+            (e.y.get(), e.angular_deviation.get())
+        });
+        let patch = r
+            .patch
+            .and_then(|i| patch_names.get(i))
+            .map_or(String::new(), |n| n.replace(',', ";"));
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            out,
+            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{}",
+            r.t_s,
+            r.truth.position.x(),
+            r.truth.position.y(),
+            r.truth.heading.get(),
+            g.position.x(),
+            g.position.y(),
+            g.heading.get(),
+            o.position.x(),
+            o.position.y(),
+            o.heading.get(),
+            r.distance_m,
+            r.s_m,
+            r.lateral_error_m,
+            r.angular_error_rad,
+            r.curvature,
+            optional(ey),
+            optional(eth),
+            r.command.steering,
+            r.steering_rad,
+            u8::from(r.command.saturated),
+            r.sideslip_rad.0,
+            r.sideslip_rad.1,
+            r.command.sideslip_used.front.get(),
+            r.command.sideslip_used.rear.get(),
+            patch,
+            r.mode().label(),
+        );
+    }
+    out
+}
+
+/// A number with 5 decimals, or an empty cell for "none".
+fn optional(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v:.5}")
+    } else {
+        String::new()
+    }
+}

@@ -1,5 +1,58 @@
-//! Output: CSV traces, JSON summaries, SVG plots.
+//! Output: CSV traces, JSON summaries, SVG plots, written to `out/<scenario>/`.
 
 pub mod csv;
 pub mod json;
+pub mod plots;
 pub mod svg;
+
+use std::path::{Path, PathBuf};
+
+use crate::error::SimError;
+use crate::metrics::Summary;
+use crate::runner::RunOutput;
+use crate::scenario::Setup;
+
+/// The files of one run.
+pub const FILES: [&str; 4] = [
+    "trace.csv",
+    "summary.json",
+    "trajectory.svg",
+    "lateral_error.svg",
+];
+
+/// Writes `trace.csv`, `summary.json`, `trajectory.svg` and `lateral_error.svg`
+/// into `out_root/<scenario name>/`, creating it; returns that folder.
+pub fn write_run(
+    out_root: &Path,
+    setup: &Setup,
+    output: &RunOutput,
+    summary: &Summary,
+) -> Result<PathBuf, SimError> {
+    let dir = out_root.join(&setup.name);
+    std::fs::create_dir_all(&dir).map_err(|source| SimError::Write {
+        file: dir.clone(),
+        source,
+    })?;
+    let names: Vec<String> = setup
+        .world
+        .terrain
+        .patches
+        .iter()
+        .map(|p| p.name.clone())
+        .collect();
+    let json = json::summary_json(summary).map_err(|e| SimError::Write {
+        file: dir.join("summary.json"),
+        source: std::io::Error::other(e),
+    })?;
+    let contents = [
+        csv::trace_csv(&output.trace, &names),
+        json,
+        plots::trajectory_svg(setup, &output.trace),
+        plots::lateral_error_svg(setup, &output.trace),
+    ];
+    for (name, text) in FILES.iter().zip(contents) {
+        let file = dir.join(name);
+        std::fs::write(&file, text).map_err(|source| SimError::Write { file, source })?;
+    }
+    Ok(dir)
+}

@@ -1,1 +1,133 @@
-//! Terrain: sideslip patches.
+//! Terrain: the sideslip angles of the ground, everywhere and on patches.
+//!
+//! A patch is a polygon in the world frame (metres) carrying its own front and
+//! rear sideslip angles β_F, β_R (Pierre 2022, section 2.1: the angle from each
+//! wheel's orientation to its actual velocity). The sideslip acting on the
+//! vehicle is that of the first patch containing the middle of the rear axle
+//! (the controlled point O), or the base sideslip outside every patch. The
+//! change at a patch boundary is a step: real ground changes over a wheel's
+//! length, which at 0.8 m/s is a few control periods, shorter than the
+//! steering actuator's settling time.
+
+use fieldguide::model::bicycle::Sideslip;
+
+/// A polygon of ground with its own sideslip.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlipPatch {
+    /// Name, for plots and messages.
+    pub name: String,
+    /// Vertices `[x, y]`, world frame, metres, at least 3, in order (either orientation).
+    pub polygon: Vec<[f64; 2]>,
+    /// The sideslip on the patch.
+    pub sideslip: Sideslip,
+}
+
+impl SlipPatch {
+    /// Whether `(x, y)` lies inside the polygon (even-odd rule; points on an
+    /// edge may fall either side).
+    #[must_use]
+    pub fn contains(&self, x: f64, y: f64) -> bool {
+        let mut inside = false;
+        let n = self.polygon.len();
+        for (i, a) in self.polygon.iter().enumerate() {
+            let Some(b) = self.polygon.get((i + n - 1) % n) else {
+                continue;
+            };
+            let crosses = (a[1] > y) != (b[1] > y);
+            if crosses {
+                let x_cross = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+                if x < x_cross {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
+    }
+}
+
+/// The ground of a world: base sideslip and patches.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Terrain {
+    /// Sideslip outside every patch.
+    pub base: Sideslip,
+    /// Patches, the first containing a point wins.
+    pub patches: Vec<SlipPatch>,
+}
+
+impl Terrain {
+    /// The patch containing `(x, y)`, if any.
+    #[must_use]
+    pub fn patch_at(&self, x: f64, y: f64) -> Option<&SlipPatch> {
+        self.patches.iter().find(|p| p.contains(x, y))
+    }
+
+    /// The sideslip at `(x, y)`, world frame, metres.
+    #[must_use]
+    pub fn sideslip_at(&self, x: f64, y: f64) -> Sideslip {
+        self.patch_at(x, y).map_or(self.base, |p| p.sideslip)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(name: &str, x0: f64, y0: f64, side: f64, beta: f64) -> SlipPatch {
+        SlipPatch {
+            name: name.to_owned(),
+            polygon: vec![
+                [x0, y0],
+                [x0 + side, y0],
+                [x0 + side, y0 + side],
+                [x0, y0 + side],
+            ],
+            sideslip: Sideslip::new(beta, beta).unwrap(),
+        }
+    }
+
+    #[test]
+    fn point_in_polygon_square_and_concave() {
+        let sq = square("a", 0.0, 0.0, 2.0, 0.0);
+        assert!(sq.contains(1.0, 1.0));
+        assert!(!sq.contains(3.0, 1.0));
+        assert!(!sq.contains(1.0, -0.1));
+        // An L shape (concave): the notch is outside.
+        let l = SlipPatch {
+            name: "l".into(),
+            polygon: vec![
+                [0.0, 0.0],
+                [2.0, 0.0],
+                [2.0, 1.0],
+                [1.0, 1.0],
+                [1.0, 2.0],
+                [0.0, 2.0],
+            ],
+            sideslip: Sideslip::ZERO,
+        };
+        assert!(l.contains(0.5, 1.5));
+        assert!(l.contains(1.5, 0.5));
+        assert!(!l.contains(1.5, 1.5));
+        // Clockwise order gives the same answer.
+        let mut cw = sq.clone();
+        cw.polygon.reverse();
+        assert!(cw.contains(1.0, 1.0) && !cw.contains(-1.0, 1.0));
+    }
+
+    #[test]
+    fn first_patch_wins_and_base_elsewhere() {
+        let terrain = Terrain {
+            base: Sideslip::new(0.01, 0.02).unwrap(),
+            patches: vec![
+                square("a", 0.0, 0.0, 2.0, -0.05),
+                square("b", 1.0, 1.0, 2.0, 0.07),
+            ],
+        };
+        assert_eq!(terrain.sideslip_at(1.5, 1.5).rear.get(), -0.05);
+        assert_eq!(terrain.sideslip_at(2.5, 2.5).rear.get(), 0.07);
+        assert_eq!(terrain.sideslip_at(10.0, 0.0), terrain.base);
+        assert_eq!(
+            terrain.patch_at(2.5, 2.5).map(|p| p.name.as_str()),
+            Some("b")
+        );
+    }
+}

@@ -1,0 +1,142 @@
+//! The robot's side of a tick: from sensor readings to a command.
+//!
+//! The runner calls a [`Guidance`] once per control period and knows nothing of
+//! the law inside, so later behaviours (edge following, furrow pursuing, a mode
+//! selector fed by LiDAR detectors) plug in as new implementations and new
+//! [`Mode`] labels without touching the runner.
+
+use fieldguide::control::backstepping::{steering_command, BacksteppingConfig};
+use fieldguide::model::bicycle::Sideslip;
+use fieldguide::{Meters, MetersPerSecond, Precondition, TrackingError};
+
+use crate::scenario::setup::Reference;
+use crate::sensors::Readings;
+
+/// The behaviour that produced a tick's command (the colour of the plots and
+/// the keys of `mode_distance_m`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Mode {
+    /// Tracking the recorded reference path (Pierre 2022, section 2.1).
+    PathTracking,
+}
+
+impl Mode {
+    /// The label used in CSV traces and JSON summaries.
+    #[must_use]
+    pub const fn label(self) -> &'static str {
+        match self {
+            Self::PathTracking => "path_tracking",
+        }
+    }
+
+    /// Plot colour (the papers draw path tracking in red).
+    #[must_use]
+    pub const fn colour(self) -> &'static str {
+        match self {
+            Self::PathTracking => "#d62728",
+        }
+    }
+}
+
+/// What the guidance sees at one tick.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TickInput<'a> {
+    /// Time since the start, seconds.
+    pub time_s: f64,
+    /// The sensors' readings (never the ground truth).
+    pub readings: &'a Readings,
+}
+
+/// What the guidance sends to the vehicle at one tick.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Command {
+    /// Steering angle δ, radians, positive to the left, within the saturation.
+    pub steering: f64,
+    /// Forward speed, m/s.
+    pub speed: MetersPerSecond,
+    /// The behaviour in charge.
+    pub mode: Mode,
+    /// Whether the law saturated the steering.
+    pub saturated: bool,
+    /// The tracking error the law used (from the estimated pose).
+    pub estimated_error: Option<TrackingError>,
+    /// The sideslip the law used (zero without compensation).
+    pub sideslip_used: Sideslip,
+}
+
+/// A per-tick guidance: readings in, command out. State lives in the implementor.
+pub trait Guidance {
+    /// The command for this tick. An error is a violated precondition of the
+    /// core (for example 1 − y c(s) ≤ 0 far off a curve); the runner ends the
+    /// run and reports it.
+    fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition>;
+}
+
+/// Backstepping path tracking (Pierre 2022, eqs. 2-7) on the estimated pose.
+#[derive(Debug, Clone)]
+pub struct PathTracking<'p> {
+    path: &'p Reference,
+    config: BacksteppingConfig,
+    speed: MetersPerSecond,
+    lookahead: Meters,
+    compensate: bool,
+    /// Abscissa of the last projection, to search near it.
+    s_hint: Option<Meters>,
+}
+
+/// Half-width of the abscissa window searched around the last projection,
+/// metres: far more than a tick's travel, far less than a U-turn's length, so
+/// the projection cannot jump to the other leg.
+pub const SEARCH_WINDOW_M: f64 = 3.0;
+
+impl<'p> PathTracking<'p> {
+    /// Tracking of `path` at `speed` with the law `config`, curvature fed
+    /// forward `lookahead` metres ahead (v T), using the observer's sideslip
+    /// only when `compensate`.
+    #[must_use]
+    pub fn new(
+        path: &'p Reference,
+        config: BacksteppingConfig,
+        speed: MetersPerSecond,
+        lookahead: Meters,
+        compensate: bool,
+    ) -> Self {
+        Self {
+            path,
+            config,
+            speed,
+            lookahead,
+            compensate,
+            s_hint: None,
+        }
+    }
+}
+
+impl Guidance for PathTracking<'_> {
+    fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition> {
+        let pose = &input.readings.gnss;
+        let frenet = match self.s_hint {
+            None => self.path.project(pose, self.lookahead)?,
+            Some(hint) => {
+                self.path
+                    .project_near(pose, self.lookahead, hint, Meters::new(SEARCH_WINDOW_M)?)?
+            }
+        };
+        self.s_hint = Some(frenet.s);
+        let error = TrackingError::from(frenet);
+        let sideslip = if self.compensate {
+            input.readings.sideslip
+        } else {
+            Sideslip::ZERO
+        };
+        let cmd = steering_command(&self.config, &error, sideslip, self.speed)?;
+        Ok(Command {
+            steering: cmd.steering.get(),
+            speed: self.speed,
+            mode: Mode::PathTracking,
+            saturated: cmd.saturated,
+            estimated_error: Some(error),
+            sideslip_used: sideslip,
+        })
+    }
+}

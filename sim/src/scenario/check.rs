@@ -1,0 +1,104 @@
+//! Range checks that name the field they refuse (`section.field`).
+
+use crate::error::ScenarioError;
+
+/// Checks values of one scenario (`origin`: its file or built-in name).
+#[derive(Debug, Clone, Copy)]
+pub struct Checker<'a> {
+    origin: &'a str,
+}
+
+impl<'a> Checker<'a> {
+    /// A checker for the scenario called `origin` in messages.
+    #[must_use]
+    pub const fn new(origin: &'a str) -> Self {
+        Self { origin }
+    }
+
+    /// The error "`field`: `reason`".
+    #[must_use]
+    pub fn error(&self, field: &str, reason: &str) -> ScenarioError {
+        ScenarioError::Field {
+            origin: self.origin.to_owned(),
+            field: field.to_owned(),
+            reason: reason.to_owned(),
+        }
+    }
+
+    /// `value` if finite.
+    pub fn finite(&self, field: &str, value: f64) -> Result<f64, ScenarioError> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(self.error(field, &format!("must be a finite number, got {value}")))
+        }
+    }
+
+    /// `value` if finite and > 0.
+    pub fn positive(&self, field: &str, value: f64) -> Result<f64, ScenarioError> {
+        if value.is_finite() && value > 0.0 {
+            Ok(value)
+        } else {
+            Err(self.error(field, &format!("must be > 0, got {value}")))
+        }
+    }
+
+    /// `value` if finite and ≥ 0.
+    pub fn non_negative(&self, field: &str, value: f64) -> Result<f64, ScenarioError> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(value)
+        } else {
+            Err(self.error(field, &format!("must be >= 0, got {value}")))
+        }
+    }
+
+    /// `value` if finite and within `[lo, hi]`.
+    pub fn range(&self, field: &str, value: f64, lo: f64, hi: f64) -> Result<f64, ScenarioError> {
+        if value.is_finite() && value >= lo && value <= hi {
+            Ok(value)
+        } else {
+            Err(self.error(field, &format!("must be within [{lo}, {hi}], got {value}")))
+        }
+    }
+
+    /// `value` if finite and strictly within `(lo, hi)`.
+    pub fn open_range(
+        &self,
+        field: &str,
+        value: f64,
+        lo: f64,
+        hi: f64,
+    ) -> Result<f64, ScenarioError> {
+        if value.is_finite() && value > lo && value < hi {
+            Ok(value)
+        } else {
+            Err(self.error(
+                field,
+                &format!("must be strictly between {lo} and {hi}, got {value}"),
+            ))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_check_names_the_field_and_the_value() {
+        let c = Checker::new("demo.toml");
+        assert!(c.positive("vehicle.wheelbase_m", 2.0).is_ok());
+        let e = c.positive("vehicle.wheelbase_m", 0.0).unwrap_err();
+        assert_eq!(e.field(), Some("vehicle.wheelbase_m"));
+        assert_eq!(
+            e.to_string(),
+            "demo.toml: field `vehicle.wheelbase_m`: must be > 0, got 0"
+        );
+        assert!(c.non_negative("a.b", 0.0).is_ok());
+        assert!(c.non_negative("a.b", -1e-9).is_err());
+        assert!(c.range("a.b", 5.0, 0.0, 5.0).is_ok());
+        assert!(c.range("a.b", f64::NAN, 0.0, 5.0).is_err());
+        assert!(c.open_range("a.b", 5.0, 0.0, 5.0).is_err());
+        assert!(c.finite("a.b", f64::INFINITY).is_err());
+    }
+}

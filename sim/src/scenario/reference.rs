@@ -1,0 +1,346 @@
+//! The reference path of a scenario: straight and arc segments sampled into
+//! waypoints (as if recorded by driving), or waypoints read from a CSV file.
+
+use std::path::Path;
+
+use super::check::Checker;
+use super::schema::{PathSection, Segment, StartPose};
+use crate::error::ScenarioError;
+use crate::rng::SimRng;
+
+/// What kind of nominal piece a stretch of the path is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PieceKind {
+    /// A straight line.
+    Straight,
+    /// A circular arc of signed curvature (1/m, positive to the left).
+    Arc {
+        /// Signed curvature, 1/m.
+        curvature: f64,
+    },
+}
+
+/// One segment of the nominal path and the abscissa interval it covers.
+///
+/// [`waypoints`] gives nominal abscissas; [`crate::scenario::build`] replaces
+/// them by the abscissas of the end points projected on the recorded path
+/// (which the recording noise makes slightly longer).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// Straight or arc.
+    pub kind: PieceKind,
+    /// Abscissa where it starts, metres.
+    pub s_start: f64,
+    /// Abscissa where it ends, metres.
+    pub s_end: f64,
+    /// Nominal start point `[x, y]`, world frame, metres.
+    pub start: [f64; 2],
+    /// Nominal end point `[x, y]`, world frame, metres.
+    pub end: [f64; 2],
+}
+
+/// Waypoints of the reference path before it is built by the core, and the
+/// nominal pieces they came from (empty for a CSV path).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Waypoints {
+    /// Waypoints `[x, y]` in the world frame, metres (noise included).
+    pub points: Vec<[f64; 2]>,
+    /// Nominal pieces, in order (segment paths only).
+    pub pieces: Vec<Piece>,
+}
+
+/// The nominal abscissa intervals `(s_start, s_end)` of the straight pieces.
+#[must_use]
+pub fn straight_intervals(pieces: &[Piece]) -> Vec<(f64, f64)> {
+    pieces
+        .iter()
+        .filter(|p| p.kind == PieceKind::Straight)
+        .map(|p| (p.s_start, p.s_end))
+        .collect()
+}
+
+/// The waypoints of `[path]`: sampled segments plus recording noise, or the CSV file
+/// (relative to `base_dir`, the scenario file's folder; none for a built-in scenario),
+/// at most `capacity` of them.
+pub fn waypoints(
+    section: &PathSection,
+    capacity: usize,
+    base_dir: Option<&Path>,
+    check: &Checker<'_>,
+    rng: &mut SimRng,
+) -> Result<Waypoints, ScenarioError> {
+    let step = check.positive("path.sample_step_m", section.sample_step_m)?;
+    let noise = check.non_negative("path.recording_noise_m", section.recording_noise_m)?;
+    match (&section.segments, &section.csv) {
+        (Some(segments), None) => {
+            let Some(start) = section.start else {
+                return Err(check.error("path.start", "required with `path.segments`"));
+            };
+            let mut w = sample_segments(start, segments, step, capacity, check)?;
+            for p in &mut w.points {
+                p[0] += rng.gaussian(noise);
+                p[1] += rng.gaussian(noise);
+            }
+            Ok(w)
+        }
+        (None, Some(csv)) => {
+            if section.start.is_some() {
+                return Err(check.error("path.start", "not allowed with `path.csv`"));
+            }
+            let text = read_csv(csv, base_dir, check)?;
+            let mut points = parse_csv(&text, check)?;
+            if points.len() > capacity {
+                return Err(check.error("path.csv", &format!("more than {capacity} waypoints")));
+            }
+            for p in &mut points {
+                p[0] += rng.gaussian(noise);
+                p[1] += rng.gaussian(noise);
+            }
+            Ok(Waypoints {
+                points,
+                pieces: Vec::new(),
+            })
+        }
+        _ => Err(check.error("path", "give exactly one of `segments` and `csv`")),
+    }
+}
+
+/// Samples the segments every `step` metres (at least once per segment), from `start`.
+fn sample_segments(
+    start: StartPose,
+    segments: &[Segment],
+    step: f64,
+    capacity: usize,
+    check: &Checker<'_>,
+) -> Result<Waypoints, ScenarioError> {
+    let mut x = check.finite("path.start.x_m", start.x_m)?;
+    let mut y = check.finite("path.start.y_m", start.y_m)?;
+    let mut heading = check
+        .finite("path.start.heading_deg", start.heading_deg)?
+        .to_radians();
+    if segments.is_empty() {
+        return Err(check.error("path.segments", "needs at least one segment"));
+    }
+    let mut points = vec![[x, y]];
+    let mut pieces = Vec::with_capacity(segments.len());
+    let mut s = 0.0;
+    for (i, seg) in segments.iter().enumerate() {
+        let field = |name: &str| format!("path.segments[{i}].{name}");
+        let (length, curvature) = match (seg.straight_m, seg.arc_radius_m, seg.arc_angle_deg) {
+            (Some(l), None, None) => (check.positive(&field("straight_m"), l)?, 0.0),
+            (None, Some(r), Some(a)) => {
+                let r = check.positive(&field("arc_radius_m"), r)?;
+                let a = check.range(&field("arc_angle_deg"), a, -360.0, 360.0)?;
+                if a == 0.0 {
+                    return Err(check.error(&field("arc_angle_deg"), "must not be 0"));
+                }
+                (r * a.to_radians().abs(), a.signum() / r)
+            }
+            _ => {
+                return Err(check.error(
+                    &format!("path.segments[{i}]"),
+                    "give either `straight_m` or both `arc_radius_m` and `arc_angle_deg`",
+                ))
+            }
+        };
+        let n = samples_for(length, step);
+        let total = points.len().saturating_add(n as usize);
+        if total > capacity {
+            return Err(check.error(
+                "path.sample_step_m",
+                &format!(
+                    "the segments need more than {capacity} waypoints at this spacing; use a larger step"
+                ),
+            ));
+        }
+        for k in 1..=n {
+            let d = length * f64::from(k) / f64::from(n);
+            points.push(advance(x, y, heading, curvature, d));
+        }
+        let end = advance(x, y, heading, curvature, length);
+        pieces.push(Piece {
+            kind: if curvature == 0.0 {
+                PieceKind::Straight
+            } else {
+                PieceKind::Arc { curvature }
+            },
+            s_start: s,
+            s_end: s + length,
+            start: [x, y],
+            end,
+        });
+        x = end[0];
+        y = end[1];
+        heading += curvature * length;
+        s += length;
+    }
+    Ok(Waypoints { points, pieces })
+}
+
+/// Number of sampling intervals for a segment of `length` at spacing `step` (≥ 1,
+/// saturating at `u32::MAX`; the caller checks the total against the capacity).
+fn samples_for(length: f64, step: f64) -> u32 {
+    // A float-to-int `as` saturates and maps NaN to 0, so the clamp bounds the result.
+    ((length / step).ceil() as u32).max(1)
+}
+
+/// The point at distance `d` along a piece of curvature `c` starting at `(x, y)`
+/// with `heading`: a straight line for c = 0, a circular arc otherwise.
+fn advance(x: f64, y: f64, heading: f64, c: f64, d: f64) -> [f64; 2] {
+    if c == 0.0 {
+        [x + d * heading.cos(), y + d * heading.sin()]
+    } else {
+        let h = heading + c * d;
+        [
+            x + (h.sin() - heading.sin()) / c,
+            y - (h.cos() - heading.cos()) / c,
+        ]
+    }
+}
+
+fn read_csv(
+    name: &str,
+    base_dir: Option<&Path>,
+    check: &Checker<'_>,
+) -> Result<String, ScenarioError> {
+    let Some(dir) = base_dir else {
+        return Err(check.error(
+            "path.csv",
+            "a built-in scenario cannot refer to a file; use `path.segments`",
+        ));
+    };
+    let file = dir.join(name);
+    std::fs::read_to_string(&file).map_err(|source| ScenarioError::Read { file, source })
+}
+
+/// Parses `x_m,y_m` lines; an optional first header line; `#` comments and blank lines skipped.
+fn parse_csv(text: &str, check: &Checker<'_>) -> Result<Vec<[f64; 2]>, ScenarioError> {
+    let mut points = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let mut cells = line.split(',').map(str::trim);
+        let (Some(a), Some(b), None) = (cells.next(), cells.next(), cells.next()) else {
+            return Err(check.error(
+                "path.csv",
+                &format!("line {}: expected two columns `x_m,y_m`", i + 1),
+            ));
+        };
+        match (a.parse::<f64>(), b.parse::<f64>()) {
+            (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => points.push([x, y]),
+            _ if i == 0 => {} // header line
+            _ => {
+                return Err(check.error(
+                    "path.csv",
+                    &format!("line {}: `{line}` is not two finite numbers", i + 1),
+                ))
+            }
+        }
+    }
+    if points.len() < 2 {
+        return Err(check.error("path.csv", "needs at least two waypoints"));
+    }
+    Ok(points)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn checker() -> Checker<'static> {
+        Checker::new("test")
+    }
+
+    #[test]
+    fn sample_count_is_the_ceiling() {
+        assert_eq!(samples_for(15.0, 0.1), 150);
+        assert_eq!(samples_for(0.05, 0.1), 1);
+        assert_eq!(samples_for(1.05, 0.1), 11);
+        assert_eq!(samples_for(7.0, 1.0), 7);
+    }
+
+    #[test]
+    fn quarter_arc_ends_where_geometry_says() {
+        // Left quarter circle of radius 10 from the origin heading east ends at (10, 10).
+        let p = advance(0.0, 0.0, 0.0, 0.1, 10.0 * std::f64::consts::FRAC_PI_2);
+        assert!((p[0] - 10.0).abs() < 1e-9 && (p[1] - 10.0).abs() < 1e-9);
+        // Right half circle of radius 5 heading north ends 10 m east.
+        let q = advance(
+            0.0,
+            0.0,
+            std::f64::consts::FRAC_PI_2,
+            -0.2,
+            5.0 * std::f64::consts::PI,
+        );
+        assert!((q[0] - 10.0).abs() < 1e-9 && q[1].abs() < 1e-9);
+    }
+
+    #[test]
+    fn segments_give_pieces_and_evenly_spaced_points() {
+        let start = StartPose {
+            x_m: 1.0,
+            y_m: 2.0,
+            heading_deg: 90.0,
+        };
+        let segs = [
+            Segment {
+                straight_m: Some(3.0),
+                arc_radius_m: None,
+                arc_angle_deg: None,
+            },
+            Segment {
+                straight_m: None,
+                arc_radius_m: Some(2.0),
+                arc_angle_deg: Some(-90.0),
+            },
+        ];
+        let w = sample_segments(start, &segs, 0.1, 4096, &checker()).unwrap();
+        assert_eq!(w.points.len(), 1 + 30 + 32);
+        for pair in w.points.windows(2) {
+            let d = (pair[1][0] - pair[0][0]).hypot(pair[1][1] - pair[0][1]);
+            assert!(d > 0.09 && d < 0.1001, "spacing {d}");
+        }
+        let last = w.points.last().unwrap();
+        assert!((last[0] - 3.0).abs() < 1e-9 && (last[1] - 7.0).abs() < 1e-9);
+        assert_eq!(w.pieces.len(), 2);
+        assert!((w.pieces[1].s_start - 3.0).abs() < 1e-12);
+        assert!((w.pieces[1].s_end - 3.0 - std::f64::consts::PI).abs() < 1e-9);
+        assert_eq!(w.pieces[1].kind, PieceKind::Arc { curvature: -0.5 });
+    }
+
+    #[test]
+    fn bad_segments_name_their_field() {
+        let start = StartPose {
+            x_m: 0.0,
+            y_m: 0.0,
+            heading_deg: 0.0,
+        };
+        let half = Segment {
+            straight_m: None,
+            arc_radius_m: Some(2.0),
+            arc_angle_deg: None,
+        };
+        let e = sample_segments(start, &[half], 0.1, 4096, &checker()).unwrap_err();
+        assert_eq!(e.field(), Some("path.segments[0]"));
+        let neg = Segment {
+            straight_m: Some(-1.0),
+            arc_radius_m: None,
+            arc_angle_deg: None,
+        };
+        let e = sample_segments(start, &[neg], 0.1, 4096, &checker()).unwrap_err();
+        assert_eq!(e.field(), Some("path.segments[0].straight_m"));
+    }
+
+    #[test]
+    fn csv_parses_header_comments_and_refuses_garbage() {
+        let pts = parse_csv("x_m,y_m\n# a comment\n0,0\n1.5, 2\n\n3,4\n", &checker()).unwrap();
+        assert_eq!(pts, vec![[0.0, 0.0], [1.5, 2.0], [3.0, 4.0]]);
+        let e = parse_csv("0,0\n1,abc\n", &checker()).unwrap_err();
+        assert_eq!(e.field(), Some("path.csv"));
+        assert!(e.to_string().contains("line 2"));
+        assert!(parse_csv("0,0,0\n", &checker()).is_err());
+        assert!(parse_csv("0,0\n", &checker()).is_err());
+    }
+}
