@@ -1,0 +1,2 @@
+//! Benchmark of furrow detection.
+fn main() {}
