@@ -106,6 +106,9 @@ impl Template {
     }
 
     /// `z_r` at offset `i` from the centre (eq. 12): `height` on the support, else 0.
+    //= spec/pierre2022.md#fur-template-rectangular-plant-model-with-zero-margins
+    //# The template MUST be z_r[i] = h_ref for |i| ≤ (w_ref − 1)/2 and z_r[i] = 0
+    //# for the m zero rays on each side, with i ∈ [−L/2, L/2] and L = w_ref + 2m.
     #[must_use]
     pub fn value(&self, offset: isize) -> f64 {
         if offset.unsigned_abs() <= self.half_width() {
@@ -215,31 +218,48 @@ fn prepare<'o>(signal: &[f64], out: &'o mut [f64]) -> Result<&'o mut [f64], Prec
     Ok(out)
 }
 
-/// Running sums over a sliding window, with an exact count of non-zero
-/// samples: when the window holds none the sum is reset to exactly 0, so
-/// rounding left by a past bump never survives into flat ground.
+/// Running sums over a sliding window, compensated (Neumaier) so that the
+/// rounding of large samples that left the window does not swamp small ones
+/// still in it, with an exact count of non-zero samples: when the window
+/// holds none the sum is reset to exactly 0.
 #[derive(Default)]
 struct Running {
     sum: f64,
+    compensation: f64,
     nonzero: usize,
 }
 
 impl Running {
+    fn accumulate(&mut self, value: f64) {
+        let t = self.sum + value;
+        if libm::fabs(self.sum) >= libm::fabs(value) {
+            self.compensation += (self.sum - t) + value;
+        } else {
+            self.compensation += (value - t) + self.sum;
+        }
+        self.sum = t;
+    }
+
     fn add(&mut self, value: f64) {
         if value != 0.0 {
-            self.sum += value;
+            self.accumulate(value);
             self.nonzero = self.nonzero.saturating_add(1);
         }
     }
 
     fn remove(&mut self, value: f64) {
         if value != 0.0 {
-            self.sum -= value;
+            self.accumulate(-value);
             self.nonzero = self.nonzero.saturating_sub(1);
             if self.nonzero == 0 {
                 self.sum = 0.0;
+                self.compensation = 0.0;
             }
         }
+    }
+
+    fn value(&self) -> f64 {
+        self.sum + self.compensation
     }
 }
 
@@ -279,7 +299,7 @@ pub fn correlate(signal: &[f64], template: &Template, out: &mut [f64]) -> Result
     let last = n.saturating_sub(half);
     for k in half..last {
         if let Some(slot) = out.get_mut(k) {
-            *slot = score(h * support.sum, energy.sum, r);
+            *slot = score(h * support.value(), energy.value(), r);
         }
         // Slide to centre k + 1: the window loses k − half and gains k + half + 1,
         // the support loses k − half_width and gains k + half_width + 1.

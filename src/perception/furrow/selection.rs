@@ -52,7 +52,8 @@ pub fn local_maxima(scores: &[f64], threshold: f64, radius: usize) -> Vec<usize,
         let after = scores
             .get(k.saturating_add(1)..after_end)
             .unwrap_or_default();
-        let is_peak = before.iter().all(|&b| b < c) && after.iter().all(|&a| a.is_nan() || a <= c);
+        let is_peak = before.iter().all(|&b| b.is_nan() || b < c)
+            && after.iter().all(|&a| a.is_nan() || a <= c);
         if is_peak && peaks.push(k).is_err() {
             break;
         }
