@@ -209,7 +209,7 @@ proptest! {
         for i in -(t.half_length() as isize)..=(t.half_length() as isize) {
             signal.push(scale * t.value(i) / t.height().get());
         }
-        signal.extend(std::iter::repeat_n(0.0, after));
+        signal.extend(core::iter::repeat_n(0.0, after));
         let (fast, slow) = scores(&signal, &t);
         let centre = before + t.half_length();
         prop_assert!((fast[centre] - 1.0).abs() < 1e-12);

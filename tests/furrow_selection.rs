@@ -16,7 +16,7 @@ use fieldguide::perception::furrow::scan::ScanPoint;
 use fieldguide::perception::furrow::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Spacing, MAX_MAXIMA,
 };
-use fieldguide::{Meters, Point2, Robot};
+use fieldguide::{Meters, Point2};
 use proptest::prelude::*;
 
 fn m(v: f64) -> Meters {

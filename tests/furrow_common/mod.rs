@@ -5,13 +5,18 @@
 
 use fieldguide::perception::furrow::FurrowParams;
 
-/// A straight ridge along the odometry x axis: `|y − center_y| ≤ half_width`, `0 ≤ z ≤ height`.
+/// A row of square plants along the odometry x axis: plants centred at
+/// `(k · spacing, center_y)` for every integer k, `2 half_width` wide on both
+/// axes, `height` tall.
 #[derive(Debug, Clone, Copy)]
 pub struct Ridge {
     pub center_y: f64,
     pub half_width: f64,
     pub height: f64,
 }
+
+/// Plant spacing along a row, m.
+pub const SPACING: f64 = 0.2;
 
 /// Scan geometry.
 #[derive(Debug, Clone, Copy)]
@@ -33,8 +38,23 @@ impl Lidar {
     }
 }
 
+/// The interval of r where `lo ≤ a + b r ≤ hi`, or `None`.
+fn slab(a: f64, b: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    if b.abs() < 1e-15 {
+        (a >= lo && a <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY))
+    } else {
+        let (u, v) = ((lo - a) / b, (hi - a) / b);
+        Some((u.min(v), u.max(v)))
+    }
+}
+
 /// The ranges seen from the robot at odometry pose `(px, py, heading)`.
-pub fn ridge_scan(params: &FurrowParams, lidar: &Lidar, pose: (f64, f64, f64), ridges: &[Ridge]) -> Vec<f64> {
+pub fn ridge_scan(
+    params: &FurrowParams,
+    lidar: &Lidar,
+    pose: (f64, f64, f64),
+    ridges: &[Ridge],
+) -> Vec<f64> {
     let (px, py, psi) = pose;
     let (xm, ym, h, p) = (
         params.mount_x.get(),
@@ -48,27 +68,41 @@ pub fn ridge_scan(params: &FurrowParams, lidar: &Lidar, pose: (f64, f64, f64), r
             let (dx, dy) = (a.cos() * p.cos(), a.sin());
             let c = a.cos() * p.sin();
             let ground = h / c;
-            // y in the odometry frame along the ray: A + B r.
-            let big_a = py + psi.sin() * xm + psi.cos() * ym;
-            let big_b = psi.sin() * dx + psi.cos() * dy;
-            let _ = px;
+            // The ray in the odometry frame: x = ax + bx r, y = ay + by r, z = h − c r.
+            let (ax, bx) = (
+                px + psi.cos() * xm - psi.sin() * ym,
+                psi.cos() * dx - psi.sin() * dy,
+            );
+            let (ay, by) = (
+                py + psi.sin() * xm + psi.cos() * ym,
+                psi.sin() * dx + psi.cos() * dy,
+            );
             let mut best = ground;
             for ridge in ridges {
-                let (lo_y, hi_y) = (ridge.center_y - ridge.half_width, ridge.center_y + ridge.half_width);
-                let (r0, r1) = if big_b.abs() < 1e-15 {
-                    if big_a >= lo_y && big_a <= hi_y {
-                        (f64::NEG_INFINITY, f64::INFINITY)
-                    } else {
-                        continue;
-                    }
-                } else {
-                    let (u, v) = ((lo_y - big_a) / big_b, (hi_y - big_a) / big_b);
-                    (u.min(v), u.max(v))
+                let Some((y0, y1)) = slab(
+                    ay,
+                    by,
+                    ridge.center_y - ridge.half_width,
+                    ridge.center_y + ridge.half_width,
+                ) else {
+                    continue;
                 };
                 let rz = (h - ridge.height) / c;
-                let entry = r0.max(rz).max(0.0);
-                if entry <= r1 && entry < best {
-                    best = entry;
+                // Plants whose x slab the ray crosses before the ground.
+                let x_near = ax.min(ax + bx * ground) - ridge.half_width;
+                let x_far = ax.max(ax + bx * ground) + ridge.half_width;
+                let mut k = (x_near / SPACING).floor() as i64;
+                while (k as f64) * SPACING <= x_far {
+                    let cx = k as f64 * SPACING;
+                    if let Some((x0, x1)) =
+                        slab(ax, bx, cx - ridge.half_width, cx + ridge.half_width)
+                    {
+                        let entry = y0.max(x0).max(rz).max(0.0);
+                        if entry <= y1.min(x1) && entry < best {
+                            best = entry;
+                        }
+                    }
+                    k += 1;
                 }
             }
             best
