@@ -7,6 +7,7 @@
 
 pub mod lidar;
 pub mod metrics;
+pub mod odometry;
 pub mod output;
 pub mod plant;
 pub mod rng;

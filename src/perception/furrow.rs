@@ -110,8 +110,9 @@ impl FurrowParams {
     /// choices where the paper is silent: sensor 1.5 m ahead of O, 1.0 m high,
     /// pitched 0.38 rad so that it looks at the ground about 4 m ahead of O
     /// ("the Lidar observed about 4 m ahead"), window ±0.35 rad, ranges
-    /// 0.1-20 m, margins of 7 rays, noise floor 0.05 m, c_t = 0.3, keep
-    /// distance 6 m, lines from 5 points over at least 0.3 m.
+    /// 0.1-20 m, margins of 7 rays, noise floor 0.05 m, c_t = 0.5 (above the
+    /// score √(3/15) ≈ 0.45 of a grass tuft three rays wide), keep distance
+    /// 6 m, lines from 5 points over at least 0.3 m.
     #[must_use]
     pub const fn table2() -> Self {
         Self {
@@ -126,7 +127,7 @@ impl FurrowParams {
             template_margin: 7,
             template_height: Meters(0.3),
             height_floor: Meters(0.05),
-            peak_threshold: 0.3,
+            peak_threshold: 0.5,
             rows: Rows::Two {
                 min_spacing: Meters(0.66),
                 max_spacing: Meters(0.9),
