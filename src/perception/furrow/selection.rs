@@ -21,7 +21,7 @@ pub const MAX_MAXIMA: usize = 32;
 pub struct Maximum {
     /// Window ray index k of the template's centre.
     pub ray: usize,
-    /// Correlation score c[k], in (c_t, 1].
+    /// Correlation score `c[k]`, in (c_t, 1].
     pub score: f64,
     /// Ground position of the match, robot frame, m.
     pub point: Point2<Robot>,
