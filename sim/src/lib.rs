@@ -14,6 +14,7 @@ pub mod error;
 pub mod guidance;
 pub mod lidar;
 pub mod metrics;
+pub mod odometry;
 pub mod output;
 pub mod plant;
 pub mod rng;

@@ -1,1 +1,465 @@
-//! Furrow detection on an inclined 2D LiDAR (Pierre 2022, section 2.3, eqs. 12-20, 22).
+//! Furrow pursuing: one or two rows of small plants (or wheel prints) seen by
+//! a 2D LiDAR tilted toward the ground (Pierre 2022, section 2.3, eqs. 12-20,
+//! with the criteria of section 3, eq. 22 and Table 2; `spec/pierre2022.md`,
+//! section "Section 2.3 — Furrow pursuing").
+//!
+//! One tick of [`FurrowDetector::step`]:
+//!
+//! 1. [`scan`]: rays in an angular window become robot-frame 3D points
+//!    through the mount pose (FUR-SCAN);
+//! 2. [`correlation`]: their heights above a noise floor (FUR-SIGNAL) are
+//!    correlated with a rectangular plant model framed by zeros (FUR-TEMPLATE)
+//!    by running sums (FUR-CORRELATION);
+//! 3. [`selection`]: local maxima above c_t (FUR-MAXIMA) give the row closest
+//!    to the previous one (FUR-SELECT-ONE) or the pair of rows whose spacing
+//!    is in [d_min, d_max] and whose middle is closest (FUR-SELECT-PAIR);
+//! 4. [`accumulation`]: the selection joins the last ones, kept in the
+//!    odometry frame (FUR-ACCUMULATE);
+//! 5. [`lines`]: least-squares row lines (FUR-LINE) give the tracking error
+//!    (FUR-ERRORS, FUR-TWO-ROWS);
+//! 6. [`quality`]: the verdict (FUR-QUALITY).
+//!
+//! Nothing allocates: the window's rays live in stack arrays of `RAYS`
+//! entries, the selections in a `heapless::Deque` of `SCANS` entries.
+
+pub mod accumulation;
+pub mod correlation;
+pub mod lines;
+pub mod quality;
+pub mod scan;
+pub mod selection;
+
+use heapless::Vec;
+
+use self::accumulation::{Accumulator, Selected};
+use self::correlation::{correlate, height_signal, Template};
+use self::lines::{fit_row_line, mean_tracking_error, tracking_error, RowLine};
+use self::quality::furrow_verdict;
+use self::scan::{scan_to_points, MountPose, Scan, ScanPoint, ScanWindow, WindowRays};
+use self::selection::{
+    local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing, MAX_MAXIMA,
+};
+use crate::error::Precondition;
+use crate::geometry::frame::{Odom, Point2, Pose2, Robot};
+use crate::geometry::tracking::TrackingError;
+use crate::geometry::units::{Meters, Radians};
+use crate::perception::{Better, QualityThresholds, Verdict};
+
+/// How many rows the detector follows (Pierre 2022, sections 2.3.1 and 2.3.2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Rows {
+    /// One row (eq. 14).
+    One,
+    /// Two rows whose lateral distance lies in `[min_spacing, max_spacing]` m (eq. 17).
+    Two {
+        /// d_min, m.
+        min_spacing: Meters,
+        /// d_max, m.
+        max_spacing: Meters,
+    },
+}
+
+/// The furrow detector's parameters as a user writes them; [`FurrowConfig::new`]
+/// validates them once. [`FurrowParams::table2`] gives Pierre 2022's Table 2
+/// and the library's choices for what the paper leaves open.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FurrowParams {
+    /// Sensor position forward of O, m.
+    pub mount_x: Meters,
+    /// Sensor position left of O, m.
+    pub mount_y: Meters,
+    /// Sensor height above the ground, m (> 0).
+    pub mount_height: Meters,
+    /// Sensor pitch, rad, positive nose down, in (0, π/2).
+    pub mount_pitch: Radians,
+    /// Half width a_w of the angular window around the forward axis, rad, in (0, π/2).
+    pub window_half_angle: Radians,
+    /// Shortest trusted range, m (≥ 0).
+    pub range_min: Meters,
+    /// Ranges at or beyond this are no return, m (> `range_min`).
+    pub range_max: Meters,
+    /// w_ref: rectangle width in rays (odd, eq. 12).
+    pub template_width: usize,
+    /// Zero rays framing the rectangle on each side (FUR-TEMPLATE).
+    pub template_margin: usize,
+    /// h_ref: rectangle height, m (> 0, eq. 12).
+    pub template_height: Meters,
+    /// Heights at or below this count as ground, m, in [0, h_ref) (FUR-SIGNAL).
+    pub height_floor: Meters,
+    /// c_t: a maximum must score above this, in (0, 1) (FUR-MAXIMA).
+    pub peak_threshold: f64,
+    /// One row or two rows.
+    pub rows: Rows,
+    /// n: how many last selections the lines are fitted to (Table 2: 25 averaged scans).
+    pub averaged_scans: usize,
+    /// Selections farther than this from the robot are dropped, m (> 0).
+    pub keep_distance: Meters,
+    /// Fewest points per row line (≥ 2) before a line is fitted.
+    pub min_points: usize,
+    /// Shortest extent along x of a row's points before a line is fitted, m (≥ 0).
+    pub min_extent: Meters,
+    /// Correlation above which the detection may enter furrow pursuing (Table 2: 0.4).
+    pub enter: f64,
+    /// Correlation below which the detection must leave it (Table 2: 0.2).
+    pub exit: f64,
+}
+
+impl FurrowParams {
+    /// Table 2 of Pierre 2022 (two rows 0.66-0.9 m apart, template 15 rays ×
+    /// 0.3 m, 25 averaged scans, transit at 0.4 / 0.2), with the library's
+    /// choices where the paper is silent: sensor 1.5 m ahead of O, 1.0 m high,
+    /// pitched 0.38 rad so that it looks at the ground about 4 m ahead of O
+    /// ("the Lidar observed about 4 m ahead"), window ±0.35 rad, ranges
+    /// 0.1-20 m, margins of 7 rays, noise floor 0.05 m, c_t = 0.5 (above the
+    /// score √(3/15) ≈ 0.45 of a grass tuft three rays wide), keep distance
+    /// 6 m, lines from 5 points over at least 0.3 m.
+    #[must_use]
+    pub const fn table2() -> Self {
+        Self {
+            mount_x: Meters(1.5),
+            mount_y: Meters(0.0),
+            mount_height: Meters(1.0),
+            mount_pitch: Radians(0.38),
+            window_half_angle: Radians(0.35),
+            range_min: Meters(0.1),
+            range_max: Meters(20.0),
+            template_width: 15,
+            template_margin: 7,
+            template_height: Meters(0.3),
+            height_floor: Meters(0.05),
+            peak_threshold: 0.5,
+            rows: Rows::Two {
+                min_spacing: Meters(0.66),
+                max_spacing: Meters(0.9),
+            },
+            averaged_scans: 25,
+            keep_distance: Meters(6.0),
+            min_points: 5,
+            min_extent: Meters(0.3),
+            enter: 0.4,
+            exit: 0.2,
+        }
+    }
+}
+
+/// The row count as validated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum RowMode {
+    One,
+    Two(Spacing),
+}
+
+/// A validated furrow configuration (FUR-CONFIG).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FurrowConfig {
+    params: FurrowParams,
+    mount: MountPose,
+    window: ScanWindow,
+    template: Template,
+    rows: RowMode,
+    thresholds: QualityThresholds,
+}
+
+impl FurrowConfig {
+    /// Validates `params` once.
+    ///
+    /// Errors name the requirement whose precondition fails: `FUR-SCAN` (mount
+    /// height ≤ 0, pitch outside (0, π/2), window outside (0, π/2), ranges not
+    /// `0 ≤ min < max`), `FUR-TEMPLATE` (even width, height ≤ 0),
+    /// `FUR-SIGNAL` (floor outside [0, h_ref)), `FUR-MAXIMA` (c_t outside
+    /// (0, 1)), `FUR-SELECT-PAIR` (not `0 < d_min < d_max`), `FUR-ACCUMULATE`
+    /// (n = 0, keep distance ≤ 0), `FUR-LINE` (fewer than 2 points, negative
+    /// extent), `SW-THRESHOLDS` (entry not above exit).
+    //= spec/pierre2022.md#fur-config-configuration-validated-once
+    //# A furrow configuration MUST be validated once, at construction, and a
+    //# configuration that breaks a precondition of FUR-SCAN, FUR-TEMPLATE,
+    //# FUR-SIGNAL, FUR-MAXIMA, FUR-SELECT-PAIR, FUR-ACCUMULATE, FUR-LINE or
+    //# SW-THRESHOLDS MUST be refused with an error naming that requirement.
+    pub fn new(params: &FurrowParams) -> Result<Self, Precondition> {
+        let mount = MountPose::new(
+            params.mount_x,
+            params.mount_y,
+            params.mount_height,
+            params.mount_pitch,
+        )?;
+        let window = ScanWindow::new(params.window_half_angle, params.range_min, params.range_max)?;
+        let template = Template::new(
+            params.template_width,
+            params.template_margin,
+            params.template_height,
+        )?;
+        let floor = params.height_floor.get();
+        if !(floor >= 0.0 && floor < params.template_height.get()) {
+            return Err(Precondition::new(
+                "FUR-SIGNAL",
+                "the height floor must lie in [0, h_ref)",
+            ));
+        }
+        let c_t = params.peak_threshold;
+        if !(c_t > 0.0 && c_t < 1.0) {
+            return Err(Precondition::new(
+                "FUR-MAXIMA",
+                "the correlation threshold c_t must lie in (0, 1)",
+            ));
+        }
+        let rows = match params.rows {
+            Rows::One => RowMode::One,
+            Rows::Two {
+                min_spacing,
+                max_spacing,
+            } => RowMode::Two(Spacing::new(min_spacing, max_spacing)?),
+        };
+        if params.averaged_scans == 0 || params.keep_distance.get() <= 0.0 {
+            return Err(Precondition::new(
+                "FUR-ACCUMULATE",
+                "need n >= 1 kept selections and a keep distance > 0",
+            ));
+        }
+        if params.min_points < 2 || params.min_extent.get() < 0.0 {
+            return Err(Precondition::new(
+                "FUR-LINE",
+                "a row line needs at least 2 points and a non-negative extent",
+            ));
+        }
+        let thresholds = QualityThresholds::new(params.enter, params.exit, Better::Higher)?;
+        Ok(Self {
+            params: *params,
+            mount,
+            window,
+            template,
+            rows,
+            thresholds,
+        })
+    }
+
+    /// The parameters this configuration was built from.
+    #[must_use]
+    pub const fn params(&self) -> &FurrowParams {
+        &self.params
+    }
+
+    /// The validated mount pose.
+    #[must_use]
+    pub const fn mount(&self) -> &MountPose {
+        &self.mount
+    }
+
+    /// The validated angular window and range limits.
+    #[must_use]
+    pub const fn window(&self) -> &ScanWindow {
+        &self.window
+    }
+
+    /// The validated plant model.
+    #[must_use]
+    pub const fn template(&self) -> &Template {
+        &self.template
+    }
+
+    /// The validated hysteresis thresholds on the weaker maximum's score.
+    #[must_use]
+    pub const fn thresholds(&self) -> &QualityThresholds {
+        &self.thresholds
+    }
+}
+
+/// The fitted row lines of one tick, robot frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RowLines {
+    /// The line of the one row followed.
+    One(RowLine),
+    /// The lines of the left and right rows.
+    Two(Pair<RowLine>),
+}
+
+/// What one tick of the furrow detector found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FurrowDetection {
+    /// The verdict for the switching machine (FUR-QUALITY).
+    pub verdict: Verdict,
+    /// The robot's error to the row line(s); `None` exactly when the verdict is `Absent`.
+    pub error: Option<TrackingError>,
+    /// The fitted lines; `None` exactly when the verdict is `Absent`.
+    pub lines: Option<RowLines>,
+    /// This scan's selection in the robot frame, if any.
+    pub selected: Option<Selected<Robot>>,
+    /// The weaker score of this scan's selection (the quality graded), if any.
+    pub quality: Option<f64>,
+    /// How many maxima this scan yielded.
+    pub maxima: usize,
+    /// Which rays of the scan the window covered.
+    pub window: WindowRays,
+}
+
+/// The furrow detector: a state machine over scans and odometry poses.
+///
+/// `RAYS` bounds the rays in the angular window (a wider window is the
+/// `FUR-SCAN` error); `SCANS` bounds the selections kept (the configured
+/// `averaged_scans` must not exceed it).
+#[derive(Debug, Clone)]
+pub struct FurrowDetector<const RAYS: usize, const SCANS: usize> {
+    config: FurrowConfig,
+    accumulator: Accumulator<SCANS>,
+}
+
+impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
+    /// A detector with nothing accumulated.
+    ///
+    /// Errors with `FUR-ACCUMULATE` when `averaged_scans` exceeds `SCANS`.
+    pub fn new(config: FurrowConfig) -> Result<Self, Precondition> {
+        let accumulator =
+            Accumulator::new(config.params.averaged_scans, config.params.keep_distance)?;
+        Ok(Self {
+            config,
+            accumulator,
+        })
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub const fn config(&self) -> &FurrowConfig {
+        &self.config
+    }
+
+    /// How many selections are accumulated.
+    #[must_use]
+    pub fn accumulated(&self) -> usize {
+        self.accumulator.len()
+    }
+
+    /// Forgets every accumulated selection: the next selection is a first one (t = 0).
+    pub fn reset(&mut self) {
+        self.accumulator.clear();
+    }
+
+    /// The maxima of one scan (steps 1 to 3 of the module doc), without
+    /// touching the detector's state. Errors with `FUR-SCAN` when the scan's
+    /// angles are unusable or its window holds more than `RAYS` rays.
+    pub fn maxima(
+        &self,
+        scan: &Scan<'_>,
+    ) -> Result<(Vec<Maximum, MAX_MAXIMA>, WindowRays), Precondition> {
+        let mut rays: [Option<ScanPoint>; RAYS] = [None; RAYS];
+        let window = scan_to_points(scan, &self.config.mount, &self.config.window, &mut rays)?;
+        let rays = rays.get(..window.count).unwrap_or_default();
+        let mut signal = [0.0_f64; RAYS];
+        let floor = self.config.params.height_floor;
+        for (s, ray) in signal.iter_mut().zip(rays) {
+            *s = height_signal(ray.map(|p| p.height), floor);
+        }
+        let signal = signal.get(..window.count).unwrap_or_default();
+        let mut scores = [0.0_f64; RAYS];
+        correlate(signal, &self.config.template, &mut scores)?;
+        let scores = scores.get(..window.count).unwrap_or_default();
+        let template = &self.config.template;
+        let mut maxima = Vec::new();
+        for k in local_maxima(
+            scores,
+            self.config.params.peak_threshold,
+            template.half_width(),
+        ) {
+            let score = scores.get(k).copied().unwrap_or(0.0);
+            if let Some(point) = locate(k, rays, signal, template) {
+                let _ = maxima.push(Maximum {
+                    ray: k,
+                    score,
+                    point,
+                });
+            }
+        }
+        Ok((maxima, window))
+    }
+
+    /// One tick: detects the rows in `scan`, seen at odometry pose `odom`,
+    /// updates the accumulated selections, fits the row lines and grades the
+    /// detection (steps 1 to 6 of the module doc).
+    ///
+    /// Errors with `FUR-SCAN` when the scan's angles are unusable or its
+    /// window holds more than `RAYS` rays (the state is then left as it
+    /// was); `LIB-FINITE` only on overflow of a transformed point.
+    pub fn step(
+        &mut self,
+        scan: &Scan<'_>,
+        odom: &Pose2<Odom>,
+    ) -> Result<FurrowDetection, Precondition> {
+        let (maxima, window) = self.maxima(scan)?;
+        self.accumulator.forget_far(odom);
+        let previous = self.accumulator.newest(odom);
+        let reference_y = previous.map_or(0.0, |p| p.reference().y());
+        let (selected, quality) = match self.config.rows {
+            RowMode::One => match select_one(&maxima, reference_y) {
+                Some(m) => (Some(Selected::One(m.point)), Some(m.score)),
+                None => (None, None),
+            },
+            RowMode::Two(spacing) => match select_pair(&maxima, &spacing, reference_y) {
+                Some(p) => (Some(Selected::Two(p.points())), Some(p.weaker_score())),
+                None => (None, None),
+            },
+        };
+        if let Some(s) = &selected {
+            self.accumulator.push(s, odom)?;
+        }
+        let estimate = self.estimate(odom);
+        let verdict = furrow_verdict(&self.config.thresholds, estimate.is_some(), quality);
+        Ok(FurrowDetection {
+            verdict,
+            error: estimate.map(|(e, _)| e),
+            lines: estimate.map(|(_, l)| l),
+            selected,
+            quality,
+            maxima: maxima.len(),
+            window,
+        })
+    }
+
+    /// The row lines and tracking error from the accumulated selections, or
+    /// `None` while they are too few or too short for a regression.
+    fn estimate(&self, odom: &Pose2<Odom>) -> Option<(TrackingError, RowLines)> {
+        match self.config.rows {
+            RowMode::One => {
+                let line = self.row_line(odom, |s| match s {
+                    Selected::One(p) => Some(p),
+                    Selected::Two(_) => None,
+                })?;
+                Some((tracking_error(&line).ok()?, RowLines::One(line)))
+            }
+            RowMode::Two(_) => {
+                let left = self.row_line(odom, |s| match s {
+                    Selected::Two(p) => Some(p.left),
+                    Selected::One(_) => None,
+                })?;
+                let right = self.row_line(odom, |s| match s {
+                    Selected::Two(p) => Some(p.right),
+                    Selected::One(_) => None,
+                })?;
+                Some((
+                    mean_tracking_error(&left, &right).ok()?,
+                    RowLines::Two(Pair { left, right }),
+                ))
+            }
+        }
+    }
+
+    /// The line through the accumulated points that `pick` takes from each
+    /// selection, once there are `min_points` of them spanning `min_extent` in x.
+    fn row_line(
+        &self,
+        odom: &Pose2<Odom>,
+        pick: impl Fn(Selected<Robot>) -> Option<Point2<Robot>> + Copy,
+    ) -> Option<RowLine> {
+        let points = || self.accumulator.in_robot_frame(odom).filter_map(pick);
+        let (mut count, mut lo, mut hi) = (0_usize, f64::INFINITY, f64::NEG_INFINITY);
+        for p in points() {
+            count = count.saturating_add(1);
+            lo = lo.min(p.x());
+            hi = hi.max(p.x());
+        }
+        let enough = count >= self.config.params.min_points
+            && hi - lo >= self.config.params.min_extent.get();
+        if enough {
+            fit_row_line(points()).ok()
+        } else {
+            None
+        }
+    }
+}

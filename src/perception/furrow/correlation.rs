@@ -1,0 +1,317 @@
+//! The plant model of eq. 12 and the normalised correlation of eq. 13
+//! (Pierre 2022, section 2.3; `spec/pierre2022.md` FUR-SIGNAL, FUR-TEMPLATE,
+//! FUR-CORRELATION).
+
+use crate::error::Precondition;
+use crate::geometry::units::Meters;
+
+/// Samples whose magnitude exceeds this many metres are not heights a LiDAR
+/// measures; they count as 0 so that squared sums stay finite (FUR-CORRELATION).
+pub const MAX_SAMPLE: f64 = 1.0e6;
+
+/// The rectangular plant model of eq. 12, with zero margins (FUR-TEMPLATE).
+///
+/// Template index `i` runs over `[−half, half]` with `half = (width − 1)/2 +
+/// margin`; `z_r[i] = height` when `|i| ≤ (width − 1)/2` (the support, `width`
+/// rays) and `0` on the `margin` rays on each side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Template {
+    width: usize,
+    margin: usize,
+    height: Meters,
+    energy: f64,
+}
+
+impl Template {
+    /// A rectangle `width` rays wide and `height` m high, framed by `margin`
+    /// rays of zeros on each side.
+    ///
+    /// Errors with `FUR-TEMPLATE` unless `width` is odd (so the rectangle has
+    /// a centre ray, `[−w/2, w/2]` of eq. 12 holding exactly `w` integers),
+    /// `height > 0`, the total length `width + 2 margin` fits in `u32` and
+    /// `R = width · height²` is finite.
+    //= spec/pierre2022.md#fur-template-rectangular-plant-model-with-zero-margins
+    //# A template whose width is even or zero, whose height is not positive,
+    //# or whose length overflows MUST be refused with an error naming
+    //# FUR-TEMPLATE.
+    pub fn new(width: usize, margin: usize, height: Meters) -> Result<Self, Precondition> {
+        if width % 2 == 0 {
+            return Err(Precondition::new(
+                "FUR-TEMPLATE",
+                "template width must be an odd number of rays (>= 1)",
+            ));
+        }
+        if height.get() <= 0.0 {
+            return Err(Precondition::new(
+                "FUR-TEMPLATE",
+                "template height must be > 0",
+            ));
+        }
+        let overflow = Precondition::new("FUR-TEMPLATE", "template length overflows");
+        let length = margin
+            .checked_mul(2)
+            .and_then(|m2| m2.checked_add(width))
+            .ok_or(overflow)?;
+        u32::try_from(length).map_err(|_| overflow)?;
+        let support = u32::try_from(width).map_err(|_| overflow)?;
+        let energy = f64::from(support) * height.get() * height.get();
+        if !energy.is_finite() {
+            return Err(Precondition::new(
+                "FUR-TEMPLATE",
+                "template energy w h^2 overflows",
+            ));
+        }
+        Ok(Self {
+            width,
+            margin,
+            height,
+            energy,
+        })
+    }
+
+    /// Width of the rectangle, in rays (odd).
+    #[must_use]
+    pub const fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Zero rays on each side of the rectangle.
+    #[must_use]
+    pub const fn margin(&self) -> usize {
+        self.margin
+    }
+
+    /// Height of the rectangle, m.
+    #[must_use]
+    pub const fn height(&self) -> Meters {
+        self.height
+    }
+
+    /// Half the support: `(width − 1)/2`.
+    #[must_use]
+    pub const fn half_width(&self) -> usize {
+        self.width / 2
+    }
+
+    /// Half the whole template: `(width − 1)/2 + margin` (validated not to overflow).
+    #[must_use]
+    pub const fn half_length(&self) -> usize {
+        self.half_width().saturating_add(self.margin)
+    }
+
+    /// The template's length in rays, `width + 2 margin`.
+    #[must_use]
+    pub const fn length(&self) -> usize {
+        self.margin.saturating_mul(2).saturating_add(self.width)
+    }
+
+    /// `z_r` at offset `i` from the centre (eq. 12): `height` on the support, else 0.
+    //= spec/pierre2022.md#fur-template-rectangular-plant-model-with-zero-margins
+    //# The template MUST be z_r[i] = h_ref for |i| ≤ (w_ref − 1)/2 and z_r[i] = 0
+    //# for the m zero rays on each side, with i ∈ [−L/2, L/2] and L = w_ref + 2m.
+    #[must_use]
+    pub fn value(&self, offset: isize) -> f64 {
+        if offset.unsigned_abs() <= self.half_width() {
+            self.height.get()
+        } else {
+            0.0
+        }
+    }
+
+    /// `R = Σ_i z_r[i]² = width · height²` (eq. 13).
+    #[must_use]
+    pub const fn energy(&self) -> f64 {
+        self.energy
+    }
+}
+
+/// The correlation input `z_a` of one ray (FUR-SIGNAL): its height when it is
+/// above the noise floor, and 0 for ground, noise and dropped rays.
+//= spec/pierre2022.md#fur-signal-height-signal-with-a-noise-floor
+//# The signal z_a of a window ray MUST be its height z when z > z_floor and
+//# 0 otherwise; a dropped ray MUST count as 0.
+#[must_use]
+pub fn height_signal(height: Option<Meters>, floor: Meters) -> f64 {
+    match height {
+        Some(z) if z.get() > floor.get() => z.get(),
+        _ => 0.0,
+    }
+}
+
+/// A sample as the correlation reads it: non-finite or absurd values count as 0.
+fn sample(value: f64) -> f64 {
+    if value.is_finite() && libm::fabs(value) <= MAX_SAMPLE {
+        value
+    } else {
+        0.0
+    }
+}
+
+/// The score from the sums of eq. 13: `c = N / sqrt(A R)`, 0 where `A = 0`
+/// (an all-zero window: nothing to correlate), clamped to [−1, 1] against
+/// rounding (Cauchy–Schwarz bounds the exact value).
+fn score(numerator: f64, a: f64, r: f64) -> f64 {
+    if a.is_nan() || a <= 0.0 {
+        return 0.0;
+    }
+    let c = numerator / libm::sqrt(a * r);
+    if c.is_finite() {
+        c.clamp(-1.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+/// The normalised correlation of eq. 13 by its definition, `O(N · L)`: the
+/// reference against which [`correlate`] is tested.
+///
+/// `out[k] = Σ_i z_r[i] z_a[k+i] / sqrt(A R)` with `A = Σ_i z_a[k+i]²`,
+/// `R = Σ_i z_r[i]²`, `i ∈ [−half, half]`, for every centre `k` where the whole
+/// template fits (`half ≤ k < n − half`); `out[k] = 0` elsewhere and where
+/// `A = 0`. Samples that are not finite or exceed [`MAX_SAMPLE`] count as 0.
+///
+/// Errors with `FUR-CORRELATION` when `out` is shorter than `signal`.
+//= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
+//# The score at centre ray k MUST be c[k] = Σ_i z_r[i] z_a[k+i] / sqrt(A R)
+//# with A = Σ_i z_a[k+i]² and R = Σ_i z_r[i]², both sums over the template
+//# index i ∈ [−L/2, L/2], for every k where the whole template lies in the
+//# window; elsewhere, and where A = 0, c[k] MUST be 0.
+pub fn correlate_direct(
+    signal: &[f64],
+    template: &Template,
+    out: &mut [f64],
+) -> Result<(), Precondition> {
+    let out = prepare(signal, out)?;
+    let half = template.half_length();
+    let r = template.energy();
+    for (k, slot) in out.iter_mut().enumerate() {
+        let Some(start) = k.checked_sub(half) else {
+            continue;
+        };
+        let Some(window) = start
+            .checked_add(template.length())
+            .and_then(|end| signal.get(start..end))
+        else {
+            continue;
+        };
+        let mut numerator = 0.0;
+        let mut a = 0.0;
+        let mut offset = 0_isize.saturating_sub_unsigned(half);
+        for &z in window {
+            let z = sample(z);
+            numerator += template.value(offset) * z;
+            a += z * z;
+            offset = offset.saturating_add(1);
+        }
+        *slot = score(numerator, a, r);
+    }
+    Ok(())
+}
+
+/// Checks `out` against `signal` and zeroes the part that will be written.
+fn prepare<'o>(signal: &[f64], out: &'o mut [f64]) -> Result<&'o mut [f64], Precondition> {
+    let out = out.get_mut(..signal.len()).ok_or(Precondition::new(
+        "FUR-CORRELATION",
+        "the output is shorter than the signal",
+    ))?;
+    out.fill(0.0);
+    Ok(out)
+}
+
+/// Running sums over a sliding window, compensated (Neumaier) so that the
+/// rounding of large samples that left the window does not swamp small ones
+/// still in it, with an exact count of non-zero samples: when the window
+/// holds none the sum is reset to exactly 0.
+#[derive(Default)]
+struct Running {
+    sum: f64,
+    compensation: f64,
+    nonzero: usize,
+}
+
+impl Running {
+    fn accumulate(&mut self, value: f64) {
+        let t = self.sum + value;
+        if libm::fabs(self.sum) >= libm::fabs(value) {
+            self.compensation += (self.sum - t) + value;
+        } else {
+            self.compensation += (value - t) + self.sum;
+        }
+        self.sum = t;
+    }
+
+    fn add(&mut self, value: f64) {
+        if value != 0.0 {
+            self.accumulate(value);
+            self.nonzero = self.nonzero.saturating_add(1);
+        }
+    }
+
+    fn remove(&mut self, value: f64) {
+        if value != 0.0 {
+            self.accumulate(-value);
+            self.nonzero = self.nonzero.saturating_sub(1);
+            if self.nonzero == 0 {
+                self.sum = 0.0;
+                self.compensation = 0.0;
+            }
+        }
+    }
+
+    fn value(&self) -> f64 {
+        self.sum + self.compensation
+    }
+}
+
+/// The normalised correlation of eq. 13, `O(N)` whatever the template length:
+/// the support sum `S` and the window energy `A` slide by one ray per centre
+/// (one sample enters, one leaves), and `c[k] = height · S / sqrt(A R)`.
+///
+/// Same result as [`correlate_direct`] up to rounding, same outputs where the
+/// template does not fit, same errors.
+//= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
+//# The scores of a window of N rays MUST be computed with running sums, in
+//# O(N) operations whatever the template length.
+pub fn correlate(signal: &[f64], template: &Template, out: &mut [f64]) -> Result<(), Precondition> {
+    let out = prepare(signal, out)?;
+    let n = signal.len();
+    let length = template.length();
+    if n < length {
+        return Ok(());
+    }
+    let half = template.half_length();
+    let half_width = template.half_width();
+    let margin = template.margin();
+    let r = template.energy();
+    let h = template.height().get();
+    let z = |i: usize| signal.get(i).copied().map_or(0.0, sample);
+
+    // The first window: centre `half`, samples [0, length), support [margin, margin + width).
+    let mut support = Running::default();
+    let mut energy = Running::default();
+    for i in 0..length {
+        let v = z(i);
+        energy.add(v * v);
+        if i >= margin && i < margin.saturating_add(template.width()) {
+            support.add(v);
+        }
+    }
+    let last = n.saturating_sub(half);
+    for k in half..last {
+        if let Some(slot) = out.get_mut(k) {
+            *slot = score(h * support.value(), energy.value(), r);
+        }
+        // Slide to centre k + 1: the window loses k − half and gains k + half + 1,
+        // the support loses k − half_width and gains k + half_width + 1.
+        let enter = k.saturating_add(half).saturating_add(1);
+        if enter < n {
+            let leave = z(k.saturating_sub(half));
+            energy.remove(leave * leave);
+            let v = z(enter);
+            energy.add(v * v);
+            support.remove(z(k.saturating_sub(half_width)));
+            support.add(z(k.saturating_add(half_width).saturating_add(1)));
+        }
+    }
+    Ok(())
+}

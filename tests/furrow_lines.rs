@@ -1,0 +1,256 @@
+//! Row lines (eq. 15), errors to a line (eq. 16) and to two rows (eq. 20) of
+//! Pierre 2022 (FUR-LINE, FUR-ERRORS, FUR-TWO-ROWS), and the accumulation of
+//! selections through odometry (FUR-ACCUMULATE).
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic,
+    clippy::as_conversions,
+    clippy::arithmetic_side_effects,
+    clippy::float_cmp
+)]
+
+use fieldguide::perception::furrow::accumulation::{Accumulator, Selected};
+use fieldguide::perception::furrow::lines::{
+    fit_row_line, mean_tracking_error, tracking_error, RowLine,
+};
+use fieldguide::perception::furrow::selection::Pair;
+use fieldguide::{Meters, Odom, Point2, Pose2, Robot};
+use proptest::prelude::*;
+
+fn m(v: f64) -> Meters {
+    Meters::new(v).unwrap()
+}
+
+fn pts(v: &[(f64, f64)]) -> Vec<Point2<Robot>> {
+    v.iter().map(|&(x, y)| Point2::new(x, y).unwrap()).collect()
+}
+
+/// A world point seen from a robot at `(px, py, psi)`, by hand (independent of `Transform2`).
+fn to_robot(pose: (f64, f64, f64), q: (f64, f64)) -> (f64, f64) {
+    let (dx, dy) = (q.0 - pose.0, q.1 - pose.1);
+    let (c, s) = (pose.2.cos(), pose.2.sin());
+    (c * dx + s * dy, -s * dx + c * dy)
+}
+
+/// The line y = a x + b through two robot-frame points.
+fn line_through(p: (f64, f64), q: (f64, f64)) -> (f64, f64) {
+    let a = (q.1 - p.1) / (q.0 - p.0);
+    (a, p.1 - a * p.0)
+}
+
+//= spec/pierre2022.md#fur-line-row-line-by-least-squares
+//= type=test
+//# The row line MUST be the least-squares solution (a, b) of a p_x + b = p_y
+//# over the accumulated points, minimising the squared residuals in y.
+#[test]
+fn hand_computed_fits() {
+    let l = fit_row_line(pts(&[(0.0, 1.0), (1.0, 2.0), (2.0, 3.0)])).unwrap();
+    assert!((l.slope() - 1.0).abs() < 1e-12 && (l.intercept().get() - 1.0).abs() < 1e-12);
+    // (0,0), (1,1), (2,0): x̄ = 1, ȳ = 1/3, S_xy = 0: a = 0, b = 1/3.
+    let l = fit_row_line(pts(&[(0.0, 0.0), (1.0, 1.0), (2.0, 0.0)])).unwrap();
+    assert!(l.slope().abs() < 1e-12 && (l.intercept().get() - 1.0 / 3.0).abs() < 1e-12);
+    // (1,0), (2,1), (3,1), (4,2): x̄ = 2.5, ȳ = 1, S_xx = 5, S_xy = 3: a = 0.6, b = −0.5.
+    let l = fit_row_line(pts(&[(1.0, 0.0), (2.0, 1.0), (3.0, 1.0), (4.0, 2.0)])).unwrap();
+    assert!((l.slope() - 0.6).abs() < 1e-12 && (l.intercept().get() + 0.5).abs() < 1e-12);
+    assert!((l.y_at(2.0) - 0.7).abs() < 1e-12);
+}
+
+//= spec/pierre2022.md#fur-line-row-line-by-least-squares
+//= type=test
+//# A fit over fewer than two points, or over points whose x variance is below
+//# (1 mm)², MUST be refused with an error naming FUR-LINE.
+#[test]
+fn degenerate_fits_are_refused() {
+    for bad in [
+        vec![],
+        pts(&[(4.0, 0.3)]),
+        pts(&[(4.0, 0.3), (4.0, 0.5), (4.0005, 0.1)]),
+    ] {
+        assert_eq!(fit_row_line(bad).unwrap_err().requirement, "FUR-LINE");
+    }
+    assert!(fit_row_line(pts(&[(4.0, 0.3), (4.01, 0.3)])).is_ok());
+}
+
+//= spec/pierre2022.md#fur-errors-tracking-error-to-a-row-line
+//= type=test
+//# The tracking error to the line y = a x + b of the robot frame MUST be
+//# y = −b / sqrt(a² + 1) and θ̃ = −arctan(a).
+#[test]
+fn hand_computed_errors() {
+    // A row 0.5 m to the left, parallel: the robot is right of it.
+    let e = tracking_error(&RowLine::new(0.0, m(0.5)).unwrap()).unwrap();
+    assert!((e.y.get() + 0.5).abs() < 1e-12 && e.angular_deviation.get().abs() < 1e-12);
+    // y = x + 1: distance 1/√2, the row crosses ahead-left going left: the
+    // robot points 45° right of the row.
+    let e = tracking_error(&RowLine::new(1.0, m(1.0)).unwrap()).unwrap();
+    assert!((e.y.get() + 1.0 / 2.0_f64.sqrt()).abs() < 1e-12);
+    assert!((e.angular_deviation.get() + core::f64::consts::FRAC_PI_4).abs() < 1e-12);
+    assert_eq!(e.curvature.get(), 0.0);
+}
+
+//= spec/pierre2022.md#fur-two-rows-error-to-the-middle-of-two-rows
+//= type=test
+//# With two rows, the tracking error MUST be the mean of the errors to the
+//# left and right lines: y = (y_l + y_r)/2 and θ̃ = (θ̃_l + θ̃_r)/2.
+#[test]
+fn hand_computed_two_row_error() {
+    // Rows at +0.5 and −0.25, parallel: errors −0.5 and +0.25, mean −0.125.
+    let l = RowLine::new(0.0, m(0.5)).unwrap();
+    let r = RowLine::new(0.0, m(-0.25)).unwrap();
+    let e = mean_tracking_error(&l, &r).unwrap();
+    assert!((e.y.get() + 0.125).abs() < 1e-12);
+    let l = RowLine::new(0.2, m(0.5)).unwrap();
+    let r = RowLine::new(-0.1, m(-0.5)).unwrap();
+    let e = mean_tracking_error(&l, &r).unwrap();
+    assert!((e.angular_deviation.get() + (0.2_f64.atan() - 0.1_f64.atan()) / 2.0).abs() < 1e-12);
+}
+
+//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+//= type=test
+//# A capacity of zero, a capacity above the storage N, or a non-positive
+//# keep distance MUST be refused with an error naming FUR-ACCUMULATE.
+#[test]
+fn bad_accumulators_are_refused() {
+    assert_eq!(
+        Accumulator::<4>::new(0, m(5.0)).unwrap_err().requirement,
+        "FUR-ACCUMULATE"
+    );
+    assert!(Accumulator::<4>::new(5, m(5.0)).is_err());
+    assert!(Accumulator::<4>::new(4, m(0.0)).is_err());
+    assert!(Accumulator::<4>::new(4, m(5.0)).is_ok());
+}
+
+//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+//= type=test
+//# When the buffer already holds its capacity of selections, storing a new
+//# one MUST drop the oldest.
+#[test]
+fn a_full_buffer_drops_the_oldest() {
+    let mut acc = Accumulator::<8>::new(3, m(100.0)).unwrap();
+    let pose = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
+    for i in 0..3 {
+        let p = Point2::<Robot>::new(f64::from(i), 0.0).unwrap();
+        assert!(acc.push(&Selected::One(p), &pose).unwrap().is_none());
+    }
+    let dropped = acc
+        .push(&Selected::One(Point2::new(3.0, 0.0).unwrap()), &pose)
+        .unwrap();
+    assert_eq!(dropped, Some(Selected::One(Point2::new(0.0, 0.0).unwrap())));
+    assert_eq!(acc.len(), 3);
+    let xs: Vec<f64> = acc
+        .in_robot_frame(&pose)
+        .map(|s| s.reference().x())
+        .collect();
+    assert_eq!(xs, vec![1.0, 2.0, 3.0]);
+    acc.clear();
+    assert!(acc.is_empty() && acc.newest(&pose).is_none());
+}
+
+//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+//= type=test
+//# A selection whose reference point lies farther than the keep distance
+//# from the robot MUST be dropped.
+#[test]
+fn far_selections_are_dropped() {
+    let mut acc = Accumulator::<8>::new(8, m(5.0)).unwrap();
+    let start = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
+    // A pair whose middle is 4 m ahead, and a point 1 m ahead.
+    let pair = Selected::Two(Pair {
+        left: Point2::<Robot>::new(4.0, 0.4).unwrap(),
+        right: Point2::<Robot>::new(4.0, -0.4).unwrap(),
+    });
+    acc.push(&pair, &start).unwrap();
+    acc.push(&Selected::One(Point2::new(1.0, 0.0).unwrap()), &start)
+        .unwrap();
+    // 6.5 m further on, the point is 5.5 m behind (dropped), the pair 2.5 m (kept).
+    let later = Pose2::<Odom>::new(6.5, 0.0, 0.0).unwrap();
+    assert_eq!(acc.forget_far(&later), 1);
+    assert_eq!(acc.len(), 1);
+    let newest = acc.newest(&later).unwrap();
+    assert!((newest.reference().x() + 2.5).abs() < 1e-12);
+}
+
+proptest! {
+    //= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+    //= type=test
+    //# Each selection MUST be stored in the odometry frame through the
+    //# odometry pose of its scan, and read back in the current robot frame
+    //# through the inverse of the current odometry pose.
+    #[test]
+    fn known_odometry_reproduces_a_straight_row_exactly(
+        start in (-50.0_f64..50.0, -50.0_f64..50.0, -3.0_f64..3.0),
+        row_offset in -1.0_f64..1.0,
+        row_angle in -0.5_f64..0.5,
+        moves in prop::collection::vec((0.0_f64..0.1, -0.02_f64..0.02), 5..40),
+    ) {
+        // The row: through the start pose's point `row_offset` to its left,
+        // heading `row_angle` from the robot's start heading.
+        let (x0, y0, h0) = start;
+        let heading = h0 + row_angle;
+        let q0 = (x0 - row_offset * h0.sin(), y0 + row_offset * h0.cos());
+        let on_row = |s: f64| (q0.0 + s * heading.cos(), q0.1 + s * heading.sin());
+        let mut acc = Accumulator::<64>::new(64, m(1000.0)).unwrap();
+        let mut pose = (x0, y0, h0);
+        for (i, &(ds, dpsi)) in moves.iter().enumerate() {
+            pose = (pose.0 + ds * pose.2.cos(), pose.1 + ds * pose.2.sin(), pose.2 + dpsi);
+            let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+            let (rx, ry) = to_robot(pose, on_row(4.0 + 0.07 * i as f64));
+            acc.push(&Selected::One(Point2::new(rx, ry).unwrap()), &odom).unwrap();
+        }
+        let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+        let (a, b) = line_through(to_robot(pose, on_row(0.0)), to_robot(pose, on_row(1.0)));
+        // Every point read back lies on the true row in the current robot frame.
+        for s in acc.in_robot_frame(&odom) {
+            let p = s.reference();
+            prop_assert!((p.y() - (a * p.x() + b)).abs() < 1e-9);
+        }
+        let line = fit_row_line(acc.in_robot_frame(&odom).map(|s| s.reference())).unwrap();
+        prop_assert!((line.slope() - a).abs() < 1e-7, "slope {} vs {}", line.slope(), a);
+        prop_assert!((line.intercept().get() - b).abs() < 1e-7);
+    }
+
+    //= spec/pierre2022.md#fur-errors-tracking-error-to-a-row-line
+    //= type=test
+    //# The tracking error to the line y = a x + b of the robot frame MUST be
+    //# y = −b / sqrt(a² + 1) and θ̃ = −arctan(a).
+    #[test]
+    fn errors_match_the_robot_pose_relative_to_the_row(
+        along in -10.0_f64..10.0,
+        lateral in -2.0_f64..2.0,
+        psi in -1.3_f64..1.3,
+    ) {
+        // The row is the world x axis; the robot is `lateral` to its left,
+        // heading `psi`: the library's error is (lateral, psi).
+        let pose = (along, lateral, psi);
+        let (a, b) = line_through(to_robot(pose, (0.0, 0.0)), to_robot(pose, (1.0, 0.0)));
+        let e = tracking_error(&RowLine::new(a, m(b)).unwrap()).unwrap();
+        prop_assert!((e.y.get() - lateral).abs() < 1e-9);
+        prop_assert!((e.angular_deviation.get() - psi).abs() < 1e-9);
+        // Mirror: a row seen on the other side gives the opposite error.
+        let mirrored = tracking_error(&RowLine::new(-a, m(-b)).unwrap()).unwrap();
+        prop_assert!((mirrored.y.get() + lateral).abs() < 1e-9);
+    }
+
+    //= spec/pierre2022.md#fur-two-rows-error-to-the-middle-of-two-rows
+    //= type=test
+    //# With two rows, the tracking error MUST be the mean of the errors to the
+    //# left and right lines: y = (y_l + y_r)/2 and θ̃ = (θ̃_l + θ̃_r)/2.
+    #[test]
+    fn two_parallel_rows_give_the_error_to_their_centre_line(
+        along in -10.0_f64..10.0,
+        lateral in -1.0_f64..1.0,
+        psi in -1.0_f64..1.0,
+        half_spacing in 0.2_f64..0.6,
+    ) {
+        let pose = (along, lateral, psi);
+        let line = |y: f64| {
+            let (a, b) = line_through(to_robot(pose, (0.0, y)), to_robot(pose, (1.0, y)));
+            RowLine::new(a, m(b)).unwrap()
+        };
+        let e = mean_tracking_error(&line(half_spacing), &line(-half_spacing)).unwrap();
+        prop_assert!((e.y.get() - lateral).abs() < 1e-9);
+        prop_assert!((e.angular_deviation.get() - psi).abs() < 1e-9);
+    }
+}
