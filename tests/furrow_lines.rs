@@ -11,6 +11,7 @@
     clippy::float_cmp
 )]
 
+use fieldguide::geometry::fit::fit_line;
 use fieldguide::perception::furrow::accumulation::{Accumulator, Selected};
 use fieldguide::perception::furrow::lines::{
     fit_row_line, mean_tracking_error, tracking_error, RowLine,
@@ -71,6 +72,13 @@ fn degenerate_fits_are_refused() {
         assert_eq!(fit_row_line(bad).unwrap_err().requirement, "FUR-LINE");
     }
     assert!(fit_row_line(pts(&[(4.0, 0.3), (4.01, 0.3)])).is_ok());
+    // Beyond FUR-LINE's conditions, the shared fit's own refusal passes
+    // through: 10¹¹ m away, 1 cm of spread is below its relative 1e−12.
+    let far = pts(&[(1.0e11 - 0.01, 0.3), (1.0e11, 0.2), (1.0e11 + 0.01, 0.1)]);
+    assert_eq!(
+        fit_row_line(&far).unwrap_err().requirement,
+        "FIT-DEGENERATE"
+    );
 }
 
 //= spec/pierre2022.md#fur-errors-tracking-error-to-a-row-line
@@ -173,6 +181,47 @@ fn far_selections_are_dropped() {
 }
 
 proptest! {
+    //= spec/pierre2022.md#fur-line-row-line-by-least-squares
+    //= type=test
+    //# The row line MUST be the least-squares solution (a, b) of a p_x + b = p_y
+    //# over the accumulated points, minimising the squared residuals in y.
+    #[test]
+    fn the_row_line_is_the_least_squares_line(
+        raw in prop::collection::vec((0.5_f64..8.0, -2.0_f64..2.0), 2..40),
+        nudge in (-0.1_f64..0.1, -0.1_f64..0.1),
+    ) {
+        let points = pts(&raw);
+        match fit_row_line(&points) {
+            Ok(line) => {
+                // The shared fit's coefficients, as a row line of the robot frame.
+                let shared = fit_line(&points).unwrap();
+                prop_assert!((line.slope() - shared.a).abs() < 1e-12);
+                prop_assert!((line.intercept().get() - shared.b).abs() < 1e-12);
+                // Normal equations (independent of the fit's centring and
+                // scaling): the residuals sum to zero and are orthogonal to x.
+                let residual = |p: &Point2<Robot>| p.y() - line.y_at(p.x());
+                let n = points.len() as f64;
+                let scale = points.iter().map(|p| p.x().abs()).sum::<f64>() / n;
+                prop_assert!(points.iter().map(residual).sum::<f64>().abs() < 1e-9 * n);
+                prop_assert!(
+                    points.iter().map(|p| residual(p) * p.x()).sum::<f64>().abs()
+                        < 1e-9 * n * scale
+                );
+                // No other line does better.
+                let other = RowLine::new(line.slope() + nudge.0, m(line.intercept().get() + nudge.1)).unwrap();
+                let cost = |l: &RowLine| points.iter().map(|p| (p.y() - l.y_at(p.x())).powi(2)).sum::<f64>();
+                prop_assert!(cost(&line) <= cost(&other) + 1e-12);
+            }
+            Err(e) => {
+                // Only the furrow's precondition may refuse these points.
+                let mean = raw.iter().map(|q| q.0).sum::<f64>() / raw.len() as f64;
+                let var = raw.iter().map(|q| (q.0 - mean).powi(2)).sum::<f64>() / raw.len() as f64;
+                prop_assert_eq!(e.requirement, "FUR-LINE");
+                prop_assert!(var < 1e-6 * (1.0 + 1e-9));
+            }
+        }
+    }
+
     //= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
     //= type=test
     //# Each selection MUST be stored in the odometry frame through the
@@ -206,7 +255,8 @@ proptest! {
             let p = s.reference();
             prop_assert!((p.y() - (a * p.x() + b)).abs() < 1e-9);
         }
-        let line = fit_row_line(acc.in_robot_frame(&odom).map(|s| s.reference())).unwrap();
+        let kept: Vec<Point2<Robot>> = acc.in_robot_frame(&odom).map(|s| s.reference()).collect();
+        let line = fit_row_line(&kept).unwrap();
         prop_assert!((line.slope() - a).abs() < 1e-7, "slope {} vs {}", line.slope(), a);
         prop_assert!((line.intercept().get() - b).abs() < 1e-7);
     }

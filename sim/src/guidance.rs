@@ -5,10 +5,13 @@
 //! selector fed by LiDAR detectors) plug in as new implementations and new
 //! [`Mode`] labels without touching the runner.
 
+pub mod furrow;
+
 use fieldguide::control::backstepping::{steering_command, BacksteppingConfig};
 use fieldguide::model::bicycle::Sideslip;
-use fieldguide::{Meters, MetersPerSecond, Precondition, TrackingError};
+use fieldguide::{Meters, MetersPerSecond, Precondition, TrackingError, Verdict};
 
+use crate::lidar::inclined::InclinedScan;
 use crate::scenario::setup::Reference;
 use crate::sensors::Readings;
 
@@ -18,6 +21,8 @@ use crate::sensors::Readings;
 pub enum Mode {
     /// Tracking the recorded reference path (Pierre 2022, section 2.1).
     PathTracking,
+    /// Following crop rows seen by the inclined LiDAR (Pierre 2022, section 2.3).
+    FurrowPursuing,
 }
 
 impl Mode {
@@ -26,14 +31,17 @@ impl Mode {
     pub const fn label(self) -> &'static str {
         match self {
             Self::PathTracking => "path_tracking",
+            Self::FurrowPursuing => "furrow_pursuing",
         }
     }
 
-    /// Plot colour (the papers draw path tracking in red).
+    /// Plot colour (Pierre 2022, Figs. 8 and 10: path tracking in red,
+    /// furrow pursuing in blue).
     #[must_use]
     pub const fn colour(self) -> &'static str {
         match self {
             Self::PathTracking => "#d62728",
+            Self::FurrowPursuing => "#1f3fd0",
         }
     }
 }
@@ -45,6 +53,9 @@ pub struct TickInput<'a> {
     pub time_s: f64,
     /// The sensors' readings (never the ground truth).
     pub readings: &'a Readings,
+    /// The inclined LiDAR's scan, on the ticks it scans (`None` in between
+    /// and without a LiDAR).
+    pub scan: Option<&'a InclinedScan>,
 }
 
 /// What the guidance sends to the vehicle at one tick.
@@ -62,6 +73,24 @@ pub struct Command {
     pub estimated_error: Option<TrackingError>,
     /// The sideslip the law used (zero without compensation).
     pub sideslip_used: Sideslip,
+    /// What a row detector reported, when the guidance has one.
+    pub detector: Option<DetectorStatus>,
+}
+
+/// A row detector's state at one tick, recorded with the command.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DetectorStatus {
+    /// The verdict of the latest scan (FUR-QUALITY).
+    pub verdict: Verdict,
+    /// Whether that scan arrived at this tick.
+    pub scanned: bool,
+    /// Time since that scan, seconds.
+    pub age_s: f64,
+    /// The weaker correlation of that scan's selection, if it selected rows.
+    pub quality: Option<f64>,
+    /// The detector's own tracking error from that scan, if it fitted lines
+    /// (reported whatever the verdict; only Enter and Hold may be used).
+    pub error: Option<TrackingError>,
 }
 
 /// A per-tick guidance: readings in, command out. State lives in the implementor.
@@ -137,6 +166,7 @@ impl Guidance for PathTracking<'_> {
             saturated: cmd.saturated,
             estimated_error: Some(error),
             sideslip_used: sideslip,
+            detector: None,
         })
     }
 }

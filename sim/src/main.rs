@@ -101,20 +101,30 @@ fn run_all(out: &Path) -> Result<(), SimError> {
 
 fn print_table(summaries: &[Summary]) {
     println!(
-        "{:32} {:>12} {:>12} {:>11} {:>18} {:>8}",
-        "scenario", "distance (m)", "mean |y| (m)", "max |y| (m)", "converged after (m)", "success"
+        "{:32} {:>12} {:>12} {:>11} {:>19} {:>17} {:>8}",
+        "scenario",
+        "distance (m)",
+        "mean |y| (m)",
+        "max |y| (m)",
+        "converged after (m)",
+        "in-plot max (m)",
+        "success"
     );
     for s in summaries {
         let converged = s
             .converged_after_m
             .map_or_else(|| "never".to_owned(), |d| format!("{d:.2}"));
+        let in_plot = s
+            .in_plot_lateral_error_m
+            .map_or_else(|| "-".to_owned(), |e| format!("{:.4}", e.max_abs));
         println!(
-            "{:32} {:>12.2} {:>12.4} {:>11.4} {:>18} {:>8}",
+            "{:32} {:>12.2} {:>12.4} {:>11.4} {:>19} {:>17} {:>8}",
             s.scenario,
             s.distance_m,
             s.lateral_error_m.mean_abs,
             s.lateral_error_m.max_abs,
             converged,
+            in_plot,
             if s.success { "yes" } else { "NO" }
         );
     }

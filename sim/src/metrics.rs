@@ -10,7 +10,14 @@
 //! - `success`: the run reached its end (path end, or the full duration when it
 //!   does not stop at the path end) without a core error, and
 //!   `converged_after_m` is at most `metrics.converge_within_m`: |y| came
-//!   into the band within that distance and stayed in it to the end.
+//!   into the band within that distance and stayed in it to the end. In a
+//!   world with crop plants, also no crop plant crushed; and when the
+//!   scenario sets `metrics.in_plot_mean_abs_m` / `in_plot_max_abs_m`, the
+//!   in-plot error within them.
+//! - `in_plot_lateral_error_m`: |error of O to the true centre line of the
+//!   plot's followed rows| over the ticks where O is inside a plot (its
+//!   projection on the centre line within the plot's length); per plot in
+//!   `plots`.
 
 use std::collections::BTreeMap;
 
@@ -108,8 +115,17 @@ pub struct Summary {
     pub mode_distance_m: BTreeMap<&'static str, f64>,
     /// Number of mode changes.
     pub mode_switches: usize,
-    /// Plants run over by a wheel.
+    /// Crop plants run over by a wheel (grass never counts).
     pub plants_crushed: usize,
+    /// Crop plants in the world.
+    pub crop_plants: usize,
+    /// |error to the true centre line of the followed rows| over the ticks
+    /// with O inside a plot (null without plots), metres.
+    pub in_plot_lateral_error_m: Option<ErrorStats>,
+    /// The same per plot, with the distance driven inside it in each mode.
+    pub plots: Vec<PlotSummary>,
+    /// How many scans the row detector graded with each verdict (empty without one).
+    pub verdicts: BTreeMap<&'static str, usize>,
     /// Fraction of ticks whose steering command saturated.
     pub steering_saturated_fraction: f64,
     /// Whether the run reached its end (path end or full duration).
@@ -118,6 +134,58 @@ pub struct Summary {
     pub aborted: Option<String>,
     /// See the module documentation.
     pub success: bool,
+}
+
+/// The in-plot metrics of one crop plot.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlotSummary {
+    /// The plot's name.
+    pub name: String,
+    /// Length of its rows, metres.
+    pub length_m: f64,
+    /// |error to the true centre line| while O is inside it (null if never), metres.
+    pub lateral_error_m: Option<ErrorStats>,
+    /// Distance driven with O inside it, in each mode, metres.
+    pub mode_distance_m: BTreeMap<&'static str, f64>,
+}
+
+/// The label of a verdict in summaries and traces.
+#[must_use]
+pub const fn verdict_label(v: fieldguide::Verdict) -> &'static str {
+    match v {
+        fieldguide::Verdict::Enter => "enter",
+        fieldguide::Verdict::Hold => "hold",
+        fieldguide::Verdict::Exit => "exit",
+        fieldguide::Verdict::Absent => "absent",
+    }
+}
+
+/// The true lateral errors to the plots' centre lines over the ticks inside
+/// plot `plot` (every plot when `None`), metres.
+#[must_use]
+pub fn in_plot_errors(trace: &[TickRecord], plot: Option<usize>) -> Vec<f64> {
+    trace
+        .iter()
+        .filter_map(|r| r.plot)
+        .filter(|p| plot.is_none_or(|i| p.index == i))
+        .map(|p| p.lateral_error_m)
+        .collect()
+}
+
+/// Distance driven in each mode over the consecutive pairs of ticks whose
+/// first tick satisfies `keep`.
+fn mode_distances(
+    trace: &[TickRecord],
+    keep: impl Fn(&TickRecord) -> bool,
+) -> BTreeMap<&'static str, f64> {
+    let mut out = BTreeMap::new();
+    for pair in trace.windows(2) {
+        let [a, b] = pair else { continue };
+        if keep(a) {
+            *out.entry(a.mode().label()).or_insert(0.0) += b.distance_m - a.distance_m;
+        }
+    }
+    out
 }
 
 /// The summary of `output`, a run of `setup`.
@@ -132,18 +200,34 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
     let after = converged
         .and_then(|i| ys.get(i..))
         .and_then(|t| error_stats(t.iter().copied()));
-    let mut mode_distance = BTreeMap::new();
-    let mut switches = 0;
-    for pair in trace.windows(2) {
-        let [a, b] = pair else { continue };
-        *mode_distance.entry(a.mode().label()).or_insert(0.0) += b.distance_m - a.distance_m;
-        if a.mode() != b.mode() {
-            switches += 1;
-        }
-    }
+    let mut mode_distance = mode_distances(trace, |_| true);
+    let switches = trace
+        .windows(2)
+        .filter(|w| matches!(w, [a, b] if a.mode() != b.mode()))
+        .count();
     if let Some(last) = trace.last() {
         mode_distance.entry(last.mode().label()).or_insert(0.0);
     }
+    let in_plot = error_stats(in_plot_errors(trace, None));
+    let plots: Vec<PlotSummary> = setup
+        .world
+        .plots
+        .iter()
+        .enumerate()
+        .map(|(i, p)| PlotSummary {
+            name: p.name.clone(),
+            length_m: p.spec.length,
+            lateral_error_m: error_stats(in_plot_errors(trace, Some(i))),
+            mode_distance_m: mode_distances(trace, |r| r.plot.is_some_and(|q| q.index == i)),
+        })
+        .collect();
+    let mut verdicts = BTreeMap::new();
+    for d in trace.iter().filter_map(|r| r.command.detector) {
+        if d.scanned {
+            *verdicts.entry(verdict_label(d.verdict)).or_insert(0) += 1;
+        }
+    }
+    let crop_plants = setup.world.crop_count();
     let reached_end = match output.end {
         RunEnd::PathEnd => true,
         RunEnd::Duration => !setup.run.stop_at_path_end,
@@ -151,7 +235,19 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
     };
     let first_m = first.and_then(distance_at);
     let converged_m = converged.and_then(distance_at);
-    let success = reached_end && converged_m.is_some_and(|d| d <= setup.metrics.converge_within_m);
+    let within = |bound: Option<f64>, value: Option<f64>| match (bound, value) {
+        (None, _) => true,
+        (Some(b), Some(v)) => v <= b,
+        (Some(_), None) => false,
+    };
+    let success = reached_end
+        && converged_m.is_some_and(|d| d <= setup.metrics.converge_within_m)
+        && output.plants_crushed == 0
+        && within(
+            setup.metrics.in_plot_mean_abs_m,
+            in_plot.map(|e| e.mean_abs),
+        )
+        && within(setup.metrics.in_plot_max_abs_m, in_plot.map(|e| e.max_abs));
     let zero = ErrorStats {
         mean_abs: 0.0,
         rms: 0.0,
@@ -180,6 +276,10 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
         mode_distance_m: mode_distance,
         mode_switches: switches,
         plants_crushed: output.plants_crushed,
+        crop_plants,
+        in_plot_lateral_error_m: in_plot,
+        plots,
+        verdicts,
         steering_saturated_fraction: if trace.is_empty() {
             0.0
         } else {

@@ -5,7 +5,7 @@
 //! randomness, so a run is a pure function of its scenario. ChaCha8 gives the
 //! same stream on every platform and `rand` version of the same major release.
 
-use rand::SeedableRng;
+use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
@@ -32,6 +32,22 @@ impl SimRng {
     pub fn gaussian(&mut self, sigma: f64) -> f64 {
         let z: f64 = StandardNormal.sample(&mut self.inner);
         z * sigma
+    }
+}
+
+/// The run's generator as a `rand` generator, so that world generation (crop
+/// plots, grass) and the LiDAR's range noise draw from the same stream.
+impl RngCore for SimRng {
+    fn next_u32(&mut self) -> u32 {
+        self.inner.next_u32()
+    }
+
+    fn next_u64(&mut self) -> u64 {
+        self.inner.next_u64()
+    }
+
+    fn fill_bytes(&mut self, dst: &mut [u8]) {
+        self.inner.fill_bytes(dst);
     }
 }
 

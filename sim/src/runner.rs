@@ -1,23 +1,48 @@
 //! The closed loop: truth, sensors, guidance, plant, once per control period.
 //!
 //! One tick at time t = k·period:
-//! 1. the true pose is projected on the reference path (ground truth: the
-//!    errors recorded and scored are these, never the robot's estimate);
-//! 2. the sensors read the true state (with noise, from the run's generator);
+//! 1. the true pose is projected on the reference path, and placed relative
+//!    to the crop plots' true centre lines (ground truth: the errors recorded
+//!    and scored are these, never the robot's estimate);
+//! 2. the sensors read the true state (with noise, from the run's generator),
+//!    and on scan ticks the inclined LiDAR scans the world from the true pose;
 //! 3. the guidance turns the readings into a command;
-//! 4. the tick is recorded, plants under the wheels are counted, and the run
-//!    stops at the end of the path, at the duration, or on a core error;
+//! 4. the tick is recorded, crop plants under the wheels are counted, and the
+//!    run stops at the end of the path, at the duration, or on a core error;
 //! 5. the plant integrates the command over one period.
 
 use fieldguide::geometry::path::PathPosition;
 use fieldguide::{Meters, Pose2, Precondition, World};
 
 use crate::error::ScenarioError;
+use crate::guidance::furrow::FurrowPursuing;
 use crate::guidance::{Command, Guidance, Mode, PathTracking, TickInput, SEARCH_WINDOW_M};
+use crate::lidar::inclined::{InclinedLidar, InclinedScan};
 use crate::plant::{self, VehicleState};
 use crate::rng::SimRng;
 use crate::scenario::{Setup, Source};
 use crate::sensors::{Readings, Sensors};
+use crate::world::crops::PlantIndex;
+use crate::world::PlantKind;
+
+/// Cell size of the plant index, metres (a few plants per cell in a row).
+pub const PLANT_INDEX_CELL_M: f64 = 0.5;
+
+/// How far from a plot's centre line the robot still counts as inside the
+/// plot for the in-plot metrics, metres: beyond the rows and the wheels.
+pub const PLOT_REACH_M: f64 = 2.0;
+
+/// Where the true pose of O lies relative to a crop plot (ground truth).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotTruth {
+    /// Index of the plot in `setup.world.plots`.
+    pub index: usize,
+    /// Abscissa along the plot's centre line, metres.
+    pub s_m: f64,
+    /// Signed distance of O to the plot's true centre line (the middle of the
+    /// rows followed), metres, positive to the left.
+    pub lateral_error_m: f64,
+}
 
 /// Everything recorded at one tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,6 +71,8 @@ pub struct TickRecord {
     pub patch: Option<usize>,
     /// Distance travelled by O, metres.
     pub distance_m: f64,
+    /// Where O is relative to a crop plot it is inside, if any.
+    pub plot: Option<PlotTruth>,
 }
 
 impl TickRecord {
@@ -74,7 +101,7 @@ pub struct RunOutput {
     pub trace: Vec<TickRecord>,
     /// Why it ended.
     pub end: RunEnd,
-    /// Number of distinct plants a wheel went over.
+    /// Number of distinct crop plants a wheel went over (grass never counts).
     pub plants_crushed: usize,
 }
 
@@ -88,18 +115,33 @@ pub fn prepare(source: &Source) -> Result<(Setup, SimRng), ScenarioError> {
     Ok((setup, rng))
 }
 
-/// Runs `setup` with its own path-tracking guidance.
+/// Runs `setup` with its own guidance: furrow pursuing (with path tracking
+/// standing in while the detector has no usable line) when the scenario has a
+/// `[furrow]` section, else path tracking.
 #[must_use]
 pub fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
     let c = &setup.control;
-    let mut guidance = PathTracking::new(
+    let tracking = PathTracking::new(
         &setup.path,
         c.backstepping,
         c.speed,
         c.lookahead,
         c.sideslip_compensation,
     );
-    run_with(setup, &mut guidance, rng)
+    match &setup.furrow {
+        None => {
+            let mut guidance = tracking;
+            run_with(setup, &mut guidance, rng)
+        }
+        Some(f) => match FurrowPursuing::new(f, tracking) {
+            Ok(mut guidance) => run_with(setup, &mut guidance, rng),
+            Err(e) => RunOutput {
+                trace: Vec::new(),
+                end: RunEnd::Aborted(format!("furrow detector: {e}")),
+                plants_crushed: 0,
+            },
+        },
+    }
 }
 
 /// Runs `setup` with any `guidance`.
@@ -110,12 +152,18 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     let terrain = &setup.world.terrain;
     let mut state = VehicleState::at(setup.initial, terrain);
     let mut sensors = Sensors::new(setup.noise, &state);
+    let index = PlantIndex::new(setup.world.plants.clone(), PLANT_INDEX_CELL_M);
     let mut crushed = vec![false; setup.world.plants.len()];
+    let mut near = Vec::new();
     let mut trace = Vec::with_capacity(usize::try_from(max_ticks.min(1 << 20)).unwrap_or(0));
     let mut truth_hint: Option<Meters> = None;
     let mut end = RunEnd::Duration;
     for k in 0..=max_ticks {
         let t_s = k as f64 * period;
+        let scans = setup
+            .lidar
+            .filter(|l| k % l.scan_every == 0)
+            .map(|l| (l.lidar, &index));
         match tick(
             setup,
             guidance,
@@ -123,10 +171,11 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
             &mut sensors,
             &mut truth_hint,
             t_s,
+            scans,
             rng,
         ) {
             Ok((record, past_end)) => {
-                count_crushed(setup, &record.truth, &mut crushed);
+                count_crushed(setup, &index, &record.truth, &mut crushed, &mut near);
                 trace.push(record);
                 if past_end && setup.run.stop_at_path_end {
                     end = RunEnd::PathEnd;
@@ -161,7 +210,12 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     }
 }
 
-/// Steps 1-3 of a tick; returns the record and whether the true projection is past the end.
+/// Steps 1-3 of a tick (`lidar`: the LiDAR and the plants, on scan ticks);
+/// returns the record and whether the true projection is past the end.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one tick reads the whole loop state; a struct would only rename it"
+)]
 fn tick(
     setup: &Setup,
     guidance: &mut dyn Guidance,
@@ -169,6 +223,7 @@ fn tick(
     sensors: &mut Sensors,
     truth_hint: &mut Option<Meters>,
     t_s: f64,
+    lidar: Option<(InclinedLidar, &PlantIndex)>,
     rng: &mut SimRng,
 ) -> Result<(TickRecord, bool), Precondition> {
     let path = &setup.path;
@@ -183,11 +238,21 @@ fn tick(
     };
     *truth_hint = Some(truth.s);
     let readings = sensors.read(state, setup.control.period_s, rng)?;
+    let scan: Option<InclinedScan> = lidar.map(|(l, index)| l.scan(&state.pose, index, rng));
     let command = guidance.step(&TickInput {
         time_s: t_s,
         readings: &readings,
+        scan: scan.as_ref(),
     })?;
     let (x, y) = (state.pose.position.x(), state.pose.position.y());
+    let plot = setup
+        .world
+        .plot_at(x, y, PLOT_REACH_M)
+        .map(|(index, p)| PlotTruth {
+            index,
+            s_m: p.s,
+            lateral_error_m: p.lateral,
+        });
     let past_end = truth.position == PathPosition::PastEnd || truth.s.get() >= path.length().get();
     Ok((
         TickRecord {
@@ -208,23 +273,43 @@ fn tick(
                 .iter()
                 .position(|p| p.contains(x, y)),
             distance_m: state.distance_m,
+            plot,
         },
         past_end,
     ))
 }
 
-/// Marks the plants a wheel's contact patch (a disc of the tyre width) overlaps.
-fn count_crushed(setup: &Setup, pose: &Pose2<World>, crushed: &mut [bool]) {
+/// Marks the crop plants a wheel's contact patch (a disc of the tyre width)
+/// overlaps; grass is never marked. `index` holds `setup.world.plants` in
+/// order; `near` is scratch space.
+fn count_crushed(
+    setup: &Setup,
+    index: &PlantIndex,
+    pose: &Pose2<World>,
+    crushed: &mut [bool],
+    near: &mut Vec<usize>,
+) {
     if crushed.is_empty() {
         return;
     }
     let half_tyre = setup.vehicle.tyre_width_m / 2.0;
-    let wheels = setup.vehicle.wheel_centres(pose);
-    for (plant, hit) in setup.world.plants.iter().zip(crushed.iter_mut()) {
-        if !*hit {
-            *hit = wheels
-                .iter()
-                .any(|w| (w[0] - plant.x).hypot(w[1] - plant.y) < plant.radius + half_tyre);
+    let reach = half_tyre + index.max_radius();
+    for w in setup.vehicle.wheel_centres(pose) {
+        index.query(
+            (w[0] - reach, w[1] - reach),
+            (w[0] + reach, w[1] + reach),
+            near,
+        );
+        for &i in near.iter() {
+            let (Some(plant), Some(hit)) = (index.plants().get(i), crushed.get_mut(i)) else {
+                continue;
+            };
+            let (px, py) = (plant.position.x(), plant.position.y());
+            if plant.kind == PlantKind::Crop
+                && (w[0] - px).hypot(w[1] - py) < plant.radius + half_tyre
+            {
+                *hit = true;
+            }
         }
     }
 }
@@ -233,6 +318,7 @@ fn count_crushed(setup: &Setup, pose: &Pose2<World>, crushed: &mut [bool]) {
 mod tests {
     use super::*;
     use crate::world::Plant;
+    use fieldguide::Point2;
 
     #[test]
     fn plants_on_the_track_are_crushed_once_and_others_spared() {
@@ -245,17 +331,20 @@ mod tests {
         // within a fraction of a second; one between the wheels and one far
         // away are spared.
         let y0 = setup.initial.position.y();
-        let plant = |x: f64, y: f64| Plant {
-            x,
-            y,
+        let plant = |x: f64, y: f64, kind: PlantKind| Plant {
+            position: Point2::new(x, y).unwrap(),
             radius: 0.05,
             height: 0.3,
+            kind,
         };
         setup.world.plants = vec![
-            plant(0.3, y0 - 0.75),
-            plant(2.2, y0 + 0.75),
-            plant(0.3, y0),
-            plant(4.0, y0 + 5.0),
+            plant(0.3, y0 - 0.75, PlantKind::Crop),
+            plant(2.2, y0 + 0.75, PlantKind::Crop),
+            plant(0.3, y0, PlantKind::Crop),
+            plant(4.0, y0 + 5.0, PlantKind::Crop),
+            // Grass under a wheel is seen but never counted.
+            plant(0.5, y0 - 0.75, PlantKind::Grass),
+            plant(2.4, y0 + 0.75, PlantKind::Grass),
         ];
         let out = run(&setup, &mut rng);
         assert_eq!(out.plants_crushed, 2);

@@ -2,15 +2,16 @@
 //! inclined LiDAR in the simulated maize and bean plots, the robot driven
 //! along known straight paths at 0.7 m/s with drifting wheel odometry and a
 //! scan every 0.1 s. What the detector reports is compared with the true
-//! centre line. No controller and no scenario runner: those come with the
-//! `furrow-pursuing` scenario.
+//! centre line. No controller and no scenario runner: the closed loop is
+//! `furrow_pursuing.rs`, on the `furrow-pursuing` scenario.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
 use fieldguide::{Point2, Pose2, Verdict, World};
 use fieldguide_sim::lidar::inclined::InclinedLidar;
 use fieldguide_sim::odometry::{OdometryErrors, WheelOdometry};
-use fieldguide_sim::world::crops::{scatter_grass, Plant, PlantIndex, PlotSpec, Spread};
+use fieldguide_sim::world::crops::{scatter_grass, PlantIndex, PlotSpec, Spread};
+use fieldguide_sim::world::Plant;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
 

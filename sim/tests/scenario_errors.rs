@@ -294,3 +294,286 @@ fn the_program_lists_and_runs_a_scenario_file_with_a_csv_path() {
         .all(|l| l.split(',').count() == columns));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The error of the built-in `furrow-pursuing` text changed by `edit`.
+fn furrow_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
+    let text = Source::builtin("furrow-pursuing").unwrap().text;
+    let source = Source {
+        origin: "edited.toml".to_owned(),
+        text: edit(text),
+        base_dir: None,
+    };
+    source
+        .setup(&mut SimRng::from_seed(1))
+        .expect_err("the edited scenario must be refused")
+}
+
+#[test]
+fn world_lidar_and_furrow_fields_are_named() {
+    let text = Source::builtin("furrow-pursuing").unwrap().text;
+    // (text in the built-in, replacement, field named, part of the reason)
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            "length_m = 30.0",
+            "length_m = 0.0",
+            "world.plots[0].length_m",
+            "between",
+        ),
+        (
+            "crop = \"beans\"",
+            "crop = \"wheat\"",
+            "world.plots[1].crop",
+            "unknown variant",
+        ),
+        (
+            "bare_m = [[14.0, 15.5]]",
+            "bare_m = [[15.5, 14.0]]",
+            "world.plots[1].bare_m[0]",
+            "from_m < to_m",
+        ),
+        (
+            "bare_m = [[14.0, 15.5]]",
+            "bare_m = [[14.0, 45.5]]",
+            "world.plots[1].bare_m[0][1]",
+            "within",
+        ),
+        (
+            "missing_fraction = 0.05\nbare_m",
+            "missing_fraction = 1.5\nbare_m",
+            "world.plots[1].missing_fraction",
+            "within",
+        ),
+        (
+            "bend_wavelength_m = 40.0",
+            "bend_wavelength_m = 0.0",
+            "world.plots[0].bend_wavelength_m",
+            "> 0",
+        ),
+        (
+            "density_per_m2 = 3.0",
+            "density_per_m2 = -3.0",
+            "world.grass[0].density_per_m2",
+            "within",
+        ),
+        (
+            "radius_m = 0.02",
+            "radius_m = 0.0",
+            "world.grass[0].radius_m",
+            "between",
+        ),
+        (
+            "lead_in_m = 6.0",
+            "lead_in_m = -6.0",
+            "path.along_plots.lead_in_m",
+            "within",
+        ),
+        (
+            "pitch_deg = 21.8",
+            "pitch_deg = 0.0",
+            "lidar.pitch_deg",
+            "between",
+        ),
+        ("rays = 360", "rays = 1", "lidar.rays", "within"),
+        (
+            "range_max_m = 20.0",
+            "range_max_m = 0.05",
+            "lidar.range_max_m",
+            "above",
+        ),
+        (
+            "rate_hz = 10.0",
+            "rate_hz = 15.0",
+            "lidar.rate_hz",
+            "whole number",
+        ),
+        (
+            "rate_hz = 10.0",
+            "rate_hz = \"fast\"",
+            "lidar.rate_hz",
+            "invalid type",
+        ),
+        (
+            "speed_m_s = 0.7",
+            "speed_m_s = 0.0",
+            "furrow.speed_m_s",
+            "between",
+        ),
+        (
+            "heading_gain = 3.2",
+            "heading_gain = 1.0",
+            "furrow.heading_gain",
+            "min_gain_ratio",
+        ),
+        (
+            "template_width_rays = 15",
+            "template_width_rays = 14",
+            "furrow.template_width_rays",
+            "odd",
+        ),
+        (
+            "template_height_m = 0.3",
+            "template_height_m = 0.0",
+            "furrow.template_height_m",
+            "between",
+        ),
+        (
+            "height_floor_m = 0.15",
+            "height_floor_m = 0.3",
+            "furrow.height_floor_m",
+            "below",
+        ),
+        (
+            "peak_threshold = 0.5",
+            "peak_threshold = 1.0",
+            "furrow.peak_threshold",
+            "between",
+        ),
+        ("rows = 2", "rows = 3", "furrow.rows", "1 or 2"),
+        ("rows = 2", "rows = 1", "furrow.rows", "one row"),
+        (
+            "max_row_spacing_m = 0.9",
+            "max_row_spacing_m = 0.6",
+            "furrow.max_row_spacing_m",
+            "above",
+        ),
+        (
+            "averaged_scans = 25",
+            "averaged_scans = 0",
+            "furrow.averaged_scans",
+            "within",
+        ),
+        (
+            "averaged_scans = 25",
+            "averaged_scans = 65",
+            "furrow.averaged_scans",
+            "within",
+        ),
+        (
+            "min_points = 5",
+            "min_points = 1",
+            "furrow.min_points",
+            "within",
+        ),
+        (
+            "enter_correlation = 0.4",
+            "enter_correlation = 0.1",
+            "furrow.enter_correlation",
+            "above",
+        ),
+        // 4000 rays over 90°: the ±20° window holds 1778, above the detector's 1024.
+        (
+            "rays = 360",
+            "rays = 4000",
+            "furrow.window_half_angle_deg",
+            "1778 rays",
+        ),
+        (
+            "in_plot_max_abs_m = 0.1",
+            "in_plot_max_abs_m = 0.0",
+            "metrics.in_plot_max_abs_m",
+            "> 0",
+        ),
+        (
+            "keep_distance_m = 6.0",
+            "keep_distance_m = 6.0\nkeep_m = 6.0",
+            "furrow.keep_m",
+            "unknown field",
+        ),
+        (
+            "min_row_spacing_m = 0.66\n",
+            "",
+            "furrow.min_row_spacing_m",
+            "required",
+        ),
+        (
+            "exit_correlation = 0.2\n",
+            "",
+            "furrow.exit_correlation",
+            "missing field",
+        ),
+    ];
+    for (from, to, field, reason) in cases {
+        assert!(
+            text.contains(from),
+            "the built-in no longer contains `{from}`"
+        );
+        let e = furrow_error_of(|t| t.replacen(from, to, 1));
+        assert_field(&e, field, reason);
+    }
+}
+
+#[test]
+fn furrow_pursuing_needs_its_sensor_and_its_world() {
+    let e = furrow_error_of(|t| {
+        let start = t.find("[lidar]").unwrap();
+        let end = t[start + 1..]
+            .find("\n[")
+            .map_or(t.len(), |i| start + 1 + i);
+        format!("{}{}", &t[..start], &t[end..])
+    });
+    assert_field(&e, "furrow", "[lidar]");
+    // Without plots the path along them has nothing to follow.
+    let e = furrow_error_of(|t| {
+        let start = t.find("[[world.plots]]").unwrap();
+        let end = t.find("# Grass in the headlands").unwrap();
+        format!("{}{}", &t[..start], &t[end..])
+    });
+    assert_field(&e, "path.along_plots", "world.plots");
+    // Plots that overlap backwards cannot be joined by a recorded path.
+    let e = furrow_error_of(|t| t.replace("x_m = 38.0, y_m = 0.25", "x_m = 10.0, y_m = 0.25"));
+    assert_field(&e, "world.plots[1].start", "ahead");
+    let e = furrow_error_of(|t| {
+        t.replace(
+            "along_plots = { lead_in_m = 6.0, run_out_m = 6.0 }",
+            "along_plots = { lead_in_m = 6.0, run_out_m = 6.0 }\nsegments = [{ straight_m = 10.0 }]",
+        )
+    });
+    assert_field(&e, "path", "exactly one");
+}
+
+#[test]
+fn the_program_writes_the_furrow_figures_and_summary() {
+    let dir = scratch("furrow");
+    let run = Command::new(env!("CARGO_BIN_EXE_fieldguide"))
+        .args(["run", "furrow-pursuing", "--out", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let out = dir.join("furrow-pursuing");
+    for f in fieldguide_sim::output::FILES
+        .iter()
+        .chain([&fieldguide_sim::output::ROWS_FILE])
+    {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(
+        summary["in_plot_lateral_error_m"]["max_abs"]
+            .as_f64()
+            .unwrap()
+            < 0.1
+    );
+    assert_eq!(summary["plots"][0]["name"], "maize");
+    assert_eq!(summary["plots"][1]["name"], "beans");
+    assert!(
+        summary["mode_distance_m"]["furrow_pursuing"]
+            .as_f64()
+            .unwrap()
+            > 40.0
+    );
+    assert!(summary["verdicts"]["enter"].as_u64().unwrap() > 100);
+    assert_eq!(summary["plants_crushed"], 0);
+    assert!(summary["crop_plants"].as_u64().unwrap() > 500);
+    assert_eq!(summary["success"], true);
+    let trace = std::fs::read_to_string(out.join("trace.csv")).unwrap();
+    let columns = trace.lines().next().unwrap().split(',').count();
+    assert!(trace.lines().all(|l| l.split(',').count() == columns));
+    assert!(trace.contains(",furrow_pursuing,enter,1,0.00,"));
+    assert!(trace.contains(",maize,") && trace.contains(",beans,"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -445,19 +445,22 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     fn row_line(
         &self,
         odom: &Pose2<Odom>,
-        pick: impl Fn(Selected<Robot>) -> Option<Point2<Robot>> + Copy,
+        pick: impl Fn(Selected<Robot>) -> Option<Point2<Robot>>,
     ) -> Option<RowLine> {
-        let points = || self.accumulator.in_robot_frame(odom).filter_map(pick);
-        let (mut count, mut lo, mut hi) = (0_usize, f64::INFINITY, f64::NEG_INFINITY);
-        for p in points() {
-            count = count.saturating_add(1);
-            lo = lo.min(p.x());
-            hi = hi.max(p.x());
+        // At most one point per kept selection, and at most SCANS are kept.
+        let mut points = Vec::<Point2<Robot>, SCANS>::new();
+        for p in self.accumulator.in_robot_frame(odom).filter_map(pick) {
+            let _ = points.push(p);
         }
-        let enough = count >= self.config.params.min_points
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.x()), hi.max(p.x()))
+            });
+        let enough = points.len() >= self.config.params.min_points
             && hi - lo >= self.config.params.min_extent.get();
         if enough {
-            fit_row_line(points()).ok()
+            fit_row_line(points.iter()).ok()
         } else {
             None
         }

@@ -15,7 +15,8 @@ use fieldguide::{Pose2, Precondition, Radians, World};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::world::crops::{Plant, PlantIndex};
+use crate::world::crops::PlantIndex;
+use crate::world::Plant;
 
 /// An inclined 2D LiDAR and its mount on the robot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -254,7 +255,7 @@ impl InclinedScan {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::world::crops::PlantKind;
+    use crate::world::PlantKind;
     use fieldguide::perception::furrow::scan::{scan_to_points, MountPose, ScanWindow};
     use fieldguide::{Meters, Point2};
     use rand::rngs::StdRng;

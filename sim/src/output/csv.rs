@@ -3,9 +3,14 @@
 //! One line per control tick. Angles in radians, distances in metres, world
 //! frame unless the column says `odom_`. `y_true_m` and the other `_true`
 //! columns are ground truth; `est_` columns are what the robot's sensors said.
+//! The last columns are empty without a row detector or outside the plots:
+//! the latest scan's verdict, whether it arrived at this tick, its age and
+//! quality (the weaker correlation of its selection), and the plot O is in
+//! with O's abscissa and true lateral error to that plot's centre line.
 
 use std::fmt::Write as _;
 
+use crate::metrics::verdict_label;
 use crate::runner::TickRecord;
 
 /// The header line of the trace.
@@ -15,11 +20,12 @@ distance_m,s_m,lateral_error_true_m,angular_error_true_rad,curvature_1_m,\
 lateral_error_est_m,angular_error_est_rad,\
 steering_cmd_rad,steering_rad,saturated,\
 beta_front_true_rad,beta_rear_true_rad,beta_front_used_rad,beta_rear_used_rad,\
-slip_patch,mode";
+slip_patch,mode,\
+verdict,scanned,scan_age_s,scan_quality,plot,plot_s_m,plot_lateral_error_true_m";
 
 /// The whole trace as CSV text, header first.
 #[must_use]
-pub fn trace_csv(trace: &[TickRecord], patch_names: &[String]) -> String {
+pub fn trace_csv(trace: &[TickRecord], patch_names: &[String], plot_names: &[String]) -> String {
     let mut out = String::with_capacity(trace.len().saturating_mul(260));
     out.push_str(HEADER);
     out.push('\n');
@@ -33,10 +39,31 @@ pub fn trace_csv(trace: &[TickRecord], patch_names: &[String]) -> String {
             .patch
             .and_then(|i| patch_names.get(i))
             .map_or(String::new(), |n| n.replace(',', ";"));
+        let detector = r.command.detector.map_or_else(
+            || ",,,".to_owned(),
+            |d| {
+                format!(
+                    "{},{},{:.2},{}",
+                    verdict_label(d.verdict),
+                    u8::from(d.scanned),
+                    d.age_s,
+                    optional(d.quality.unwrap_or(f64::NAN)),
+                )
+            },
+        );
+        let plot = r.plot.map_or_else(
+            || ",,".to_owned(),
+            |p| {
+                let name = plot_names
+                    .get(p.index)
+                    .map_or(String::new(), |n| n.replace(',', ";"));
+                format!("{name},{:.4},{:.5}", p.s_m, p.lateral_error_m)
+            },
+        );
         // Writing into a String cannot fail.
         let _ = writeln!(
             out,
-            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{}",
+            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{}",
             r.t_s,
             r.truth.position.x(),
             r.truth.position.y(),
@@ -63,6 +90,8 @@ pub fn trace_csv(trace: &[TickRecord], patch_names: &[String]) -> String {
             r.command.sideslip_used.rear.get(),
             patch,
             r.mode().label(),
+            detector,
+            plot,
         );
     }
     out

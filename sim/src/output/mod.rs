@@ -20,8 +20,12 @@ pub const FILES: [&str; 4] = [
     "lateral_error.svg",
 ];
 
+/// The extra figure of a world with plants.
+pub const ROWS_FILE: &str = "rows.svg";
+
 /// Writes `trace.csv`, `summary.json`, `trajectory.svg` and `lateral_error.svg`
-/// into `out_root/<scenario name>/`, creating it; returns that folder.
+/// (and `rows.svg` in a world with plants) into `out_root/<scenario name>/`,
+/// creating it; returns that folder.
 pub fn write_run(
     out_root: &Path,
     setup: &Setup,
@@ -40,12 +44,13 @@ pub fn write_run(
         .iter()
         .map(|p| p.name.clone())
         .collect();
+    let plot_names: Vec<String> = setup.world.plots.iter().map(|p| p.name.clone()).collect();
     let json = json::summary_json(summary).map_err(|e| SimError::Write {
         file: dir.join("summary.json"),
         source: std::io::Error::other(e),
     })?;
     let contents = [
-        csv::trace_csv(&output.trace, &names),
+        csv::trace_csv(&output.trace, &names, &plot_names),
         json,
         plots::trajectory_svg(setup, &output.trace),
         plots::lateral_error_svg(setup, &output.trace),
@@ -53,6 +58,11 @@ pub fn write_run(
     for (name, text) in FILES.iter().zip(contents) {
         let file = dir.join(name);
         std::fs::write(&file, text).map_err(|source| SimError::Write { file, source })?;
+    }
+    if !setup.world.plants.is_empty() {
+        let file = dir.join(ROWS_FILE);
+        std::fs::write(&file, plots::rows_svg(setup, &output.trace))
+            .map_err(|source| SimError::Write { file, source })?;
     }
     Ok(dir)
 }

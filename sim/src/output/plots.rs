@@ -1,10 +1,14 @@
-//! The two figures of a run, in the style of Pierre 2022 Fig. 8: the
-//! trajectory over the reference path (equal axis scales, coloured by mode) and
-//! the lateral error against the curvilinear abscissa s.
+//! The figures of a run, in the style of Pierre 2022 Figs. 8 and 10: the
+//! trajectory over the reference path (equal axis scales, coloured by mode),
+//! the lateral error against the curvilinear abscissa s, and, in a world
+//! with plants, the rows and the wheels' tracks along the path.
+
+use fieldguide::{Meters, Pose2, World};
 
 use crate::guidance::Mode;
 use crate::runner::TickRecord;
 use crate::scenario::Setup;
+use crate::world::PlantKind;
 
 use super::svg::{Axes, Stroke, Svg};
 
@@ -14,6 +18,14 @@ const REFERENCE: Stroke<'static> = Stroke {
     dash: None,
 };
 const PATCH_COLOUR: &str = "#1f77b4";
+const CROP_COLOUR: &str = "#2ca02c";
+const GRASS_COLOUR: &str = "#bcbd22";
+const PLOT_COLOUR: &str = "#2ca02c";
+const TRUTH: Stroke<'static> = Stroke {
+    colour: "black",
+    width: 0.9,
+    dash: None,
+};
 
 /// Consecutive ticks of one mode, each with the first point of the next run
 /// so the coloured pieces join.
@@ -72,6 +84,28 @@ fn legend_entries<'a>(
     entries
 }
 
+/// Legend entries for the kinds of plants the world holds.
+fn plant_legend(setup: &Setup) -> Vec<(Stroke<'static>, bool, &'static str)> {
+    [
+        (PlantKind::Crop, CROP_COLOUR, "crop plants"),
+        (PlantKind::Grass, GRASS_COLOUR, "grass"),
+    ]
+    .into_iter()
+    .filter(|(kind, _, _)| setup.world.plants.iter().any(|p| p.kind == *kind))
+    .map(|(_, colour, label)| {
+        (
+            Stroke {
+                colour,
+                width: 1.0,
+                dash: None,
+            },
+            true,
+            label,
+        )
+    })
+    .collect()
+}
+
 /// `trajectory.svg`: reference path (black), true trajectory of O coloured by
 /// mode, slip patches shaded, start marked; x east and y north in metres.
 #[must_use]
@@ -99,6 +133,16 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
         y0 = y0.min(y);
         y1 = y1.max(y);
     }
+    // A long thin layout (plots in line) would leave no room for the legend:
+    // each side spans at least a third of the other.
+    let (w, h) = (x1 - x0, y1 - y0);
+    if h < w / 3.0 {
+        let pad = (w / 3.0 - h) / 2.0;
+        (y0, y1) = (y0 - pad, y1 + pad);
+    } else if w < h / 3.0 {
+        let pad = (h / 3.0 - w) / 2.0;
+        (x0, x1) = (x0 - pad, x1 + pad);
+    }
     let axes = Axes::equal((x0, x1), (y0, y1), 900.0, 800.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
@@ -112,6 +156,17 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
         "y (m), north",
         &format!("{}: trajectory of the rear-axle midpoint", setup.name),
     );
+    let plants = |kind: PlantKind| -> Vec<(f64, f64)> {
+        setup
+            .world
+            .plants
+            .iter()
+            .filter(|p| p.kind == kind)
+            .map(|p| (p.position.x(), p.position.y()))
+            .collect()
+    };
+    svg.dots(&axes, &plants(PlantKind::Grass), 0.8, GRASS_COLOUR);
+    svg.dots(&axes, &plants(PlantKind::Crop), 1.0, CROP_COLOUR);
     svg.polyline(&axes, &reference, REFERENCE);
     for (mode, run) in runs_by_mode(trace) {
         let pts: Vec<(f64, f64)> = run
@@ -137,12 +192,17 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
         .iter()
         .map(|r| (r.truth.position.x(), r.truth.position.y()))
         .chain(reference.iter().copied())
+        .chain(
+            setup
+                .world
+                .plants
+                .iter()
+                .map(|p| (p.position.x(), p.position.y())),
+        )
         .collect();
-    svg.legend(
-        &axes,
-        &legend_entries(trace, has_patches, "reference path"),
-        &points,
-    );
+    let mut entries = legend_entries(trace, has_patches, "reference path");
+    entries.extend(plant_legend(setup));
+    svg.legend(&axes, &entries, &points);
     svg.finish()
 }
 
@@ -185,6 +245,27 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             }
         }
     }
+    // Shade the s-stretches spent inside a crop plot.
+    for i in 0..setup.world.plots.len() {
+        let inside: Vec<f64> = trace
+            .iter()
+            .filter(|r| r.plot.is_some_and(|p| p.index == i))
+            .map(|r| r.s_m)
+            .collect();
+        if let (Some(a), Some(b)) = (inside.first(), inside.last()) {
+            svg.polygon(
+                &axes,
+                &[
+                    (*a, axes.y.0),
+                    (*b, axes.y.0),
+                    (*b, axes.y.1),
+                    (*a, axes.y.1),
+                ],
+                PLOT_COLOUR,
+                0.10,
+            );
+        }
+    }
     svg.frame(
         &axes,
         "curvilinear abscissa s (m)",
@@ -222,13 +303,149 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             },
         );
     }
+    // Inside the plots, the error to the true centre line of the followed rows.
+    let in_plot = in_plot_pieces(trace);
+    for piece in &in_plot {
+        svg.polyline(&axes, piece, TRUTH);
+    }
     let has_patches = trace.iter().any(|r| r.patch.is_some());
     let band_label = format!("band ±{band} m");
     let mut entries = legend_entries(trace, has_patches, "");
     entries.remove(0);
     entries.push((dashed, false, &band_label));
+    if !in_plot.is_empty() {
+        entries.push((TRUTH, false, "in a plot: to the rows' true centre line"));
+        entries.push((
+            Stroke {
+                colour: PLOT_COLOUR,
+                width: 1.0,
+                dash: None,
+            },
+            true,
+            "crop plot",
+        ));
+    }
     let points: Vec<(f64, f64)> = trace.iter().map(|r| (r.s_m, r.lateral_error_m)).collect();
     svg.legend(&axes, &entries, &points);
+    svg.finish()
+}
+
+/// `(s, error to the plot's true centre line)` over each unbroken stretch of
+/// ticks inside one plot.
+fn in_plot_pieces(trace: &[TickRecord]) -> Vec<Vec<(f64, f64)>> {
+    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut current: Option<usize> = None;
+    for r in trace {
+        match r.plot {
+            Some(p) => {
+                if current != Some(p.index) {
+                    pieces.push(Vec::new());
+                    current = Some(p.index);
+                }
+                if let Some(piece) = pieces.last_mut() {
+                    piece.push((r.s_m, p.lateral_error_m));
+                }
+            }
+            None => current = None,
+        }
+    }
+    pieces
+}
+
+/// `rows.svg`, for a world with plants: the plants and the four wheels'
+/// tracks in the Frénet frame of the reference path (s along it, y to its
+/// left), the lateral axis stretched so the rows and the clearances show.
+/// Crop plants in green (their footprint radius to scale on y), grass in
+/// olive, the tracks of the wheels' contact patches (tyre width to scale on
+/// y) coloured by mode.
+#[must_use]
+pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
+    let path = &setup.path;
+    let frenet = |x: f64, y: f64, hint: Option<f64>| -> Option<(f64, f64)> {
+        let pose = Pose2::<World>::new(x, y, 0.0).ok()?;
+        let e = match hint.and_then(|h| Meters::new(h).ok()) {
+            Some(h) => path.project_near(&pose, Meters::ZERO, h, Meters::new(5.0).ok()?),
+            None => path.project(&pose, Meters::ZERO),
+        }
+        .ok()?;
+        Some((e.s.get(), e.y.get()))
+    };
+    let s_lo = trace.first().map_or(0.0, |r| r.s_m);
+    let s_hi = trace.last().map_or(path.length().get(), |r| r.s_m);
+    let half_width = setup.vehicle.track_m / 2.0 + setup.vehicle.tyre_width_m + 0.3;
+    let axes = Axes::new((s_lo, s_hi), (-half_width, half_width), 1400.0, 420.0);
+    let mut svg = Svg::new(&axes);
+    svg.clip_to(&axes);
+    svg.frame(
+        &axes,
+        "curvilinear abscissa s (m)",
+        "y (m), left of the path",
+        &format!("{}: plants and wheel tracks along the path", setup.name),
+    );
+    let px_per_m = {
+        let (_, a) = axes.px(0.0, 0.0);
+        let (_, b) = axes.px(0.0, 1.0);
+        (a - b).abs()
+    };
+    for kind in [PlantKind::Grass, PlantKind::Crop] {
+        let (colour, fallback) = match kind {
+            PlantKind::Crop => (CROP_COLOUR, 0.1),
+            PlantKind::Grass => (GRASS_COLOUR, 0.02),
+        };
+        let mut by_size: Vec<(f64, Vec<(f64, f64)>)> = Vec::new();
+        for p in setup.world.plants.iter().filter(|p| p.kind == kind) {
+            let Some(q) = frenet(p.position.x(), p.position.y(), None) else {
+                continue;
+            };
+            if q.0 < s_lo || q.0 > s_hi || q.1.abs() > half_width {
+                continue;
+            }
+            // Radii rounded to a tenth of a pixel, so plants group by size.
+            let r = ((if p.radius > 0.0 { p.radius } else { fallback }) * px_per_m * 10.0).round()
+                / 10.0;
+            match by_size.iter_mut().find(|(size, _)| (size - r).abs() < 1e-9) {
+                Some((_, pts)) => pts.push(q),
+                None => by_size.push((r, vec![q])),
+            }
+        }
+        for (r, pts) in &by_size {
+            svg.dots(&axes, pts, r.max(0.6), colour);
+        }
+    }
+    // The wheels' tracks, each a band of the tyre width, by mode.
+    let half_tyre = setup.vehicle.tyre_width_m / 2.0;
+    for (mode, run) in runs_by_mode(trace) {
+        for wheel in 0..4 {
+            let track: Vec<(f64, f64)> = run
+                .iter()
+                .filter_map(|r| {
+                    let w = setup.vehicle.wheel_centres(&r.truth);
+                    let c = w.get(wheel)?;
+                    frenet(c[0], c[1], Some(r.s_m))
+                })
+                .collect();
+            let band: Vec<(f64, f64)> = track
+                .iter()
+                .map(|&(s, y)| (s, y + half_tyre))
+                .chain(track.iter().rev().map(|&(s, y)| (s, y - half_tyre)))
+                .collect();
+            svg.polygon(&axes, &band, mode.colour(), 0.3);
+        }
+        let centre: Vec<(f64, f64)> = run.iter().map(|r| (r.s_m, r.lateral_error_m)).collect();
+        svg.polyline(
+            &axes,
+            &centre,
+            Stroke {
+                colour: mode.colour(),
+                width: 1.0,
+                dash: Some("4 3"),
+            },
+        );
+    }
+    let mut entries = legend_entries(trace, false, "");
+    entries.remove(0);
+    entries.extend(plant_legend(setup));
+    svg.legend(&axes, &entries, &[]);
     svg.finish()
 }
 

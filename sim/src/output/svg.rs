@@ -258,6 +258,20 @@ impl Svg {
         ));
     }
 
+    /// Filled discs of `radius` pixels at data points, clipped to the plot area.
+    pub fn dots(&mut self, axes: &Axes, points: &[(f64, f64)], radius: f64, fill: &str) {
+        if points.is_empty() {
+            return;
+        }
+        let mut g = format!(r#"<g fill="{fill}" stroke="none" clip-path="url(#plot)">"#);
+        for &(x, y) in points {
+            let (px, py) = axes.px(x, y);
+            let _ = write!(g, r#"<circle cx="{px:.1}" cy="{py:.1}" r="{radius:.1}"/>"#);
+        }
+        g.push_str("</g>");
+        self.raw(&g);
+    }
+
     /// The clip path of the plot area; call before drawing clipped elements.
     pub fn clip_to(&mut self, axes: &Axes) {
         let (l, t, w, h) = axes.area;

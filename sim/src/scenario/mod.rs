@@ -27,6 +27,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "path-tracking-no-compensation",
         include_str!("../../scenarios/path-tracking-no-compensation.toml"),
     ),
+    (
+        "furrow-pursuing",
+        include_str!("../../scenarios/furrow-pursuing.toml"),
+    ),
 ];
 
 /// The names of the built-in scenarios.

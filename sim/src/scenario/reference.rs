@@ -4,9 +4,10 @@
 use std::path::Path;
 
 use super::check::Checker;
-use super::schema::{PathSection, Segment, StartPose};
+use super::schema::{AlongPlots, PathSection, Segment, StartPose};
 use crate::error::ScenarioError;
 use crate::rng::SimRng;
+use crate::world::crops::PlotSpec;
 
 /// What kind of nominal piece a stretch of the path is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,11 +60,13 @@ pub fn straight_intervals(pieces: &[Piece]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The waypoints of `[path]`: sampled segments plus recording noise, or the CSV file
-/// (relative to `base_dir`, the scenario file's folder; none for a built-in scenario),
-/// at most `capacity` of them.
+/// The waypoints of `[path]`: sampled segments, or the centre lines of
+/// `plots` (the world's plots, in order), plus recording noise; or the CSV
+/// file (relative to `base_dir`, the scenario file's folder; none for a
+/// built-in scenario); at most `capacity` of them.
 pub fn waypoints(
     section: &PathSection,
+    plots: &[PlotSpec],
     capacity: usize,
     base_dir: Option<&Path>,
     check: &Checker<'_>,
@@ -71,38 +74,154 @@ pub fn waypoints(
 ) -> Result<Waypoints, ScenarioError> {
     let step = check.positive("path.sample_step_m", section.sample_step_m)?;
     let noise = check.non_negative("path.recording_noise_m", section.recording_noise_m)?;
-    match (&section.segments, &section.csv) {
-        (Some(segments), None) => {
+    let mut w = match (&section.segments, &section.csv, &section.along_plots) {
+        (Some(segments), None, None) => {
             let Some(start) = section.start else {
                 return Err(check.error("path.start", "required with `path.segments`"));
             };
-            let mut w = sample_segments(start, segments, step, capacity, check)?;
-            for p in &mut w.points {
-                p[0] += rng.gaussian(noise);
-                p[1] += rng.gaussian(noise);
-            }
-            Ok(w)
+            sample_segments(start, segments, step, capacity, check)?
         }
-        (None, Some(csv)) => {
+        (None, Some(csv), None) => {
             if section.start.is_some() {
                 return Err(check.error("path.start", "not allowed with `path.csv`"));
             }
             let text = read_csv(csv, base_dir, check)?;
-            let mut points = parse_csv(&text, check)?;
+            let points = parse_csv(&text, check)?;
             if points.len() > capacity {
                 return Err(check.error("path.csv", &format!("more than {capacity} waypoints")));
             }
-            for p in &mut points {
-                p[0] += rng.gaussian(noise);
-                p[1] += rng.gaussian(noise);
-            }
-            Ok(Waypoints {
+            Waypoints {
                 points,
                 pieces: Vec::new(),
-            })
+            }
         }
-        _ => Err(check.error("path", "give exactly one of `segments` and `csv`")),
+        (None, None, Some(along)) => {
+            if section.start.is_some() {
+                return Err(check.error("path.start", "not allowed with `path.along_plots`"));
+            }
+            sample_along_plots(along, plots, step, capacity, check)?
+        }
+        _ => {
+            return Err(check.error(
+                "path",
+                "give exactly one of `segments`, `csv` and `along_plots`",
+            ))
+        }
+    };
+    for p in &mut w.points {
+        p[0] += rng.gaussian(noise);
+        p[1] += rng.gaussian(noise);
     }
+    Ok(w)
+}
+
+/// A path down the true centre line of each plot, sampled every `step`
+/// metres, joined by straight lines, with a straight lead-in before the first
+/// plot and a run-out after the last, along their headings. Every piece is
+/// `Straight` (the rows' bend is slight). The plots must follow one another:
+/// each starts ahead of where the previous one ends.
+fn sample_along_plots(
+    along: &AlongPlots,
+    plots: &[PlotSpec],
+    step: f64,
+    capacity: usize,
+    check: &Checker<'_>,
+) -> Result<Waypoints, ScenarioError> {
+    let lead_in = check.range("path.along_plots.lead_in_m", along.lead_in_m, 0.0, 1000.0)?;
+    let run_out = check.range("path.along_plots.run_out_m", along.run_out_m, 0.0, 1000.0)?;
+    let (Some(first), Some(last)) = (plots.first(), plots.last()) else {
+        return Err(check.error("path.along_plots", "needs at least one `[[world.plots]]`"));
+    };
+    let mut points: Vec<[f64; 2]> = Vec::new();
+    let mut pieces = Vec::new();
+    let mut s_total = 0.0;
+    // Appends the straight from the last point to `to` (or starts at `to`).
+    let straight =
+        |points: &mut Vec<[f64; 2]>, pieces: &mut Vec<Piece>, s: &mut f64, to: [f64; 2]| {
+            let Some(&from) = points.last() else {
+                points.push(to);
+                return;
+            };
+            let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+            if length <= 0.0 {
+                return;
+            }
+            let n = samples_for(length, step);
+            for k in 1..=n {
+                let t = f64::from(k) / f64::from(n);
+                points.push([
+                    from[0] + t * (to[0] - from[0]),
+                    from[1] + t * (to[1] - from[1]),
+                ]);
+            }
+            pieces.push(Piece {
+                kind: PieceKind::Straight,
+                s_start: *s,
+                s_end: *s + length,
+                start: from,
+                end: to,
+            });
+            *s += length;
+        };
+    let (x0, y0, h0) = first.centre_line(0.0);
+    straight(
+        &mut points,
+        &mut pieces,
+        &mut s_total,
+        [x0 - lead_in * h0.cos(), y0 - lead_in * h0.sin()],
+    );
+    for (i, plot) in plots.iter().enumerate() {
+        let (x, y, _) = plot.centre_line(0.0);
+        if let Some(&prev) = points.last() {
+            let (_, _, h) = plot.centre_line(0.0);
+            let ahead = (x - prev[0]) * h.cos() + (y - prev[1]) * h.sin();
+            if i > 0 && ahead < 0.0 {
+                return Err(check.error(
+                    &format!("world.plots[{i}].start"),
+                    "with `path.along_plots`, each plot must start ahead of where the previous one ends",
+                ));
+            }
+        }
+        straight(&mut points, &mut pieces, &mut s_total, [x, y]);
+        let n = samples_for(plot.length, step);
+        let s_start = s_total;
+        let mut previous = [x, y];
+        for k in 1..=n {
+            let (px, py, _) = plot.centre_line(plot.length * f64::from(k) / f64::from(n));
+            s_total += (px - previous[0]).hypot(py - previous[1]);
+            previous = [px, py];
+            points.push(previous);
+        }
+        pieces.push(Piece {
+            kind: PieceKind::Straight,
+            s_start,
+            s_end: s_total,
+            start: [x, y],
+            end: previous,
+        });
+        if points.len() > capacity {
+            break;
+        }
+    }
+    let (xe, ye, he) = last.centre_line(last.length);
+    straight(
+        &mut points,
+        &mut pieces,
+        &mut s_total,
+        [xe + run_out * he.cos(), ye + run_out * he.sin()],
+    );
+    if points.len() > capacity {
+        return Err(check.error(
+            "path.sample_step_m",
+            &format!(
+                "the plots need more than {capacity} waypoints at this spacing; use a larger step"
+            ),
+        ));
+    }
+    if points.len() < 2 {
+        return Err(check.error("path.along_plots", "the path needs at least two waypoints"));
+    }
+    Ok(Waypoints { points, pieces })
 }
 
 /// Samples the segments every `step` metres (at least once per segment), from `start`.

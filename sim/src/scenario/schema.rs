@@ -34,6 +34,12 @@ pub struct ScenarioFile {
     pub run: RunSection,
     /// Bounds for the summary's convergence and success.
     pub metrics: MetricsSection,
+    /// Crop plots and grass (`[world]`, optional: no plants without it).
+    pub world: Option<WorldSection>,
+    /// An inclined 2D LiDAR looking at the ground (`[lidar]`, optional).
+    pub lidar: Option<LidarSection>,
+    /// Furrow pursuing (`[furrow]`, optional; needs `[world]` and `[lidar]`).
+    pub furrow: Option<FurrowSection>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.
@@ -46,6 +52,8 @@ pub struct PathSection {
     pub segments: Option<Vec<Segment>>,
     /// The path as a CSV file of waypoints `x_m,y_m` (header line), relative to the scenario file.
     pub csv: Option<String>,
+    /// The path recorded down the centre lines of the world's plots.
+    pub along_plots: Option<AlongPlots>,
     /// Spacing of the waypoints sampled along segments, metres.
     pub sample_step_m: f64,
     /// Standard deviation of the Gaussian noise added to each sampled waypoint
@@ -53,6 +61,17 @@ pub struct PathSection {
     pub recording_noise_m: f64,
     /// Smoothing window of the reference path (core `PathConfig`), metres.
     pub smoothing_window_m: f64,
+}
+
+/// `[path.along_plots]`: a path recorded by driving down the true centre line
+/// of every plot of `[world]`, in order, joined by straight lines.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AlongPlots {
+    /// Straight lead-in before the first plot, along its heading, metres.
+    pub lead_in_m: f64,
+    /// Straight run-out after the last plot, along its heading, metres.
+    pub run_out_m: f64,
 }
 
 /// `[path.start]`: the pose where the first segment starts, world frame.
@@ -211,6 +230,146 @@ pub struct MetricsSection {
     pub band_m: f64,
     /// Success needs `converged_after_m` (|y| stays in the band from there to the end) at most this, metres.
     pub converge_within_m: f64,
+    /// When set, success also needs the mean |lateral error to the true
+    /// centre line| inside the plots at most this, metres.
+    pub in_plot_mean_abs_m: Option<f64>,
+    /// When set, success also needs the largest |lateral error to the true
+    /// centre line| inside the plots at most this, metres.
+    pub in_plot_max_abs_m: Option<f64>,
+}
+
+/// `[world]`: crop plots and grass.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorldSection {
+    /// Crop plots (`[[world.plots]]`), in the order the robot meets them.
+    #[serde(default)]
+    pub plots: Vec<PlotSection>,
+    /// Rectangles of grass (`[[world.grass]]`).
+    #[serde(default)]
+    pub grass: Vec<GrassSection>,
+}
+
+/// The crop of a plot, with its layout (Pierre 2022, section 4.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CropName {
+    /// Two rows 0.75 m apart, plants about 0.5 m high.
+    Maize,
+    /// Three rows 0.375 m apart, plants about 0.3 m high.
+    Beans,
+}
+
+/// `[[world.plots]]`: one crop plot.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlotSection {
+    /// Name, for plots and the summary.
+    pub name: String,
+    /// `"maize"` or `"beans"`.
+    pub crop: CropName,
+    /// Start of the plot's centre line and its heading, world frame.
+    pub start: StartPose,
+    /// Length of the rows, metres.
+    pub length_m: f64,
+    /// Lateral amplitude of the rows' sinusoidal bend, metres (default: the crop's, 0.05).
+    pub bend_amplitude_m: Option<f64>,
+    /// Wavelength of the bend, metres (default: the crop's, 40).
+    pub bend_wavelength_m: Option<f64>,
+    /// Probability that a plant is missing (default: the crop's, 0.05).
+    pub missing_fraction: Option<f64>,
+    /// Stretches `[from_m, to_m]` along the plot where no plant grew.
+    #[serde(default)]
+    pub bare_m: Vec<[f64; 2]>,
+}
+
+/// `[[world.grass]]`: grass tufts scattered uniformly over a rectangle.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GrassSection {
+    /// Two opposite corners `[[x0_m, y0_m], [x1_m, y1_m]]`, world frame.
+    pub corners: [[f64; 2]; 2],
+    /// Tufts per square metre.
+    pub density_per_m2: f64,
+    /// Mean tuft radius, metres.
+    pub radius_m: f64,
+    /// Standard deviation of the radius, metres.
+    pub radius_std_m: f64,
+    /// Mean tuft height, metres.
+    pub height_m: f64,
+    /// Standard deviation of the height, metres.
+    pub height_std_m: f64,
+}
+
+/// `[lidar]`: an inclined 2D LiDAR on the robot.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LidarSection {
+    /// Sensor position forward of O, metres.
+    pub mount_x_m: f64,
+    /// Sensor position left of O, metres.
+    pub mount_y_m: f64,
+    /// Sensor height above the ground, metres.
+    pub height_m: f64,
+    /// Pitch, degrees, positive nose down.
+    pub pitch_deg: f64,
+    /// Field of view, centred on the forward axis, degrees.
+    pub field_of_view_deg: f64,
+    /// Number of rays.
+    pub rays: u32,
+    /// Shortest range reported, metres.
+    pub range_min_m: f64,
+    /// Longest range; beyond it no return, metres.
+    pub range_max_m: f64,
+    /// Standard deviation of the range noise, metres.
+    pub range_noise_m: f64,
+    /// Scans per second; the control period must divide the scan period.
+    pub rate_hz: f64,
+}
+
+/// `[furrow]`: the furrow detector (Pierre 2022, section 2.3, Table 2) and
+/// the backstepping law it drives.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FurrowSection {
+    /// Forward speed while pursuing the furrow, m/s (Table 2: 0.7).
+    pub speed_m_s: f64,
+    /// Lateral gain g_y (positive); the law uses k_y = −g_y (Table 2: 0.8).
+    pub lateral_gain: f64,
+    /// Heading gain g_θ (positive); the law uses k_θ = −g_θ.
+    pub heading_gain: f64,
+    /// Minimum ratio g_θ / g_y accepted.
+    pub min_gain_ratio: f64,
+    /// Half width of the angular window around the forward axis, degrees.
+    pub window_half_angle_deg: f64,
+    /// w_ref, width of the plant model in rays, odd (Table 2: 15).
+    pub template_width_rays: u32,
+    /// Zero rays framing the plant model on each side.
+    pub template_margin_rays: u32,
+    /// h_ref, height of the plant model, metres (Table 2: 0.3).
+    pub template_height_m: f64,
+    /// Heights at or below this count as ground, metres.
+    pub height_floor_m: f64,
+    /// c_t, the correlation a local maximum must exceed.
+    pub peak_threshold: f64,
+    /// Rows followed: 1 or 2.
+    pub rows: u32,
+    /// d_min, least lateral distance between the two rows, metres (rows = 2 only; Table 2: 0.66).
+    pub min_row_spacing_m: Option<f64>,
+    /// d_max, largest lateral distance between the two rows, metres (rows = 2 only; Table 2: 0.9).
+    pub max_row_spacing_m: Option<f64>,
+    /// n, the last selections the lines are fitted to (Table 2: 25 averaged scans).
+    pub averaged_scans: u32,
+    /// Selections farther than this from the robot are dropped, metres.
+    pub keep_distance_m: f64,
+    /// Fewest points of a row before its line is fitted.
+    pub min_points: u32,
+    /// Shortest extent along x of a row's points before its line is fitted, metres.
+    pub min_extent_m: f64,
+    /// Correlation above which the detection may enter furrow pursuing (Table 2: 0.4).
+    pub enter_correlation: f64,
+    /// Correlation below which it must leave it (Table 2: 0.2).
+    pub exit_correlation: f64,
 }
 
 fn default_period_s() -> f64 {

@@ -7,17 +7,23 @@ use fieldguide::control::backstepping::{BacksteppingConfig, Inversion, SteeringL
 use fieldguide::control::Gains;
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::model::bicycle::{Sideslip, Wheelbase};
-use fieldguide::{Meters, MetersPerSecond, Point2, Pose2, World};
+use fieldguide::perception::furrow::{FurrowConfig, FurrowParams, Rows};
+use fieldguide::{Meters, MetersPerSecond, Point2, Pose2, Radians, World};
 
 use super::check::Checker;
 use super::reference::{self, Piece};
-use super::schema::{InversionName, ScenarioFile};
+use super::schema::{
+    CropName, FurrowSection, InversionName, LidarSection, ScenarioFile, WorldSection,
+};
 use crate::error::ScenarioError;
+use crate::guidance::furrow::{FURROW_RAYS, FURROW_SCANS};
+use crate::lidar::inclined::InclinedLidar;
 use crate::plant::{SteeringActuator, VehicleParams};
 use crate::rng::SimRng;
 use crate::sensors::SensorNoise;
+use crate::world::crops::{scatter_grass, PlotSpec, Spread};
 use crate::world::terrain::{SlipPatch, Terrain};
-use crate::world::World as SimWorld;
+use crate::world::{Plot, World as SimWorld};
 
 /// Most waypoints a reference path may hold (409.6 m at the usual 0.1 m spacing).
 pub const PATH_CAPACITY: usize = 4096;
@@ -60,6 +66,32 @@ pub struct MetricsSpec {
     pub band_m: f64,
     /// Largest `converged_after_m` of a successful run, metres.
     pub converge_within_m: f64,
+    /// Largest in-plot mean |error to the true centre line| of a successful run, metres.
+    pub in_plot_mean_abs_m: Option<f64>,
+    /// Largest in-plot max |error to the true centre line| of a successful run, metres.
+    pub in_plot_max_abs_m: Option<f64>,
+}
+
+/// The inclined LiDAR and how often it scans.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LidarSetup {
+    /// The sensor and its mount.
+    pub lidar: InclinedLidar,
+    /// A scan every this many control ticks (the scan period over the control period).
+    pub scan_every: u64,
+}
+
+/// Furrow pursuing: the detector's validated configuration and the law it drives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FurrowSetup {
+    /// The detector (Table 2 with the library's choices), mount taken from `[lidar]`.
+    pub detector: FurrowConfig,
+    /// The backstepping law of furrow pursuing: no sideslip, no prediction
+    /// (Pierre 2022, section 2.3.1: "this version of the control law does not
+    /// include an estimation of sideslip angles or the predictive layer").
+    pub backstepping: BacksteppingConfig,
+    /// Forward speed while pursuing the furrow.
+    pub speed: MetersPerSecond,
 }
 
 /// Everything a run needs, validated and typed.
@@ -89,6 +121,12 @@ pub struct Setup {
     pub run: RunLimits,
     /// Convergence and success bounds.
     pub metrics: MetricsSpec,
+    /// The inclined LiDAR, if any.
+    pub lidar: Option<LidarSetup>,
+    /// Furrow pursuing, if configured (then the run's guidance pursues the
+    /// furrow while the detector's verdict allows it, see
+    /// [`crate::guidance::furrow`]).
+    pub furrow: Option<FurrowSetup>,
 }
 
 /// Builds the setup of `file` (called `origin` in messages; `base_dir` resolves
@@ -102,7 +140,9 @@ pub fn build(
     let check = Checker::new(origin);
     check_name(&check, &file.name)?;
 
-    let w = reference::waypoints(&file.path, PATH_CAPACITY, base_dir, &check, rng)?;
+    let plots = plots(file.world.as_ref(), &check)?;
+    let specs: Vec<PlotSpec> = plots.iter().map(|p| p.spec.clone()).collect();
+    let w = reference::waypoints(&file.path, &specs, PATH_CAPACITY, base_dir, &check, rng)?;
     let window = check.positive("path.smoothing_window_m", file.path.smoothing_window_m)?;
     let points = w
         .points
@@ -128,11 +168,36 @@ pub fn build(
     let vehicle = vehicle(file, &check)?;
     let control = control(file, &check, vehicle)?;
     let initial = initial_pose(file, &check, &path)?;
+    // The plants are drawn after the path's recording noise.
+    let plants = plants(file.world.as_ref(), &plots, &check, rng)?;
     let world = SimWorld {
         terrain: terrain(file, &check)?,
-        plants: Vec::new(),
+        plants,
+        plots,
     };
     let noise = noise(file, &check)?;
+    let lidar = match &file.lidar {
+        Some(l) => Some(lidar(l, control.period_s, &check)?),
+        None => None,
+    };
+    let furrow = match &file.furrow {
+        None => None,
+        Some(f) => {
+            let Some(l) = &lidar else {
+                return Err(check.error("furrow", "needs a `[lidar]` section to see the rows"));
+            };
+            if file.world.is_none() {
+                return Err(check.error("furrow", "needs a `[world]` section with plots"));
+            }
+            Some(furrow(
+                f,
+                l,
+                vehicle,
+                control.backstepping.inversion,
+                &check,
+            )?)
+        }
+    };
     let run = RunLimits {
         duration_s: check.open_range("run.duration_s", file.run.duration_s, 0.0, 1e6)?,
         stop_at_path_end: file.run.stop_at_path_end,
@@ -145,10 +210,21 @@ pub fn build(
             ));
         },
     };
+    let optional_positive = |field: &str, v: Option<f64>| -> Result<Option<f64>, ScenarioError> {
+        v.map(|v| check.positive(field, v)).transpose()
+    };
     let metrics = MetricsSpec {
         band_m: check.positive("metrics.band_m", file.metrics.band_m)?,
         converge_within_m: check
             .positive("metrics.converge_within_m", file.metrics.converge_within_m)?,
+        in_plot_mean_abs_m: optional_positive(
+            "metrics.in_plot_mean_abs_m",
+            file.metrics.in_plot_mean_abs_m,
+        )?,
+        in_plot_max_abs_m: optional_positive(
+            "metrics.in_plot_max_abs_m",
+            file.metrics.in_plot_max_abs_m,
+        )?,
     };
     Ok(Setup {
         name: file.name.clone(),
@@ -163,6 +239,8 @@ pub fn build(
         noise,
         run,
         metrics,
+        lidar,
+        furrow,
     })
 }
 
@@ -364,4 +442,336 @@ fn noise(file: &ScenarioFile, check: &Checker<'_>) -> Result<SensorNoise, Scenar
             )?
             .to_radians(),
     })
+}
+
+/// The plots of `[world]`, validated (no plant drawn yet).
+fn plots(world: Option<&WorldSection>, check: &Checker<'_>) -> Result<Vec<Plot>, ScenarioError> {
+    let Some(world) = world else {
+        return Ok(Vec::new());
+    };
+    let mut plots = Vec::with_capacity(world.plots.len());
+    for (i, p) in world.plots.iter().enumerate() {
+        let field = |name: &str| format!("world.plots[{i}].{name}");
+        if p.name.trim().is_empty() {
+            return Err(check.error(&field("name"), "must not be empty"));
+        }
+        let start = Point2::<World>::new(
+            check.range(&field("start.x_m"), p.start.x_m, -1e6, 1e6)?,
+            check.range(&field("start.y_m"), p.start.y_m, -1e6, 1e6)?,
+        )
+        .map_err(|e| check.error(&field("start"), &e.to_string()))?;
+        let heading = check
+            .range(
+                &field("start.heading_deg"),
+                p.start.heading_deg,
+                -360.0,
+                360.0,
+            )?
+            .to_radians();
+        let length = check.open_range(&field("length_m"), p.length_m, 0.0, 1000.0)?;
+        let mut spec = match p.crop {
+            CropName::Maize => PlotSpec::maize(start, heading, length),
+            CropName::Beans => PlotSpec::beans(start, heading, length),
+        };
+        if let Some(a) = p.bend_amplitude_m {
+            spec.bend_amplitude = check.range(&field("bend_amplitude_m"), a, 0.0, 5.0)?;
+        }
+        if let Some(w) = p.bend_wavelength_m {
+            spec.bend_wavelength = check.positive(&field("bend_wavelength_m"), w)?;
+        }
+        if let Some(m) = p.missing_fraction {
+            spec.missing = check.range(&field("missing_fraction"), m, 0.0, 1.0)?;
+        }
+        for (k, b) in p.bare_m.iter().enumerate() {
+            let from = check.range(&field(&format!("bare_m[{k}][0]")), b[0], 0.0, length)?;
+            let to = check.range(&field(&format!("bare_m[{k}][1]")), b[1], 0.0, length)?;
+            if to <= from {
+                return Err(check.error(
+                    &field(&format!("bare_m[{k}]")),
+                    &format!("must be [from_m, to_m] with from_m < to_m, got [{from}, {to}]"),
+                ));
+            }
+            spec.bare.push((from, to));
+        }
+        plots.push(Plot {
+            name: p.name.clone(),
+            spec,
+        });
+    }
+    Ok(plots)
+}
+
+/// The plants of `plots` and of the grass rectangles of `[world]`, drawn from `rng`.
+fn plants(
+    world: Option<&WorldSection>,
+    plots: &[Plot],
+    check: &Checker<'_>,
+    rng: &mut SimRng,
+) -> Result<Vec<crate::world::Plant>, ScenarioError> {
+    let mut plants = Vec::new();
+    for p in plots {
+        plants.extend(p.spec.generate(rng));
+    }
+    for (i, g) in world.map_or(&[][..], |w| &w.grass[..]).iter().enumerate() {
+        let field = |name: &str| format!("world.grass[{i}].{name}");
+        for (k, corner) in g.corners.iter().enumerate() {
+            check.range(&field(&format!("corners[{k}][0]")), corner[0], -1e6, 1e6)?;
+            check.range(&field(&format!("corners[{k}][1]")), corner[1], -1e6, 1e6)?;
+        }
+        let [[x0, y0], [x1, y1]] = g.corners;
+        let area = ((x1 - x0) * (y1 - y0)).abs();
+        let density = check.range(&field("density_per_m2"), g.density_per_m2, 0.0, 1000.0)?;
+        if area * density > 1e6 {
+            return Err(check.error(
+                &field("density_per_m2"),
+                &format!("{density} tufts/m² over {area} m² is more than a million tufts"),
+            ));
+        }
+        let radius = Spread::new(
+            check.open_range(&field("radius_m"), g.radius_m, 0.0, 0.5)?,
+            check.range(&field("radius_std_m"), g.radius_std_m, 0.0, 0.5)?,
+        );
+        let height = Spread::new(
+            check.open_range(&field("height_m"), g.height_m, 0.0, 1.0)?,
+            check.range(&field("height_std_m"), g.height_std_m, 0.0, 1.0)?,
+        );
+        plants.extend(scatter_grass(
+            ((x0.min(x1), y0.min(y1)), (x0.max(x1), y0.max(y1))),
+            density,
+            radius,
+            height,
+            rng,
+        ));
+    }
+    Ok(plants)
+}
+
+/// The inclined LiDAR of `[lidar]`; its scan period must be a whole number of
+/// control periods `period_s`.
+fn lidar(
+    l: &LidarSection,
+    period_s: f64,
+    check: &Checker<'_>,
+) -> Result<LidarSetup, ScenarioError> {
+    let height = check.open_range("lidar.height_m", l.height_m, 0.0, 10.0)?;
+    let pitch = check.open_range("lidar.pitch_deg", l.pitch_deg, 0.0, 90.0)?;
+    let fov = check.open_range("lidar.field_of_view_deg", l.field_of_view_deg, 0.0, 360.0)?;
+    if !(2..=10_000).contains(&l.rays) {
+        return Err(check.error(
+            "lidar.rays",
+            &format!("must be within [2, 10000], got {}", l.rays),
+        ));
+    }
+    let range_min = check.range("lidar.range_min_m", l.range_min_m, 0.0, 1000.0)?;
+    let range_max = check.range("lidar.range_max_m", l.range_max_m, 0.0, 1000.0)?;
+    if range_max <= range_min {
+        return Err(check.error(
+            "lidar.range_max_m",
+            &format!("must be above lidar.range_min_m = {range_min}, got {range_max}"),
+        ));
+    }
+    let rate = check.open_range("lidar.rate_hz", l.rate_hz, 0.0, 1000.0)?;
+    // The scan period in control ticks must be a whole number (at least 1).
+    let ticks = 1.0 / (rate * period_s);
+    let scan_every = ticks.round();
+    if scan_every < 1.0 || (ticks - scan_every).abs() > 1e-6 * ticks {
+        return Err(check.error(
+            "lidar.rate_hz",
+            &format!(
+                "the scan period 1/{rate} s must be a whole number of control periods ({period_s} s)"
+            ),
+        ));
+    }
+    Ok(LidarSetup {
+        lidar: InclinedLidar {
+            mount_x: check.range("lidar.mount_x_m", l.mount_x_m, -20.0, 20.0)?,
+            mount_y: check.range("lidar.mount_y_m", l.mount_y_m, -20.0, 20.0)?,
+            height,
+            pitch: pitch.to_radians(),
+            field_of_view: fov.to_radians(),
+            rays: usize::try_from(l.rays).unwrap_or(2),
+            range_min,
+            range_max,
+            range_noise: check.range("lidar.range_noise_m", l.range_noise_m, 0.0, 1.0)?,
+        },
+        // A whole number in [1, 1e6 / period]: the conversion is exact.
+        scan_every: scan_every as u64,
+    })
+}
+
+/// Number of rays of `lidar` whose angle lies within ±`half` rad (the
+/// detector's window), counted as the core counts them.
+fn window_rays(lidar: &InclinedLidar, half: f64) -> usize {
+    (0..lidar.rays)
+        .map(|j| lidar.angle_min() + j as f64 * lidar.angle_increment())
+        .filter(|a| (-half..=half).contains(a))
+        .count()
+}
+
+/// The furrow detector and law of `[furrow]`, the mount taken from `[lidar]`.
+fn furrow(
+    f: &FurrowSection,
+    lidar: &LidarSetup,
+    vehicle: VehicleParams,
+    inversion: Inversion,
+    check: &Checker<'_>,
+) -> Result<FurrowSetup, ScenarioError> {
+    let speed = check.open_range("furrow.speed_m_s", f.speed_m_s, 0.0, 20.0)?;
+    let g_y = check.positive("furrow.lateral_gain", f.lateral_gain)?;
+    let g_theta = check.positive("furrow.heading_gain", f.heading_gain)?;
+    let ratio = check.range("furrow.min_gain_ratio", f.min_gain_ratio, 1.0, 1e6)?;
+    // Same convention as [control]: table gains g are positive, k = −g.
+    let gains = Gains::new(-g_y, -g_theta, ratio).map_err(|e| {
+        check.error(
+            "furrow.heading_gain",
+            &format!(
+                "heading_gain / lateral_gain = {} is below furrow.min_gain_ratio = {ratio} ({e})",
+                g_theta / g_y
+            ),
+        )
+    })?;
+    let half = check
+        .open_range(
+            "furrow.window_half_angle_deg",
+            f.window_half_angle_deg,
+            0.0,
+            90.0,
+        )?
+        .to_radians();
+    let in_window = window_rays(&lidar.lidar, half);
+    if in_window > FURROW_RAYS {
+        return Err(check.error(
+            "furrow.window_half_angle_deg",
+            &format!(
+                "the window holds {in_window} rays of the LiDAR, more than the detector's {FURROW_RAYS}"
+            ),
+        ));
+    }
+    let width = f.template_width_rays;
+    if width % 2 == 0 || width > 999 {
+        return Err(check.error(
+            "furrow.template_width_rays",
+            &format!("must be odd and at most 999 (the model is centred on a ray), got {width}"),
+        ));
+    }
+    if f.template_margin_rays > 999 {
+        return Err(check.error(
+            "furrow.template_margin_rays",
+            &format!("must be at most 999, got {}", f.template_margin_rays),
+        ));
+    }
+    let h_ref = check.open_range("furrow.template_height_m", f.template_height_m, 0.0, 10.0)?;
+    let floor = check.range("furrow.height_floor_m", f.height_floor_m, 0.0, h_ref)?;
+    if floor >= h_ref {
+        return Err(check.error(
+            "furrow.height_floor_m",
+            &format!("must be below furrow.template_height_m = {h_ref}, got {floor}"),
+        ));
+    }
+    let c_t = check.open_range("furrow.peak_threshold", f.peak_threshold, 0.0, 1.0)?;
+    let rows = match (f.rows, f.min_row_spacing_m, f.max_row_spacing_m) {
+        (1, None, None) => Rows::One,
+        (1, _, _) => {
+            return Err(check.error(
+                "furrow.rows",
+                "one row takes no `min_row_spacing_m` / `max_row_spacing_m`",
+            ))
+        }
+        (2, Some(lo), Some(hi)) => {
+            let lo = check.open_range("furrow.min_row_spacing_m", lo, 0.0, 100.0)?;
+            let hi = check.open_range("furrow.max_row_spacing_m", hi, 0.0, 100.0)?;
+            if hi <= lo {
+                return Err(check.error(
+                    "furrow.max_row_spacing_m",
+                    &format!("must be above furrow.min_row_spacing_m = {lo}, got {hi}"),
+                ));
+            }
+            Rows::Two {
+                min_spacing: meters(check, "furrow.min_row_spacing_m", lo)?,
+                max_spacing: meters(check, "furrow.max_row_spacing_m", hi)?,
+            }
+        }
+        (2, None, _) => {
+            return Err(check.error("furrow.min_row_spacing_m", "required with rows = 2"))
+        }
+        (2, _, None) => {
+            return Err(check.error("furrow.max_row_spacing_m", "required with rows = 2"))
+        }
+        (n, _, _) => return Err(check.error("furrow.rows", &format!("must be 1 or 2, got {n}"))),
+    };
+    let scans = usize::try_from(f.averaged_scans).unwrap_or(usize::MAX);
+    if !(1..=FURROW_SCANS).contains(&scans) {
+        return Err(check.error(
+            "furrow.averaged_scans",
+            &format!(
+                "must be within [1, {FURROW_SCANS}], got {}",
+                f.averaged_scans
+            ),
+        ));
+    }
+    if !(2..=1000).contains(&f.min_points) {
+        return Err(check.error(
+            "furrow.min_points",
+            &format!("must be within [2, 1000], got {}", f.min_points),
+        ));
+    }
+    let enter = check.range("furrow.enter_correlation", f.enter_correlation, 0.0, 1.0)?;
+    let exit = check.range("furrow.exit_correlation", f.exit_correlation, 0.0, 1.0)?;
+    if enter <= exit {
+        return Err(check.error(
+            "furrow.enter_correlation",
+            &format!("must be above furrow.exit_correlation = {exit}, got {enter}"),
+        ));
+    }
+    let l = &lidar.lidar;
+    let keep = check.open_range("furrow.keep_distance_m", f.keep_distance_m, 0.0, 1000.0)?;
+    let extent = check.range("furrow.min_extent_m", f.min_extent_m, 0.0, 100.0)?;
+    let params = FurrowParams {
+        mount_x: meters(check, "lidar.mount_x_m", l.mount_x)?,
+        mount_y: meters(check, "lidar.mount_y_m", l.mount_y)?,
+        mount_height: meters(check, "lidar.height_m", l.height)?,
+        mount_pitch: Radians::new(l.pitch)
+            .map_err(|e| check.error("lidar.pitch_deg", &e.to_string()))?,
+        window_half_angle: Radians::new(half)
+            .map_err(|e| check.error("furrow.window_half_angle_deg", &e.to_string()))?,
+        range_min: meters(check, "lidar.range_min_m", l.range_min)?,
+        range_max: meters(check, "lidar.range_max_m", l.range_max)?,
+        template_width: usize::try_from(width).unwrap_or(1),
+        template_margin: usize::try_from(f.template_margin_rays).unwrap_or(0),
+        template_height: meters(check, "furrow.template_height_m", h_ref)?,
+        height_floor: meters(check, "furrow.height_floor_m", floor)?,
+        peak_threshold: c_t,
+        rows,
+        averaged_scans: scans,
+        keep_distance: meters(check, "furrow.keep_distance_m", keep)?,
+        min_points: usize::try_from(f.min_points).unwrap_or(2),
+        min_extent: meters(check, "furrow.min_extent_m", extent)?,
+        enter,
+        exit,
+    };
+    // Every value was range-checked above; what the core still refuses is
+    // reported against the section, with the requirement it names.
+    let detector = FurrowConfig::new(&params).map_err(|e| {
+        check.error(
+            "furrow",
+            &format!("the core refuses the configuration: {e}"),
+        )
+    })?;
+    Ok(FurrowSetup {
+        detector,
+        backstepping: BacksteppingConfig {
+            gains,
+            wheelbase: vehicle.wheelbase,
+            max_steering: vehicle.actuator.limit,
+            inversion,
+        },
+        speed: MetersPerSecond::new(speed)
+            .map_err(|e| check.error("furrow.speed_m_s", &e.to_string()))?,
+    })
+}
+
+/// `value` as core `Meters` (already range-checked, so only a non-finite
+/// value could fail), the error naming `field`.
+fn meters(check: &Checker<'_>, field: &str, value: f64) -> Result<Meters, ScenarioError> {
+    Meters::new(value).map_err(|e| check.error(field, &e.to_string()))
 }

@@ -1,25 +1,41 @@
 //! Worlds: terrain, hedges and walls, crop plots.
 //!
 //! A [`World`] is everything around the vehicle that the simulator measures
-//! against: the ground's sideslip and the plants a wheel may run over.
+//! against: the ground's sideslip, the plants the LiDAR sees and a wheel may
+//! run over, and the plots whose true centre lines score furrow pursuing.
 
 pub mod crops;
 pub mod hedge;
 pub mod terrain;
 
+use fieldguide::{Point2, World as WorldFrame};
+
+use crops::{PlotPosition, PlotSpec};
 use terrain::Terrain;
 
-/// A plant on the ground: a disc that a wheel crushes when it overlaps it.
+/// What a plant is: a crop plant (must not be run over) or a grass tuft.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlantKind {
+    /// A crop plant of a row: counted in `plants_crushed` when a wheel runs over it.
+    Crop,
+    /// Grass or a weed, in the headlands or between rows: seen by the LiDAR,
+    /// never counted as crushed.
+    Grass,
+}
+
+/// A plant modelled as a vertical cylinder standing on the ground z = 0: the
+/// LiDAR hits its side wall or its top, a wheel crushes it when the wheel's
+/// contact patch overlaps its footprint disc.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Plant {
-    /// East coordinate of the stem, metres, world frame.
-    pub x: f64,
-    /// North coordinate of the stem, metres, world frame.
-    pub y: f64,
-    /// Radius of the plant's footprint, metres.
+    /// Centre of the stem, world frame, m.
+    pub position: Point2<WorldFrame>,
+    /// Radius of the cylinder (the footprint disc), m (> 0).
     pub radius: f64,
-    /// Height, metres (seen by an inclined LiDAR).
+    /// Height of the cylinder's top, m (> 0).
     pub height: f64,
+    /// Crop or grass.
+    pub kind: PlantKind,
 }
 
 /// The simulated world of one run.
@@ -27,6 +43,43 @@ pub struct Plant {
 pub struct World {
     /// Ground sideslip.
     pub terrain: Terrain,
-    /// Plants (none until crop plots are added to scenarios).
+    /// Every plant: the crop plots' plants, then the grass.
     pub plants: Vec<Plant>,
+    /// The crop plots the plants were drawn from (their true centre lines are
+    /// the ground truth of furrow pursuing), in the order the robot meets them.
+    pub plots: Vec<Plot>,
+}
+
+/// A named crop plot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plot {
+    /// Name, for plots and the summary.
+    pub name: String,
+    /// Layout and true centre line.
+    pub spec: PlotSpec,
+}
+
+impl World {
+    /// The plot beside which the world point `(x, y)` lies, with its
+    /// position relative to that plot's true centre line: the first plot
+    /// whose projection ([`PlotSpec::project`]) falls within its length and
+    /// lies within `reach` m of its centre line.
+    #[must_use]
+    pub fn plot_at(&self, x: f64, y: f64, reach: f64) -> Option<(usize, PlotPosition)> {
+        self.plots.iter().enumerate().find_map(|(i, p)| {
+            p.spec
+                .project(x, y)
+                .filter(|q| q.lateral.abs() <= reach)
+                .map(|q| (i, q))
+        })
+    }
+
+    /// How many of the plants are crop plants.
+    #[must_use]
+    pub fn crop_count(&self) -> usize {
+        self.plants
+            .iter()
+            .filter(|p| p.kind == PlantKind::Crop)
+            .count()
+    }
 }

@@ -3,7 +3,10 @@
 //! sections 2.3.1-2.3.2; `spec/pierre2022.md` FUR-LINE, FUR-ERRORS,
 //! FUR-TWO-ROWS).
 
+use core::borrow::Borrow;
+
 use crate::error::{finite, Precondition};
+use crate::geometry::fit::fit_line;
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, Radians};
@@ -47,59 +50,68 @@ impl RowLine {
     }
 }
 
-/// The least-squares line `a p_x + b = p_y` through `points` (eq. 15),
-/// minimising the squared residuals in y.
+/// The row line `a p_x + b = p_y` through `points` (eq. 15): the
+/// least-squares line of the library's shared fit
+/// ([`crate::geometry::fit::fit_line`], FIT-LINE), minimising the squared
+/// residuals in y, as a [`RowLine`] of the robot frame.
 ///
-/// Computed in one pass on coordinates shifted by the first point (so far
-/// away points lose no precision): `a = S_xy / S_xx`, `b = ȳ − a x̄`.
-/// Temporary: the library's shared fit (`geometry::fit::fit_line`) replaces
-/// it when the branches merge.
+/// The furrow adds its own precondition to the fit's: the points must spread
+/// along x with a variance of at least [`MIN_X_VARIANCE`], since a slope from
+/// points a millimetre apart, extrapolated metres back to the robot, would be
+/// noise.
 ///
-/// Errors with `FUR-LINE` when fewer than two points are given or when the
-/// variance of their x is below [`MIN_X_VARIANCE`] (the slope would be
-/// undetermined); `LIB-FINITE` on overflow.
+/// `points` is anything iterable twice (a slice, `heapless::Vec::iter()`)
+/// yielding `Point2<Robot>` or `&Point2<Robot>`, metres. Errors with
+/// `FUR-LINE` when fewer than two points are given or when the variance of
+/// their x is below [`MIN_X_VARIANCE`]; otherwise the fit's own errors
+/// (`FIT-DEGENERATE` only for points so far away, beyond 10⁹ m, that a
+/// millimetre of spread is lost in rounding; `LIB-FINITE` on overflow).
 //= spec/pierre2022.md#fur-line-row-line-by-least-squares
 //# The row line MUST be the least-squares solution (a, b) of a p_x + b = p_y
 //# over the accumulated points, minimising the squared residuals in y.
 //= spec/pierre2022.md#fur-line-row-line-by-least-squares
 //# A fit over fewer than two points, or over points whose x variance is below
 //# (1 mm)², MUST be refused with an error naming FUR-LINE.
-pub fn fit_row_line<I>(points: I) -> Result<RowLine, Precondition>
+pub fn fit_row_line<I, P>(points: I) -> Result<RowLine, Precondition>
 where
-    I: IntoIterator<Item = Point2<Robot>>,
+    I: IntoIterator<Item = P>,
+    I::IntoIter: Clone,
+    P: Borrow<Point2<Robot>>,
 {
-    let mut iter = points.into_iter();
-    let Some(origin) = iter.next() else {
-        return Err(Precondition::new("FUR-LINE", "no points to fit"));
-    };
-    let (x0, y0) = (origin.x(), origin.y());
-    // Sums over the shifted coordinates; the first point contributes zeros.
-    let (mut n, mut sx, mut sy, mut sxx, mut sxy) = (1.0_f64, 0.0, 0.0, 0.0, 0.0);
-    for p in iter {
-        let (dx, dy) = (p.x() - x0, p.y() - y0);
-        n += 1.0;
-        sx += dx;
-        sy += dy;
-        sxx += dx * dx;
-        sxy += dx * dy;
+    let points = points.into_iter();
+    check_x_spread(points.clone())?;
+    let fit = fit_line(points)?;
+    RowLine::new(fit.a, Meters::new(fit.b)?)
+}
+
+/// FUR-LINE's precondition: at least two points whose x variance
+/// `(1/n) Σ (x − x̄)²` is at least [`MIN_X_VARIANCE`].
+fn check_x_spread<I, P>(points: I) -> Result<(), Precondition>
+where
+    I: Iterator<Item = P> + Clone,
+    P: Borrow<Point2<Robot>>,
+{
+    let (mut count, mut sum) = (0.0_f64, 0.0_f64);
+    for p in points.clone() {
+        count += 1.0;
+        sum += p.borrow().x();
     }
-    if n < 2.0 {
+    if count < 2.0 {
         return Err(Precondition::new("FUR-LINE", "fewer than two points"));
     }
-    let (mx, my) = (sx / n, sy / n);
-    let centred_xx = sxx - n * mx * mx;
-    let centred_xy = sxy - n * mx * my;
-    let variance = centred_xx / n;
+    let mean = sum / count;
+    let spread = points.fold(0.0_f64, |acc, p| {
+        let d = p.borrow().x() - mean;
+        acc + d * d
+    });
+    let variance = spread / count;
     if variance.is_nan() || variance < MIN_X_VARIANCE {
         return Err(Precondition::new(
             "FUR-LINE",
             "the points do not spread along x: slope undetermined",
         ));
     }
-    let slope = finite(centred_xy / centred_xx, "row line slope overflows")?;
-    // b = ȳ − a x̄ in the original coordinates.
-    let intercept = Meters::new((y0 + my) - slope * (x0 + mx))?;
-    RowLine::new(slope, intercept)
+    Ok(())
 }
 
 /// The robot's tracking error to a row line (eq. 16, in the library's signs).

@@ -1,0 +1,463 @@
+//! Closed-loop tests of furrow pursuing (Pierre 2022, section 2.3) on the
+//! built-in scenario `furrow-pursuing`: Table 2's configuration (0.7 m/s,
+//! gain 0.8, plant model 15 rays × 0.3 m, 25 averaged scans, rows 0.66-0.9 m
+//! apart) through a maize plot then a bean plot with slightly curved rows,
+//! missing plants, a 1.5 m bare stretch and grass in the headlands, the
+//! inclined LiDAR scanning at 10 Hz.
+//!
+//! Every error is ground truth: the true pose of O against the true centre
+//! line of the rows followed (`PlotSpec::centre_line`), never the robot's
+//! estimate.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+use fieldguide::control::Gains;
+use fieldguide::geometry::path::PathConfig;
+use fieldguide::perception::furrow::Rows;
+use fieldguide::{Meters, MetersPerSecond, Point2, Precondition, Verdict, World};
+use fieldguide_sim::guidance::{Command, Guidance, Mode, TickInput};
+use fieldguide_sim::metrics::{error_stats, in_plot_errors, summarize, ErrorStats};
+use fieldguide_sim::rng::SimRng;
+use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
+use fieldguide_sim::scenario::setup::Reference;
+use fieldguide_sim::scenario::{Setup, Source};
+use fieldguide_sim::world::PlantKind;
+
+/// The paper: "a lateral error of less than 0.1 m"; the bounds.
+const MEAN_BOUND_M: f64 = 0.05;
+const MAX_BOUND_M: f64 = 0.1;
+
+fn prepare() -> (Setup, SimRng) {
+    runner::prepare(&Source::builtin("furrow-pursuing").unwrap()).unwrap()
+}
+
+/// The built-in scenario with another seed (another field and other noise).
+fn prepare_seed(seed: u64) -> (Setup, SimRng) {
+    let mut source = Source::builtin("furrow-pursuing").unwrap();
+    source.text = source
+        .text
+        .replace("seed = 2022", &format!("seed = {seed}"));
+    runner::prepare(&source).unwrap()
+}
+
+fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
+    let out = runner::run(setup, rng);
+    assert_eq!(
+        out.end,
+        RunEnd::PathEnd,
+        "the run must reach the path's end"
+    );
+    out
+}
+
+/// |error to the true centre line| over the ticks with O inside plot `i`.
+fn plot_stats(out: &RunOutput, i: usize) -> ErrorStats {
+    error_stats(in_plot_errors(&out.trace, Some(i))).unwrap()
+}
+
+/// Distance driven with O inside plot `i` in `mode`, and in all, metres.
+fn plot_distance(out: &RunOutput, i: usize, mode: Option<Mode>) -> f64 {
+    out.trace
+        .windows(2)
+        .filter(|w| w[0].plot.is_some_and(|p| p.index == i))
+        .filter(|w| mode.is_none_or(|m| w[0].mode() == m))
+        .map(|w| w[1].distance_m - w[0].distance_m)
+        .sum()
+}
+
+#[test]
+fn the_scenario_is_table_2_through_maize_then_beans() {
+    let (setup, _) = prepare();
+    let f = setup.furrow.unwrap();
+    let p = f.detector.params();
+    assert!((f.speed.get() - 0.7).abs() < 1e-12);
+    assert!(
+        (f.backstepping.gains.k_y() + 0.8).abs() < 1e-12,
+        "k_y = -0.8"
+    );
+    assert!(
+        (f.backstepping.gains.k_theta() + 3.2).abs() < 1e-12,
+        "k_theta = 4 k_y, the path-tracking convention"
+    );
+    assert_eq!(p.template_width, 15);
+    assert!((p.template_height.get() - 0.3).abs() < 1e-12);
+    assert_eq!(p.averaged_scans, 25);
+    let Rows::Two {
+        min_spacing,
+        max_spacing,
+    } = p.rows
+    else {
+        panic!("two rows")
+    };
+    assert!((min_spacing.get() - 0.66).abs() < 1e-12 && (max_spacing.get() - 0.9).abs() < 1e-12);
+    assert!((p.enter - 0.4).abs() < 1e-12 && (p.exit - 0.2).abs() < 1e-12);
+    // The LiDAR scans at 10 Hz, every 5 control ticks of 0.02 s.
+    assert_eq!(setup.lidar.unwrap().scan_every, 5);
+    assert!((setup.control.period_s - 0.02).abs() < 1e-12);
+    // Maize (2 rows 0.75 m apart) then beans (3 rows 0.375 m apart), bent rows,
+    // missing plants, a 1.5 m bare stretch in the beans, grass in the headlands.
+    let plots = &setup.world.plots;
+    assert_eq!(plots.len(), 2);
+    assert_eq!((plots[0].spec.rows, plots[1].spec.rows), (2, 3));
+    assert!((plots[0].spec.row_spacing - 0.75).abs() < 1e-12);
+    assert!((plots[1].spec.row_spacing - 0.375).abs() < 1e-12);
+    assert!(plots
+        .iter()
+        .all(|p| p.spec.bend_amplitude > 0.0 && p.spec.missing > 0.0));
+    assert_eq!(plots[1].spec.bare.len(), 1);
+    let (a, b) = plots[1].spec.bare[0];
+    assert!((b - a - 1.5).abs() < 1e-12);
+    assert!(setup
+        .world
+        .plants
+        .iter()
+        .any(|p| p.kind == PlantKind::Grass));
+    // The robot starts in the headland, before the first plot.
+    let first = plots[0].spec.centre_line(0.0);
+    assert!(setup.initial.position.x() < first.0 - 3.0);
+}
+
+//= spec/pierre2022.md#fur-two-rows-error-to-the-middle-of-two-rows
+//= type=test
+//# With two rows, the tracking error MUST be the mean of the errors to the
+//# left and right lines: y = (y_l + y_r)/2 and θ̃ = (θ̃_l + θ̃_r)/2.
+//= spec/pierre2022.md#fur-select-pair-two-rows-a-pair-within-the-spacing-closest-in-y
+//= type=test
+//# Only pairs of maxima whose lateral distance |m_{1,y} − m_{2,y}| lies in
+//# [d_min, d_max] MUST be candidates.
+//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+//= type=test
+//# Each selection MUST be stored in the odometry frame through the
+//# odometry pose of its scan, and read back in the current robot frame
+//# through the inverse of the current odometry pose.
+#[test]
+fn two_rows_are_followed_within_5_cm_on_average_and_10_cm_at_most() {
+    // The built-in field and four others.
+    for seed in [2022, 1, 2, 3, 4] {
+        let (setup, mut rng) = prepare_seed(seed);
+        let out = run(&setup, &mut rng);
+        for (i, plot) in setup.world.plots.iter().enumerate() {
+            let e = plot_stats(&out, i);
+            let furrow = plot_distance(&out, i, Some(Mode::FurrowPursuing));
+            let all = plot_distance(&out, i, None);
+            eprintln!(
+                "seed {seed}, {}: |y| mean {:.4} m, max {:.4} m; furrow pursuing over {furrow:.1} of {all:.1} m",
+                plot.name, e.mean_abs, e.max_abs
+            );
+            assert!(e.mean_abs < MEAN_BOUND_M, "{}: {e:?}", plot.name);
+            assert!(e.max_abs < MAX_BOUND_M, "{}: {e:?}", plot.name);
+            // The rows, not the recorded path, steer through most of each plot:
+            // path tracking stands in only where the scans see no rows (the
+            // last 3-4 m of a plot, seen from 4 m behind, and the bare stretch).
+            assert!(all > plot.spec.length - 0.5, "{all}");
+            assert!(furrow > 0.8 * all, "{}: {furrow} of {all} m", plot.name);
+        }
+        // In the beans, within 0.1 m of the centre line means the two outer
+        // rows, 0.75 m apart, were paired: a pair of the middle row (0.375 m
+        // from either, below d_min) and an outer one would be 0.19 m off.
+        let summary = summarize(&setup, &out);
+        assert!(summary.success, "{summary:?}");
+        assert_eq!(summary.plants_crushed, 0);
+    }
+}
+
+#[test]
+fn the_rows_steer_not_the_recorded_path() {
+    // A recorded path 0.2 m left of the plots' centre lines (a GNSS offset):
+    // where furrow pursuing is in charge, the robot stays on the rows; where
+    // path tracking stands in, it drifts towards the wrong path.
+    let (mut setup, mut rng) = prepare();
+    let shifted: Vec<Point2<World>> = setup
+        .path
+        .vertices()
+        .iter()
+        .map(|v| Point2::new(v.position.x(), v.position.y() + 0.2).unwrap())
+        .collect();
+    *setup.path = Reference::from_waypoints(
+        &shifted,
+        PathConfig::new(Meters::new(1.0).unwrap()).unwrap(),
+    )
+    .unwrap();
+    let out = run(&setup, &mut rng);
+    // Furrow-pursuing ticks well inside the plots, 3 m after taking over.
+    let mut since_switch = 0.0;
+    let mut checked = 0;
+    for w in out.trace.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        since_switch = if a.mode() == Mode::FurrowPursuing {
+            since_switch + (b.distance_m - a.distance_m)
+        } else {
+            0.0
+        };
+        if let (Some(p), true) = (a.plot, since_switch > 3.0) {
+            assert!(p.lateral_error_m.abs() < MAX_BOUND_M / 2.0, "{p:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 2000, "{checked} ticks checked");
+    // At the end, after 6 m of path tracking in the run-out, the robot is on
+    // the shifted path (0.2 m left of where the rows were).
+    let last = out.trace.last().unwrap();
+    assert_eq!(last.mode(), Mode::PathTracking);
+    assert!(
+        last.lateral_error_m.abs() < 0.05,
+        "{}",
+        last.lateral_error_m
+    );
+}
+
+/// The ground stretch ahead of O where the LiDAR can hit a plant of height
+/// up to `h`, metres from O along its heading: from where the centre ray
+/// passes at height `h` to where it meets the ground (the window is ±20°, so
+/// off-centre rays reach a few centimetres less far; widened by `margin`).
+fn view_band(setup: &Setup, h: f64, margin: f64) -> (f64, f64) {
+    let l = setup.lidar.unwrap().lidar;
+    let near = l.mount_x + (l.height - h) / l.pitch.tan();
+    let far = l.mount_x + l.height / l.pitch.tan();
+    (near - margin, far + margin)
+}
+
+/// The scan ticks of a run with their true view band in world x (the plots
+/// run east) and the detector's status.
+fn scans(out: &RunOutput, band: (f64, f64)) -> Vec<(&TickRecord, f64, f64)> {
+    out.trace
+        .iter()
+        .filter(|r| r.command.detector.is_some_and(|d| d.scanned))
+        .map(|r| {
+            let (x, h) = (r.truth.position.x(), r.truth.heading.get());
+            (r, x + band.0 * h.cos(), x + band.1 * h.cos())
+        })
+        .collect()
+}
+
+//= spec/pierre2022.md#fur-quality-verdict-from-the-weaker-maximum
+//= type=test
+//# Otherwise the verdict MUST be Exit when the scan yielded no selection,
+//# and else the classification (SW-CLASSIFY, larger is better) of the
+//# weaker score of the selection: min(c[k_l], c[k_r]) for a pair, c[k] for
+//# one row.
+#[test]
+fn a_bare_stretch_gives_exit_or_absent_rather_than_a_wrong_line() {
+    let (setup, mut rng) = prepare();
+    let out = run(&setup, &mut rng);
+    let beans = &setup.world.plots[1];
+    let (a, b) = beans.spec.bare[0];
+    let x0 = beans.spec.centre_line(0.0).0;
+    let (gap_from, gap_to) = (x0 + a, x0 + b);
+    let tallest = setup
+        .world
+        .plants
+        .iter()
+        .filter(|p| p.position.x() > x0 && p.kind == PlantKind::Crop)
+        .map(|p| p.height)
+        .fold(0.0, f64::max);
+    // Scans whose whole view band (any plant height, 5 cm of margin for the
+    // plants' radius and the range noise) lies in the bare stretch.
+    let band = view_band(&setup, tallest, 0.05);
+    let blind: Vec<_> = scans(&out, band)
+        .into_iter()
+        .filter(|(_, near, far)| *near >= gap_from && *far <= gap_to)
+        .collect();
+    eprintln!(
+        "view band {:.2}-{:.2} m ahead; {} scans see only the bare stretch",
+        band.0,
+        band.1,
+        blind.len()
+    );
+    assert!(blind.len() >= 3, "{} scans", blind.len());
+    for (r, _, _) in &blind {
+        let d = r.command.detector.unwrap();
+        assert!(
+            matches!(d.verdict, Verdict::Exit | Verdict::Absent),
+            "t = {}: {:?}",
+            r.t_s,
+            d.verdict
+        );
+        assert_eq!(r.mode(), Mode::PathTracking, "t = {}", r.t_s);
+    }
+    // Around the stretch (the view band within 2 m of it), a scan that does
+    // give a valid verdict gives the true line: its error is within 0.1 m of
+    // the truth, where pairing the middle bean row with an outer one would be
+    // 0.19 m off.
+    let mut valid = 0;
+    for (r, near, far) in scans(&out, view_band(&setup, tallest, 0.0)) {
+        let d = r.command.detector.unwrap();
+        if far < gap_from - 2.0 || near > gap_to + 2.0 || !d.verdict.estimate_is_valid() {
+            continue;
+        }
+        let truth = r.plot.unwrap().lateral_error_m;
+        let estimate = d.error.unwrap().y.get();
+        assert!(
+            (estimate - truth).abs() < 0.1,
+            "t = {}: estimate {estimate}, truth {truth}",
+            r.t_s
+        );
+        valid += 1;
+    }
+    assert!(valid > 20, "{valid}");
+}
+
+//= spec/pierre2022.md#fur-quality-verdict-from-the-weaker-maximum
+//= type=test
+//# The verdict MUST be Absent when no row line could be fitted from the
+//# accumulated points.
+#[test]
+fn no_command_comes_from_a_stale_or_invalid_estimate() {
+    let (setup, mut rng) = prepare();
+    let period = setup.control.period_s * setup.lidar.unwrap().scan_every as f64;
+    let out = run(&setup, &mut rng);
+    // In the headland, before the LiDAR reaches the maize, no line: Absent.
+    let first = out.trace[0].command.detector.unwrap();
+    assert!(first.scanned && first.verdict == Verdict::Absent);
+    let mut verdicts = [0_usize; 4];
+    for r in &out.trace {
+        let d = r.command.detector.unwrap();
+        // Every tick carries the latest scan's verdict, never an older one.
+        assert!(
+            d.age_s >= 0.0 && d.age_s < period - 1e-9,
+            "t = {}: age {}",
+            r.t_s,
+            d.age_s
+        );
+        if d.scanned {
+            verdicts[Verdict::ALL.iter().position(|v| *v == d.verdict).unwrap()] += 1;
+        }
+        match r.mode() {
+            Mode::FurrowPursuing => {
+                assert!(
+                    d.verdict.estimate_is_valid(),
+                    "t = {}: {:?}",
+                    r.t_s,
+                    d.verdict
+                );
+                // The law's error is the detector's, moved by odometry between scans.
+                let used = r.command.estimated_error.unwrap();
+                if d.scanned {
+                    let own = d.error.unwrap();
+                    assert!((used.y.get() - own.y.get()).abs() < 1e-12);
+                    assert!(
+                        (used.angular_deviation.get() - own.angular_deviation.get()).abs() < 1e-12
+                    );
+                }
+                assert!(used.curvature.get().abs() < 1e-15, "a straight line");
+            }
+            Mode::PathTracking => {
+                assert!(
+                    !d.verdict.estimate_is_valid(),
+                    "t = {}: {:?}",
+                    r.t_s,
+                    d.verdict
+                );
+            }
+        }
+    }
+    eprintln!("verdicts [enter, hold, exit, absent]: {verdicts:?}");
+    // Table 2's thresholds with c_t = 0.5: every selection is Enter.
+    assert!(verdicts[0] > 700 && verdicts[1] == 0 && verdicts[2] > 20 && verdicts[3] > 20);
+}
+
+/// Drives straight ahead at 0.7 m/s whatever the sensors say.
+struct Straight;
+
+impl Guidance for Straight {
+    fn step(&mut self, _input: &TickInput<'_>) -> Result<Command, Precondition> {
+        Ok(Command {
+            steering: 0.0,
+            speed: MetersPerSecond::new(0.7)?,
+            mode: Mode::PathTracking,
+            saturated: false,
+            estimated_error: None,
+            sideslip_used: fieldguide::model::bicycle::Sideslip::ZERO,
+            detector: None,
+        })
+    }
+}
+
+/// The crop and grass plants a wheel's contact patch overlapped in `out`, by brute force.
+fn touched(setup: &Setup, out: &RunOutput) -> (usize, usize) {
+    let half_tyre = setup.vehicle.tyre_width_m / 2.0;
+    let hit = |p: &fieldguide_sim::world::Plant| {
+        out.trace.iter().any(|r| {
+            setup.vehicle.wheel_centres(&r.truth).iter().any(|w| {
+                (w[0] - p.position.x()).hypot(w[1] - p.position.y()) < p.radius + half_tyre
+            })
+        })
+    };
+    let count = |kind| {
+        setup
+            .world
+            .plants
+            .iter()
+            .filter(|p| p.kind == kind && hit(p))
+            .count()
+    };
+    (count(PlantKind::Crop), count(PlantKind::Grass))
+}
+
+#[test]
+fn no_plant_is_run_over_and_the_counter_counts_crops_under_the_wheels() {
+    let (setup, mut rng) = prepare();
+    let out = run(&setup, &mut rng);
+    assert_eq!(out.plants_crushed, 0);
+    let (crops, grass) = touched(&setup, &out);
+    eprintln!(
+        "furrow pursuing: {crops} crop plants under a wheel, {grass} grass tufts (never counted)"
+    );
+    assert_eq!(crops, 0);
+    // The same field driven straight east with the right wheels on the right
+    // maize row (0.375 m right of the centre line): they crush it.
+    let (mut blind, mut rng) = prepare();
+    blind.initial = fieldguide::Pose2::new(
+        blind.initial.position.x(),
+        blind.world.plots[0].spec.centre_line(0.0).1 + blind.vehicle.track_m / 2.0 - 0.375,
+        0.0,
+    )
+    .unwrap();
+    blind.run.duration_s = 60.0;
+    let out = runner::run_with(&blind, &mut Straight, &mut rng);
+    let (crops, grass) = touched(&blind, &out);
+    eprintln!("driven straight on a row: {} crop plants crushed ({crops} by brute force), {grass} grass tufts driven over", out.plants_crushed);
+    assert!(out.plants_crushed > 100, "{}", out.plants_crushed);
+    assert_eq!(out.plants_crushed, crops, "crops only, each once");
+    assert!(
+        grass > 0,
+        "the run also drives over grass, which never counts"
+    );
+}
+
+//= spec/pierre2022.md#pt-gains-gain-sign-and-ratio
+//= type=test
+//# Both gains MUST be finite and strictly negative (convergent in equation
+//# form), and |k_θ| MUST be at least a configured ratio r ≥ 1 times |k_y|;
+//# other gains MUST be refused at construction.
+#[test]
+fn a_wrong_furrow_gain_sign_leaves_the_rows() {
+    let (mut setup, mut rng) = prepare();
+    let good = setup.furrow.unwrap().backstepping.gains;
+    assert!(Gains::new(-good.k_y(), -good.k_theta(), 2.0).is_err());
+    setup.furrow.as_mut().unwrap().backstepping.gains =
+        Gains::with_unchecked_sign(-good.k_y(), -good.k_theta(), 2.0).unwrap();
+    let out = runner::run(&setup, &mut rng);
+    let summary = summarize(&setup, &out);
+    eprintln!(
+        "wrong sign: end {:?}, in-plot {:?}, {} plants crushed",
+        out.end, summary.in_plot_lateral_error_m, summary.plants_crushed
+    );
+    let worst = summary
+        .in_plot_lateral_error_m
+        .map_or(f64::INFINITY, |e| e.max_abs);
+    assert!(worst > MAX_BOUND_M || summary.plants_crushed > 0 || out.end != RunEnd::PathEnd);
+    assert!(!summary.success);
+}
+
+#[test]
+fn same_seed_same_run() {
+    let (a, mut ra) = prepare();
+    let (b, mut rb) = prepare();
+    assert_eq!(a.world.plants, b.world.plants);
+    assert_eq!(runner::run(&a, &mut ra), runner::run(&b, &mut rb));
+}
