@@ -22,7 +22,8 @@ const ROUNDING_SLACK: f64 = 1e-9;
 /// Converts a delay to whole control ticks, n = ⌈delay / period⌉ (SW-DELAYS).
 ///
 /// The quotient is shrunk by a relative 10⁻⁹ before rounding up, so
-/// 0.3 s / 0.01 s gives 30 ticks, never 31, while 0.305 s / 0.01 s gives 31.
+/// 0.07 s / 0.01 s (7.000000000000001 in f64) gives 7 ticks, never 8, while
+/// 0.305 s / 0.01 s gives 31.
 ///
 /// # Errors
 /// `requirement` with the reason when `period` or `delay` is not positive or
