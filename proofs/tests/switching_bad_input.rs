@@ -79,6 +79,11 @@ fn furrow() -> (BehaviourConfig, (u32, u32)) {
 
 use Verdict::{Absent, Enter, Exit, Hold};
 
+//= spec/pierre2022.md#sw-enter-entering-a-specialised-mode
+//= type=test
+//# A tick MUST count as entry evidence for a behaviour only when its verdict is
+//# Enter and, when plan consistency is configured, its line is consistent with
+//# the planned path; any other verdict, Hold included, MUST restart the count.
 #[test]
 fn verdicts_flipping_every_tick_never_enter() {
     // Enter, Exit, Enter, ...: the entry run never exceeds 1 tick.
@@ -96,6 +101,11 @@ fn verdicts_flipping_every_tick_never_enter() {
     }
 }
 
+//= spec/pierre2022.md#sw-exit-leaving-a-specialised-mode
+//= type=test
+//# In a specialised mode, a tick MUST count as exit evidence when the active
+//# behaviour's verdict is Exit or Absent, and any Enter or Hold verdict MUST
+//# restart that count.
 #[test]
 fn verdicts_flipping_every_tick_inside_a_plot_never_leave() {
     let mut run = Run::new([edge()]);
@@ -116,6 +126,11 @@ fn verdicts_flipping_every_tick_inside_a_plot_never_leave() {
     }
 }
 
+//= spec/pierre2022.md#sw-stop-stop-without-a-valid-source
+//= type=test
+//# The machine MUST stay in Stop until localisation is valid, then go to path
+//# tracking, or until a behaviour's entry evidence has lasted its entry delay,
+//# then go to its mode.
 #[test]
 fn localisation_lost_in_the_middle_of_a_plot() {
     let mut run = Run::new([furrow()]);
@@ -216,11 +231,17 @@ fn a_higher_priority_entry_under_way_makes_a_faster_lower_one_wait() {
     assert_eq!(run.step([Hold, Enter], true).mode, Mode::Behaviour(1));
 }
 
+//= spec/pierre2022.md#sw-modes-modes-and-priority
+//= type=test
+//# The switching machine MUST have exactly these modes: path tracking, one
+//# specialised mode per configured specialised behaviour, and Stop; it MUST
+//# start in path tracking.
 #[test]
 fn every_mode_stays_defined_under_arbitrary_noise() {
     // A deterministic pseudo-random walk: segments of 1 to 80 ticks, each with
     // its own verdicts and localisation, 200 000 ticks in all.
     let mut run = Run::new([edge(), furrow()]);
+    assert_eq!(run.machine.mode(), Mode::PathTracking);
     let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
     let mut next = move || {
         x ^= x << 13;
