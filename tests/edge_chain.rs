@@ -361,3 +361,18 @@ fn a_full_buffer_stops_the_chain() {
     let none = build_chain::<0>(&points, Side::Left, &config);
     assert!(none.is_empty());
 }
+
+#[test]
+fn more_points_than_the_candidate_buffer_still_give_minimal_contacts() {
+    // 2000 points of a ragged wall within reach: beyond the 1024-point buffer.
+    let config = config();
+    let xs: Vec<f64> = (0..2000).map(|k| -1.0 + 0.003 * f64::from(k)).collect();
+    let js: Vec<f64> = (0..2000)
+        .map(|k| 0.05 * (f64::from(k) * 0.37).sin())
+        .collect();
+    let points = hedge(Side::Left, 1.4, 0.1, &xs, &js);
+    let chain = build_chain::<M>(&points, Side::Left, &config);
+    assert!(chain.len() > 10);
+    check_invariants(&points, Side::Left, &config, &chain);
+    check_minimal_contacts(&points, Side::Left, &config, &chain);
+}

@@ -9,7 +9,7 @@
 //! stopped rotating has no point of the requested side strictly inside it.
 
 use core::cmp::Ordering;
-use core::f64::consts::{PI, TAU};
+use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use heapless::Vec;
 
@@ -257,50 +257,70 @@ pub fn build_chain<const M: usize>(
         return chain;
     }
 
+    // Only points of the side within l_max + 2r of the first pivot can be
+    // touched: every pivot before the last is less than l_max (along the
+    // chain) from it and a contact is less than 2r from its pivot.
+    let reach_all = (config.max_chain_length().get() + 2.0 * r) * (1.0 + 1e-9);
+    let mut near: Vec<Near, CANDIDATES> = Vec::new();
+    let mut all = false;
+    for (i, q) in points.iter().enumerate() {
+        let (dx, dy) = (q.x() - p0.x(), q.y() - p0.y());
+        if s * q.y() > 0.0
+            && dx * dx + dy * dy < reach_all * reach_all
+            && near
+                .push(Near {
+                    x: q.x(),
+                    y: q.y(),
+                    index: i,
+                })
+                .is_err()
+        {
+            all = true;
+            break;
+        }
+    }
+
     // Rotation (EDGE-CHAIN-ROTATE) until a limit (EDGE-CHAIN-STOP).
-    let (mut pivot, mut pivot_index, mut center) = (p0, i0, c0);
     let theta_max = config.max_rotation().get();
-    let four_r2 = 4.0 * r * r;
+    let limit = Limit {
+        theta: theta_max,
+        half: Half::of(theta_max),
+        cos: cos_below_pi(theta_max),
+    };
+    let (mut pivot, mut pivot_index, mut center) = (p0, i0, c0);
     loop {
         if chain.length >= config.max_chain_length().get() {
             chain.end = ChainEnd::LengthLimit;
             return chain;
         }
-        let u = (center.x() - pivot.x(), center.y() - pivot.y());
-        let mut best: Option<Candidate> = None;
-        let mut bound2 = reach2(r, theta_max);
-        for (i, q) in points.iter().enumerate() {
-            if i == pivot_index || s * q.y() <= 0.0 {
-                continue;
+        let mut step = Step::new(pivot, center, s, r, &limit);
+        if all {
+            for (i, q) in points.iter().enumerate() {
+                if i != pivot_index && s * q.y() > 0.0 {
+                    step.consider(i, q.x(), q.y());
+                }
             }
-            let (cx, cy) = (q.x() - center.x(), q.y() - center.y());
-            if cx * cx + cy * cy >= bound2 {
-                continue;
+        } else {
+            // The pivot's neighbours in scan order first: they usually touch
+            // first, which shrinks the search bound for the full pass.
+            let pos = near
+                .iter()
+                .position(|n| n.index == pivot_index)
+                .unwrap_or(0);
+            let lo = pos.saturating_sub(SEEDS);
+            let hi = pos.saturating_add(SEEDS).saturating_add(1).min(near.len());
+            for n in near.get(lo..hi).unwrap_or(&[]) {
+                if n.index != pivot_index {
+                    step.consider(n.index, n.x, n.y);
+                }
             }
-            let w = (q.x() - pivot.x(), q.y() - pivot.y());
-            let d2 = w.0 * w.0 + w.1 * w.1;
-            if !(d2 > 0.0 && d2 < four_r2) {
-                continue;
-            }
-            let theta = contact_angle(u, w, d2, s, r);
-            let better = match &best {
-                None => theta < theta_max,
-                Some(b) => match theta.total_cmp(&b.theta) {
-                    Ordering::Less => true,
-                    Ordering::Equal => d2 < b.d2,
-                    Ordering::Greater => false,
-                },
-            };
-            if better {
-                bound2 = reach2(r, theta);
-                best = Some(Candidate {
-                    index: i,
-                    theta,
-                    d2,
-                });
+            for n in &near {
+                if n.index != pivot_index {
+                    step.consider(n.index, n.x, n.y);
+                }
             }
         }
-        let Some(next) = best else {
+        let Some(next) = step.best else {
             chain.end = ChainEnd::RotationLimit;
             return chain;
         };
@@ -325,12 +345,206 @@ pub fn build_chain<const M: usize>(
     }
 }
 
-/// Squared bound on `|q − c|` for a point touched within a rotation of
-/// `theta`: the centre moves by `2r sin(θ/2)`, so `|q − c| ≤ r (1 + 2 sin(θ/2))`,
-/// widened by a relative 1e-9 so that rounding never excludes a contact.
-fn reach2(r: f64, theta: f64) -> f64 {
-    let reach = r * (1.0 + 2.0 * libm::sin(theta.min(PI) / 2.0)) * (1.0 + 1e-9);
-    reach * reach
+/// How many candidate points [`build_chain`] copies out once per chain (12 KiB
+/// of stack); with more, every step scans all the points (same result, slower).
+const CANDIDATES: usize = 512;
+
+/// How many scan-order neighbours on each side of the pivot are tried first.
+const SEEDS: usize = 2;
+
+/// A candidate point, copied out for a cache-friendly pass.
+struct Near {
+    x: f64,
+    y: f64,
+    index: usize,
+}
+
+/// The search for the next contact about one pivot: the best candidate so
+/// far and the bounds that let most points be rejected without trigonometry.
+struct Step {
+    pivot: (f64, f64),
+    u: (f64, f64),
+    s: f64,
+    r: f64,
+    theta_max: f64,
+    best: Option<Candidate>,
+    /// Centre of the circle rotated by half the angle to beat.
+    mid: (f64, f64),
+    /// Squared distance from `mid` beyond which no point can beat the angle
+    /// to beat: the centres c(θ') for θ' ≤ θ lie within 2r sin(θ/4) of
+    /// `mid`, so a point they touch lies within r (1 + 2 sin(θ/4)).
+    bound2: f64,
+    /// cos of the angle to beat when it is ≤ π (entering contacts with a
+    /// smaller cosine are farther), −2 otherwise.
+    cos_to_beat: f64,
+}
+
+/// θ_max with its half-angle terms and cosine, computed once per chain.
+struct Limit {
+    theta: f64,
+    half: Half,
+    cos: f64,
+}
+
+/// cos(θ/2), sin(θ/2) and sin(θ/4) of an angle θ ∈ [0, 2π).
+struct Half {
+    cos2: f64,
+    sin2: f64,
+    sin4: f64,
+}
+
+impl Half {
+    /// From θ, with trigonometry (θ_max, and the rare contacts beyond π/2).
+    fn of(theta: f64) -> Self {
+        Self {
+            cos2: libm::cos(theta / 2.0),
+            sin2: libm::sin(theta / 2.0),
+            sin4: libm::sin(theta / 4.0),
+        }
+    }
+
+    /// From cos θ and sin θ ≥ 0 (θ ∈ [0, π]) without trigonometry, each term
+    /// by the formula that keeps its accuracy near 0 and near π.
+    fn from_cos_sin(cos: f64, sin: f64) -> Self {
+        let (cos2, sin2) = if cos >= 0.0 {
+            let c2 = libm::sqrt(0.5 * (1.0 + cos));
+            (c2, sin / (2.0 * c2))
+        } else {
+            let s2 = libm::sqrt(0.5 * (1.0 - cos));
+            (sin / (2.0 * s2), s2)
+        };
+        let cos4 = libm::sqrt(0.5 * (1.0 + cos2));
+        Self {
+            cos2,
+            sin2,
+            sin4: sin2 / (2.0 * cos4),
+        }
+    }
+}
+
+impl Step {
+    /// The search about `pivot` with the circle at `center`, bounded by θ_max.
+    fn new(pivot: Point2<Robot>, center: Point2<Robot>, s: f64, r: f64, limit: &Limit) -> Self {
+        let mut step = Self {
+            pivot: (pivot.x(), pivot.y()),
+            u: (center.x() - pivot.x(), center.y() - pivot.y()),
+            s,
+            r,
+            theta_max: limit.theta,
+            best: None,
+            mid: (center.x(), center.y()),
+            bound2: 0.0,
+            cos_to_beat: limit.cos,
+        };
+        step.set_bound(&limit.half);
+        step
+    }
+
+    /// Moves the distance bound to the angle whose half-angle terms are `h`,
+    /// widened by a relative 1e-9 so that rounding never excludes a contact.
+    fn set_bound(&mut self, h: &Half) {
+        let (u, s) = (self.u, self.s);
+        self.mid = (
+            self.pivot.0 + h.cos2 * u.0 - s * h.sin2 * u.1,
+            self.pivot.1 + s * h.sin2 * u.0 + h.cos2 * u.1,
+        );
+        let reach = self.r * (1.0 + 2.0 * h.sin4.max(0.0)) * (1.0 + 1e-9);
+        self.bound2 = reach * reach;
+    }
+
+    /// Takes the point `(x, y)` (index `i`, not the pivot) into account.
+    #[inline]
+    fn consider(&mut self, i: usize, x: f64, y: f64) {
+        let (mx, my) = (x - self.mid.0, y - self.mid.1);
+        if mx * mx + my * my >= self.bound2 {
+            return;
+        }
+        self.evaluate(i, x, y);
+    }
+
+    /// The full evaluation of a point that passed the distance bound. The
+    /// angle is the one of [`rotation_contact`], computed without `acos`
+    /// for entering points.
+    fn evaluate(&mut self, i: usize, x: f64, y: f64) {
+        let w = (x - self.pivot.0, y - self.pivot.1);
+        let d2 = w.0 * w.0 + w.1 * w.1;
+        let r2 = self.r * self.r;
+        if d2 <= 0.0 || d2 >= 4.0 * r2 {
+            return;
+        }
+        let u = self.u;
+        let cross = w.0 * u.1 - w.1 * u.0;
+        let dot = w.0 * u.0 + w.1 * u.1;
+        if self.s * cross < 0.0 {
+            // Entering side (β < 0): the contact centre is
+            // p + w/2 − s k w⊥ with k = sqrt(r²/d² − 1/4), at angle θ ∈ [0, π)
+            // from u: r² cos θ = u·w/2 + k |w × u|, r² sin θ = |w × u|/2 − k u·w.
+            // It cannot beat the best when cos θ < cos_to_beat, i.e. when
+            // k |w × u| < need; squared (k² d² = r² − d²/4) to spare a
+            // square root and a division on most points.
+            let need = (self.cos_to_beat - 1e-12) * r2 - 0.5 * dot;
+            if need > 0.0 && (r2 - 0.25 * d2) * cross * cross < need * need * d2 {
+                return;
+            }
+            let k = libm::sqrt((r2 / d2 - 0.25).max(0.0));
+            let cos_r2 = 0.5 * dot + k * libm::fabs(cross);
+            let sin_r2 = 0.5 * libm::fabs(cross) - k * dot;
+            let theta = libm::atan2(sin_r2, cos_r2).max(0.0);
+            if self.is_better(theta, d2) {
+                let (cos, sin) = if theta > 0.0 {
+                    (cos_r2 / r2, sin_r2 / r2)
+                } else {
+                    (1.0, 0.0)
+                };
+                self.cos_to_beat = cos;
+                self.set_bound(&Half::from_cos_sin(cos, sin.max(0.0)));
+                self.best = Some(Candidate {
+                    index: i,
+                    theta,
+                    d2,
+                });
+            }
+        } else {
+            // Exiting side: the contact needs θ ≥ π − α ≥ π/2.
+            let to_beat = self.best.as_ref().map_or(self.theta_max, |b| b.theta);
+            if to_beat <= FRAC_PI_2 {
+                return;
+            }
+            let theta = contact_angle(u, w, d2, self.s, self.r);
+            if self.is_better(theta, d2) {
+                self.cos_to_beat = cos_below_pi(theta);
+                self.set_bound(&Half::of(theta));
+                self.best = Some(Candidate {
+                    index: i,
+                    theta,
+                    d2,
+                });
+            }
+        }
+    }
+
+    /// Whether a contact at `theta` (distance² `d2` from the pivot) beats the
+    /// best so far: a smaller angle, or the same angle nearer the pivot; the
+    /// first one must be below θ_max.
+    fn is_better(&self, theta: f64, d2: f64) -> bool {
+        match &self.best {
+            None => theta < self.theta_max,
+            Some(b) => match theta.total_cmp(&b.theta) {
+                Ordering::Less => true,
+                Ordering::Equal => d2 < b.d2,
+                Ordering::Greater => false,
+            },
+        }
+    }
+}
+
+/// `cos θ` for θ ≤ π, −2 (below any cosine) beyond.
+fn cos_below_pi(theta: f64) -> f64 {
+    if theta <= PI {
+        libm::cos(theta)
+    } else {
+        -2.0
+    }
 }
 
 fn push<const M: usize>(
