@@ -206,7 +206,11 @@ proptest! {
         let fit = det.fit.unwrap();
         prop_assert!((fit.error.y.get() - s * (config.offset().get() - dist)).abs() < 1e-9);
         prop_assert!((fit.error.angular_deviation.get() + angle).abs() < 1e-9);
-        prop_assert_eq!(det.verdict, Verdict::Enter);
+        // Within about 20° of the robot's axis the 3 m chain is narrower than
+        // w_max = 1 m and fits exactly: Enter.
+        if angle.abs() < 0.25 {
+            prop_assert_eq!(det.verdict, Verdict::Enter);
+        }
     }
 
     //= spec/pierre2022.md#edge-detect-one-detection
@@ -306,6 +310,15 @@ fn bad_input_gives_absent() {
         .collect();
     let det = detect_points::<M>(&on_circle, Side::Left, &config).unwrap();
     check_sane(&det);
+    // Four points 0.5 m apart (fewer than the 5 required): Absent, though a
+    // parabola would fit them.
+    let four: Vec<_> = (0..4).map(|k| pt(0.5 * f64::from(k), 1.5)).collect();
+    let det = detect_points::<M>(&four, Side::Left, &config).unwrap();
+    assert_eq!(det.chain.len(), 4);
+    assert_eq!(det.verdict, Verdict::Absent);
+    let five: Vec<_> = (0..5).map(|k| pt(0.5 * f64::from(k), 1.5)).collect();
+    let det = detect_points::<M>(&five, Side::Left, &config).unwrap();
+    assert_eq!(det.verdict, Verdict::Enter);
     // Two points: a chain that cannot be fitted.
     let two = [pt(0.0, 1.5), pt(0.3, 1.5)];
     let det = detect_points::<M>(&two, Side::Left, &config).unwrap();

@@ -58,6 +58,10 @@ pub struct EdgeParameters {
     /// Spread w_max of the chain along the robot's y axis that it must stay
     /// below, metres (eq. 21; not in Table 1).
     pub max_width: f64,
+    /// Fewest chain points for a detection, ≥ 4: a parabola has 3
+    /// coefficients, so the residual of eq. 21 needs more points to mean
+    /// anything (not in the paper).
+    pub min_points: usize,
     /// σ_edge: residual standard deviation below which edge following may be
     /// entered, metres (Table 1: 0.15 m).
     pub sigma_enter: f64,
@@ -69,15 +73,17 @@ pub struct EdgeParameters {
 impl EdgeParameters {
     /// Table 1 of Pierre 2022 for edge following, completed with the library's
     /// choices for the values the paper does not give: θ_max = π/2,
-    /// l_min = 1 m, w_max = 1.5 m (`spec/pierre2022.md`, EDGE-CONFIG).
+    /// l_min = 1.5 m, w_max = 1 m, 5 points at least (`spec/pierre2022.md`,
+    /// EDGE-CONFIG).
     pub const PIERRE2022: Self = Self {
         radius: 1.0,
         max_rotation: FRAC_PI_2,
         max_chain_length: 3.0,
         search_distance: 3.0,
         offset: 1.4,
-        min_chain_length: 1.0,
-        max_width: 1.5,
+        min_chain_length: 1.5,
+        max_width: 1.0,
+        min_points: 5,
         sigma_enter: 0.15,
         sigma_exit: 0.5,
     };
@@ -93,6 +99,7 @@ pub struct EdgeConfig {
     offset: f64,
     min_chain_length: f64,
     max_width: f64,
+    min_points: usize,
     thresholds: QualityThresholds,
 }
 
@@ -109,13 +116,15 @@ impl EdgeConfig {
     ///
     /// Errors with `EDGE-CONFIG` naming the failed condition (every value
     /// finite; `r > 0`; `0 < θ_max < 2π`; `l_max > 0`; search distance > 0;
-    /// `D ≥ 0`; `0 ≤ l_min < l_max`; `w_max > 0`; `σ_edge > 0`), and with
+    /// `D ≥ 0`; `0 ≤ l_min < l_max`; `w_max > 0`; at least 4 points;
+    /// `σ_edge > 0`), and with
     /// `SW-THRESHOLDS` when `σ_edge < σ_path` does not hold.
     //= spec/pierre2022.md#edge-config-detector-configuration
     //# A configuration MUST be refused at construction, with an error naming
     //# the requirement, unless r > 0, 0 < θ_max < 2π, l_max > 0, the search
-    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0 and
-    //# 0 < σ_edge < σ_path, every value being finite.
+    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0, the fewest
+    //# chain points is at least 4 and 0 < σ_edge < σ_path, every value being
+    //# finite.
     pub fn new(p: &EdgeParameters) -> Result<Self, Precondition> {
         let values = [
             p.radius,
@@ -145,6 +154,7 @@ impl EdgeConfig {
             "l_min must be in [0, l_max)",
         )?;
         require(p.max_width > 0.0, "w_max must be > 0")?;
+        require(p.min_points >= 4, "the fewest chain points must be >= 4")?;
         require(p.sigma_enter > 0.0, "sigma_edge must be > 0")?;
         let thresholds = QualityThresholds::new(p.sigma_enter, p.sigma_exit, Better::Lower)?;
         Ok(Self {
@@ -155,6 +165,7 @@ impl EdgeConfig {
             offset: p.offset,
             min_chain_length: p.min_chain_length,
             max_width: p.max_width,
+            min_points: p.min_points,
             thresholds,
         })
     }
@@ -206,6 +217,12 @@ impl EdgeConfig {
         Meters(self.max_width)
     }
 
+    /// Fewest chain points for a detection.
+    #[must_use]
+    pub const fn min_points(&self) -> usize {
+        self.min_points
+    }
+
     /// σ_edge / σ_path hysteresis on the residual standard deviation.
     #[must_use]
     pub const fn thresholds(&self) -> QualityThresholds {
@@ -221,13 +238,21 @@ mod tests {
     //= type=test
     //# A configuration MUST be refused at construction, with an error naming
     //# the requirement, unless r > 0, 0 < θ_max < 2π, l_max > 0, the search
-    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0 and
-    //# 0 < σ_edge < σ_path, every value being finite.
+    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0, the fewest
+    //# chain points is at least 4 and 0 < σ_edge < σ_path, every value being
+    //# finite.
     #[test]
     fn each_bad_parameter_is_refused_with_its_requirement() {
         let good = EdgeParameters::PIERRE2022;
         assert!(EdgeConfig::new(&good).is_ok());
-        let bad: [(EdgeParameters, &str); 12] = [
+        let bad: [(EdgeParameters, &str); 13] = [
+            (
+                EdgeParameters {
+                    min_points: 3,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
             (
                 EdgeParameters {
                     radius: 0.0,

@@ -91,8 +91,9 @@ pub fn detect<const N: usize, const M: usize>(
 ///
 /// Errors with `EDGE-SCAN` when a point lies beyond [`MAX_COORDINATE`].
 //= spec/pierre2022.md#edge-detect-one-detection
-//# A detection MUST be Absent, with no fit, when the chain is empty or cannot
-//# be fitted (fewer than 3 points or fewer than 3 distinct abscissae).
+//# A detection MUST be Absent, with no fit, when the chain has fewer points
+//# than the configured fewest or cannot be fitted (fewer than 3 distinct
+//# abscissae).
 //= spec/pierre2022.md#edge-detect-one-detection
 //# A tracking error MUST be offered for commanding only when the verdict is
 //# Enter or Hold.
@@ -103,7 +104,11 @@ pub fn detect_points<const M: usize>(
 ) -> Result<EdgeDetection<M>, Precondition> {
     scan::check_bounded(points)?;
     let chain = build_chain::<M>(points, side, config);
-    let fit = fit_chain(&chain, side, config);
+    let fit = if chain.len() >= config.min_points() {
+        fit_chain(&chain, side, config)
+    } else {
+        None
+    };
     let verdict = match &fit {
         Some(f) => f.quality.grade(config),
         None => Verdict::Absent,
