@@ -266,6 +266,50 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Any parameters at all: refused at construction, or a detector that
+    /// gives sane detections on a hedge.
+    #[test]
+    fn any_configuration_is_refused_or_sane(
+        values in prop::collection::vec(
+            prop_oneof![
+                4 => 0.0..5.0f64,
+                1 => Just(f64::NAN),
+                1 => Just(f64::INFINITY),
+                1 => Just(0.0),
+                1 => any::<f64>(),
+            ],
+            9,
+        ),
+        min_points in 0usize..10,
+        side in side(),
+        xj in prop::collection::vec((-2.0..6.0f64, -0.3..0.3f64), 3..60),
+    ) {
+        let params = EdgeParameters {
+            radius: values[0],
+            max_rotation: values[1],
+            max_chain_length: values[2],
+            search_distance: values[3],
+            offset: values[4],
+            min_chain_length: values[5],
+            max_width: values[6],
+            sigma_enter: values[7],
+            sigma_exit: values[8],
+            min_points,
+        };
+        match EdgeConfig::new(&params) {
+            Err(e) => prop_assert!(e.requirement == "EDGE-CONFIG" || e.requirement == "SW-THRESHOLDS"),
+            Ok(config) => {
+                let (xs, js): (Vec<f64>, Vec<f64>) = xj.into_iter().unzip();
+                let points = hedge(side, 1.4, 0.1, &xs, &js);
+                check_sane(&detect_points::<M>(&points, side, &config).unwrap());
+            }
+        }
+    }
+}
+
 #[test]
 fn bad_input_gives_absent() {
     let config = config();
@@ -319,6 +363,17 @@ fn bad_input_gives_absent() {
     let five: Vec<_> = (0..5).map(|k| pt(0.5 * f64::from(k), 1.5)).collect();
     let det = detect_points::<M>(&five, Side::Left, &config).unwrap();
     assert_eq!(det.verdict, Verdict::Enter);
+    // Extreme but valid configurations: a huge circle, a huge chain.
+    for (radius, l_max) in [(1e300, 3.0), (1e-300, 3.0), (1.0, 1e300), (1e150, 1e300)] {
+        let p = EdgeParameters {
+            radius,
+            max_chain_length: l_max,
+            ..EdgeParameters::PIERRE2022
+        };
+        let extreme = EdgeConfig::new(&p).unwrap();
+        let wall_points = wall(Side::Left, 1.4, 0.1, 0.05, -1.0, 5.0);
+        check_sane(&detect_points::<M>(&wall_points, Side::Left, &extreme).unwrap());
+    }
     // Two points: a chain that cannot be fitted.
     let two = [pt(0.0, 1.5), pt(0.3, 1.5)];
     let det = detect_points::<M>(&two, Side::Left, &config).unwrap();
