@@ -7,7 +7,7 @@ use core::f64::consts::{PI, TAU};
 use core::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fieldguide::perception::edge::{detect, EdgeConfig, RangeLimits, Scan, Side};
+use fieldguide::perception::edge::{detect, EdgeConfig, EdgeDetector, RangeLimits, Scan, Side};
 use fieldguide::{Meters, Radians, Robot, Sensor, Transform2};
 
 /// The LiDAR's mount: 1.2 m ahead of the rear axle, facing forward.
@@ -76,7 +76,13 @@ fn edge(c: &mut Criterion) {
         fit.error.angular_deviation.get(),
         fit.quality.residual_std.get()
     );
-    c.bench_function("edge/detect_360_rays_hedge", |b| {
+    // Per tick, as a vehicle stack calls it: buffers owned by the detector.
+    let mut detector = EdgeDetector::<512, 256>::new(config, mount);
+    c.bench_function("edge/detector_360_rays_hedge", |b| {
+        b.iter(|| detector.detect(black_box(&scan), Side::Left))
+    });
+    // The same through the free function, which returns the chain by value.
+    c.bench_function("edge/detect_fn_360_rays_hedge", |b| {
         b.iter(|| detect::<512, 256>(black_box(&scan), &mount, Side::Left, &config))
     });
 }

@@ -15,8 +15,8 @@ mod edge_support;
 
 use edge_support::{cast_line, hedge, pt, wall};
 use fieldguide::perception::edge::{
-    detect, detect_points, ChainEnd, EdgeConfig, EdgeDetection, EdgeParameters, RangeLimits, Scan,
-    Side,
+    detect, detect_points, ChainEnd, EdgeConfig, EdgeDetection, EdgeDetector, EdgeParameters,
+    RangeLimits, Scan, Side,
 };
 use fieldguide::{Meters, Point2, Pose2, Radians, Robot, Sensor, Transform2, Verdict, World};
 use proptest::prelude::*;
@@ -308,6 +308,74 @@ proptest! {
             }
         }
     }
+}
+
+//= spec/pierre2022.md#edge-detect-one-detection
+//= type=test
+//# A tracking error MUST be offered for commanding only when the verdict is
+//# Enter or Hold.
+#[test]
+fn the_detector_agrees_with_the_free_functions_and_forgets_failed_scans() {
+    let config = config();
+    let mount = Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap();
+    let mut detector = EdgeDetector::<N, M>::new(config, mount);
+    let inc = core::f64::consts::TAU / 360.0;
+    for (k, (dist, angle)) in [(1.4, 0.0), (1.0, 0.2), (2.2, -0.1), (0.8, 0.05)]
+        .into_iter()
+        .enumerate()
+    {
+        let side = if k % 2 == 0 { Side::Left } else { Side::Right };
+        let s = side.sign();
+        let n = (-s * f64::sin(angle), s * f64::cos(angle));
+        let ranges = cast_line(
+            (1.2, 0.0, 0.0),
+            n,
+            dist,
+            -core::f64::consts::PI,
+            inc,
+            360,
+            30.0,
+        );
+        let scan = Scan {
+            start: Radians::new(-core::f64::consts::PI).unwrap(),
+            increment: Radians::new(inc).unwrap(),
+            ranges: &ranges,
+            limits: limits(),
+        };
+        let outcome = detector.detect(&scan, side).unwrap();
+        let free = detect::<N, M>(&scan, &mount, side, &config).unwrap();
+        assert_eq!(outcome.verdict, free.verdict);
+        assert_eq!(outcome.fit, free.fit);
+        assert_eq!(outcome.usable_error(), free.usable_error());
+        assert_eq!(detector.chain().indices(), free.chain.indices());
+        assert_eq!(outcome.chain_points, free.chain.len());
+        assert_eq!(outcome.chain_end, free.chain.end());
+        assert_eq!(outcome.verdict, Verdict::Enter);
+    }
+    // A scan with more valid rays than the buffer: an error, and no chain
+    // from the previous scan is left behind.
+    let mut small = EdgeDetector::<8, M>::new(config, mount);
+    let good = [f64::INFINITY; 8];
+    let scan = Scan {
+        start: Radians::new(0.0).unwrap(),
+        increment: Radians::new(0.1).unwrap(),
+        ranges: &good,
+        limits: limits(),
+    };
+    small.detect(&scan, Side::Left).unwrap();
+    let many = [1.5; 20];
+    let scan = Scan {
+        start: Radians::new(0.0).unwrap(),
+        increment: Radians::new(0.1).unwrap(),
+        ranges: &many,
+        limits: limits(),
+    };
+    assert_eq!(
+        small.detect(&scan, Side::Left).unwrap_err().requirement,
+        "EDGE-SCAN"
+    );
+    assert!(small.chain().is_empty());
+    assert_eq!(small.chain().end(), ChainEnd::NoEdge);
 }
 
 #[test]

@@ -43,7 +43,9 @@ pub struct Chain<const M: usize> {
 }
 
 impl<const M: usize> Chain<M> {
-    const fn empty(end: ChainEnd) -> Self {
+    /// An empty chain, as before any detection.
+    #[must_use]
+    pub const fn empty(end: ChainEnd) -> Self {
         Self {
             indices: Vec::new(),
             points: Vec::new(),
@@ -51,6 +53,14 @@ impl<const M: usize> Chain<M> {
             length: 0.0,
             end,
         }
+    }
+
+    fn clear(&mut self, end: ChainEnd) {
+        self.indices.clear();
+        self.points.clear();
+        self.centers.clear();
+        self.length = 0.0;
+        self.end = end;
     }
 
     /// The chain's points, robot frame, in the order they were touched.
@@ -204,6 +214,19 @@ struct Candidate {
 /// that angle is below θ_max; the chain stops when its length reaches l_max,
 /// when the next contact is already a chain point, or when `M` points are held.
 /// Never panics; points are assumed within `MAX_COORDINATE` (checked by the callers).
+#[must_use]
+pub fn build_chain<const M: usize>(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+) -> Chain<M> {
+    let mut chain = Chain::empty(ChainEnd::NoEdge);
+    build_chain_into(points, side, config, &mut chain);
+    chain
+}
+
+/// [`build_chain`] into a caller's chain (cleared first), so that a
+/// detector reuses one buffer instead of returning a large value.
 //= spec/pierre2022.md#edge-chain-translate-first-point-by-translation
 //# The first chain point MUST be the point with the smallest translation
 //# contact t(q), and there MUST be no chain when that smallest t(q) exceeds
@@ -216,12 +239,13 @@ struct Candidate {
 //# The chain MUST stop when no point has a contact angle below θ_max, when
 //# its polyline length reaches l_max, when the next contact is a point
 //# already in the chain, or when its buffer is full.
-#[must_use]
-pub fn build_chain<const M: usize>(
+pub fn build_chain_into<const M: usize>(
     points: &[Point2<Robot>],
     side: Side,
     config: &EdgeConfig,
-) -> Chain<M> {
+    chain: &mut Chain<M>,
+) {
+    chain.clear(ChainEnd::NoEdge);
     let r = config.radius().get();
     let s = side.sign();
     let radius = config.radius();
@@ -247,14 +271,14 @@ pub fn build_chain<const M: usize>(
     }
     let (t0, i0) = match first {
         Some((t, _, i)) if t <= config.search_distance().get() => (t, i),
-        _ => return Chain::empty(ChainEnd::NoEdge),
+        _ => return,
     };
     let (Some(&p0), Ok(c0)) = (points.get(i0), Point2::new(0.0, s * t0)) else {
-        return Chain::empty(ChainEnd::NoEdge);
+        return;
     };
-    let mut chain = Chain::empty(ChainEnd::Capacity);
-    if push(&mut chain, i0, p0, c0).is_err() {
-        return chain;
+    if push(chain, i0, p0, c0).is_err() {
+        chain.end = ChainEnd::Capacity;
+        return;
     }
 
     // Only points of the side within l_max + 2r of the first pivot can be
@@ -280,6 +304,8 @@ pub fn build_chain<const M: usize>(
         }
     }
 
+    near.sort_unstable_by(|a, b| a.x.total_cmp(&b.x));
+
     // Rotation (EDGE-CHAIN-ROTATE) until a limit (EDGE-CHAIN-STOP).
     let theta_max = config.max_rotation().get();
     let limit = Limit {
@@ -291,7 +317,7 @@ pub fn build_chain<const M: usize>(
     loop {
         if chain.length >= config.max_chain_length().get() {
             chain.end = ChainEnd::LengthLimit;
-            return chain;
+            return;
         }
         let mut step = Step::new(pivot, center, s, r, &limit);
         if all {
@@ -301,12 +327,18 @@ pub fn build_chain<const M: usize>(
                 }
             }
         } else {
-            // The pivot's neighbours in scan order first: they usually touch
-            // first, which shrinks the search bound for the full pass.
+            // Candidates are sorted by x. The pivot's neighbours in x first:
+            // they usually touch first, which shrinks the bound. Then sweep
+            // outwards from the pivot in both directions, stopping where
+            // |x − mid_x| alone puts every further point outside the bound.
+            let px = pivot.x();
+            let start = near.partition_point(|n| n.x < px);
             let pos = near
+                .get(start..)
+                .unwrap_or(&[])
                 .iter()
                 .position(|n| n.index == pivot_index)
-                .unwrap_or(0);
+                .map_or(start, |k| start.saturating_add(k));
             let lo = pos.saturating_sub(SEEDS);
             let hi = pos.saturating_add(SEEDS).saturating_add(1).min(near.len());
             for n in near.get(lo..hi).unwrap_or(&[]) {
@@ -314,31 +346,43 @@ pub fn build_chain<const M: usize>(
                     step.consider(n.index, n.x, n.y);
                 }
             }
-            for n in &near {
+            let (below, above) = near.split_at(pos.min(near.len()));
+            for n in above {
+                let dx = n.x - step.mid.0;
+                if dx > 0.0 && dx * dx >= step.bound2 {
+                    break;
+                }
                 if n.index != pivot_index {
                     step.consider(n.index, n.x, n.y);
                 }
             }
+            for n in below.iter().rev() {
+                let dx = step.mid.0 - n.x;
+                if dx > 0.0 && dx * dx >= step.bound2 {
+                    break;
+                }
+                step.consider(n.index, n.x, n.y);
+            }
         }
         let Some(next) = step.best else {
             chain.end = ChainEnd::RotationLimit;
-            return chain;
+            return;
         };
         if chain.indices.contains(&next.index) {
             chain.end = ChainEnd::Closed;
-            return chain;
+            return;
         }
         let Some(&q) = points.get(next.index) else {
             chain.end = ChainEnd::RotationLimit;
-            return chain;
+            return;
         };
         let Some(c) = contact_center(pivot, q, s, r) else {
             chain.end = ChainEnd::RotationLimit;
-            return chain;
+            return;
         };
-        if push(&mut chain, next.index, q, c).is_err() {
+        if push(chain, next.index, q, c).is_err() {
             chain.end = ChainEnd::Capacity;
-            return chain;
+            return;
         }
         chain.length += libm::sqrt(next.d2);
         (pivot, pivot_index, center) = (q, next.index, c);
@@ -352,7 +396,7 @@ const CANDIDATES: usize = 512;
 /// How many scan-order neighbours on each side of the pivot are tried first.
 const SEEDS: usize = 2;
 
-/// A candidate point, copied out for a cache-friendly pass.
+/// A candidate point, copied out and sorted by x for a bounded sweep.
 struct Near {
     x: f64,
     y: f64,
@@ -465,6 +509,7 @@ impl Step {
     /// The full evaluation of a point that passed the distance bound. The
     /// angle is the one of [`rotation_contact`], computed without `acos`
     /// for entering points.
+    #[inline]
     fn evaluate(&mut self, i: usize, x: f64, y: f64) {
         let w = (x - self.pivot.0, y - self.pivot.1);
         let d2 = w.0 * w.0 + w.1 * w.1;

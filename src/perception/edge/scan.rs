@@ -82,7 +82,22 @@ pub struct ScanPoints<const N: usize> {
     dropped: usize,
 }
 
+impl<const N: usize> Default for ScanPoints<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<const N: usize> ScanPoints<N> {
+    /// No point yet.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            points: Vec::new(),
+            dropped: 0,
+        }
+    }
+
     /// The points, robot frame, in ray order.
     #[must_use]
     pub fn as_slice(&self) -> &[Point2<Robot>] {
@@ -107,6 +122,18 @@ impl<const N: usize> ScanPoints<N> {
 /// Errors with `EDGE-SCAN` when more than `N` rays are valid (the buffer is
 /// full) or when a point would lie farther than [`MAX_COORDINATE`] from the
 /// robot (a mount pose far off the robot).
+pub fn scan_to_points<const N: usize>(
+    scan: &Scan<'_>,
+    mount: &Transform2<Sensor, Robot>,
+) -> Result<ScanPoints<N>, Precondition> {
+    let mut out = ScanPoints::new();
+    scan_into(scan, mount, &mut out)?;
+    Ok(out)
+}
+
+/// [`scan_to_points`] into a caller's buffer (cleared first), so that a
+/// detector reuses one buffer instead of returning a large value. On error
+/// the buffer holds the points converted so far.
 //= spec/pierre2022.md#edge-scan-scan-to-robot-frame-points
 //# Each range MUST be converted into the point `range · (cos φ_k, sin φ_k)`
 //# of the sensor frame, with `φ_k = start + k · increment`, and then into
@@ -114,14 +141,13 @@ impl<const N: usize> ScanPoints<N> {
 //= spec/pierre2022.md#edge-scan-scan-to-robot-frame-points
 //# A range that is NaN, infinite, or outside the sensor's `[min, max]`
 //# interval MUST be dropped.
-pub fn scan_to_points<const N: usize>(
+pub fn scan_into<const N: usize>(
     scan: &Scan<'_>,
     mount: &Transform2<Sensor, Robot>,
-) -> Result<ScanPoints<N>, Precondition> {
-    let mut out = ScanPoints {
-        points: Vec::new(),
-        dropped: 0,
-    };
+    out: &mut ScanPoints<N>,
+) -> Result<(), Precondition> {
+    out.points.clear();
+    out.dropped = 0;
     let (step_cos, step_sin) = (
         libm::cos(scan.increment.get()),
         libm::sin(scan.increment.get()),
@@ -160,7 +186,7 @@ pub fn scan_to_points<const N: usize>(
         k_f += 1.0;
         since_anchor = since_anchor.saturating_add(1);
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Checks that every point is within [`MAX_COORDINATE`] of the robot (EDGE-SCAN).
