@@ -18,6 +18,7 @@ mod config;
 mod parabola;
 mod quality;
 mod scan;
+mod search;
 
 pub use chain::{
     build_chain, build_chain_into, rotation_contact, translation_contact, Chain, ChainEnd,
