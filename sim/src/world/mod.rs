@@ -4,6 +4,7 @@
 //! against: the ground's sideslip and the plants a wheel may run over.
 
 pub mod crops;
+pub mod grid;
 pub mod hedge;
 pub mod terrain;
 
