@@ -215,8 +215,9 @@ proptest! {
 
     //= spec/pierre2022.md#edge-detect-one-detection
     //= type=test
-    //# A detection MUST be Absent, with no fit, when the chain is empty or cannot
-    //# be fitted (fewer than 3 points or fewer than 3 distinct abscissae).
+    //# A detection MUST be Absent, with no fit, when the chain has fewer points
+    //# than the configured fewest or cannot be fitted (fewer than 3 distinct
+    //# abscissae).
     /// Any ranges at all, NaN and infinities included, and any scan angles:
     /// a sane detection or an EDGE-SCAN error, never a panic or a NaN.
     #[test]
