@@ -5,7 +5,7 @@
 //! One tick: [`scan_to_points`] turns a scan into robot-frame points
 //! (EDGE-SCAN); [`build_chain`] rolls a circle along the edge on the requested
 //! side with exact contacts (EDGE-CHAIN-*); a least-squares parabola is fitted
-//! to the chain (EDGE-PARABOLA); [`Parabola::tracking_error`] gives the
+//! to the chain (EDGE-PARABOLA); [`tracking_error`] gives the
 //! robot's errors to the line at the desired lateral distance (EDGE-ERRORS,
 //! EDGE-OFFSET); [`EdgeQuality`] grades the detection (EDGE-QUALITY).
 //! [`EdgeDetector`] does all of it per tick in buffers it owns (the form a
@@ -20,11 +20,12 @@ mod quality;
 mod scan;
 mod search;
 
+pub use crate::geometry::fit::ParabolaFit;
 pub use chain::{
     build_chain, build_chain_into, rotation_contact, translation_contact, Chain, ChainEnd,
 };
 pub use config::{EdgeConfig, EdgeParameters, Side};
-pub use parabola::Parabola;
+pub use parabola::tracking_error;
 pub use quality::EdgeQuality;
 pub use scan::{scan_into, scan_to_points, RangeLimits, Scan, ScanPoints, MAX_COORDINATE};
 
@@ -41,7 +42,7 @@ const ROBOT_X: f64 = 0.0;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EdgeFit {
     /// The parabola of the chain, robot frame (eqs. 8-10).
-    pub parabola: Parabola,
+    pub parabola: ParabolaFit,
     /// The measures of eq. 21.
     pub quality: EdgeQuality,
     /// The robot's error to the line at the desired lateral distance (eq. 11).
@@ -232,11 +233,9 @@ pub fn detect_points<const M: usize>(
 }
 
 fn fit_chain<const M: usize>(chain: &Chain<M>, side: Side, config: &EdgeConfig) -> Option<EdgeFit> {
-    let parabola = parabola::fit_parabola_chain(chain.points()).ok()?;
+    let parabola = parabola::fit_chain_parabola(chain.points()).ok()?;
     let quality = EdgeQuality::measure(chain.points(), chain.length(), &parabola).ok()?;
-    let error = parabola
-        .tracking_error(side, config.offset(), ROBOT_X)
-        .ok()?;
+    let error = tracking_error(&parabola, side, config.offset(), ROBOT_X).ok()?;
     Some(EdgeFit {
         parabola,
         quality,

@@ -2,150 +2,67 @@
 //! and the robot's errors to the line it follows at the desired lateral
 //! distance (eq. 11 as corrected; EDGE-ERRORS, EDGE-OFFSET).
 
-use nalgebra::{Matrix3, Vector3};
-
 use super::config::Side;
-use crate::error::{finite, Precondition};
+use crate::error::Precondition;
+use crate::geometry::fit::{fit_parabola, ParabolaFit};
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, Radians};
 
-/// The parabola `y = a x² + b x + c` of the robot frame (x forward, y left,
-/// metres): `a` in 1/m, `b` dimensionless, `c` in metres.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Parabola {
-    /// Coefficient of x², 1/m.
-    pub a: f64,
-    /// Coefficient of x (the slope at x = 0).
-    pub b: f64,
-    /// Value at x = 0, metres.
-    pub c: f64,
-}
-
-impl Parabola {
-    /// `a x² + b x + c`, metres.
-    #[must_use]
-    pub fn at(&self, x: f64) -> f64 {
-        (self.a * x + self.b) * x + self.c
-    }
-
-    /// The derivative `2 a x + b`.
-    #[must_use]
-    pub fn slope(&self, x: f64) -> f64 {
-        2.0 * self.a * x + self.b
-    }
-
-    /// The tracking error of the robot, at abscissa `x_r` of the robot frame
-    /// (0: the controlled point), to the line it must follow: the parabola's
-    /// tangent at `x_r` shifted by the desired lateral distance `offset`
-    /// towards the robot (eq. 11 as corrected; EDGE-ERRORS, EDGE-OFFSET).
-    ///
-    /// With `y_e = a x_r² + b x_r + c`, `φ = arctan(2 a x_r + b)` and `s = ±1`
-    /// for a left or right edge: `y = s·D − y_e cos φ` (positive when the
-    /// robot is left of the line) and `θ̃ = −φ` (robot heading minus line
-    /// heading). Curvature is reported as zero (the laws get a straight line).
-    /// Errors with `LIB-FINITE` if the result overflows.
-    //= spec/pierre2022.md#edge-errors-lateral-and-angular-errors-at-the-robot
-    //# The angular error MUST be θ̃ = −arctan(2 a x_r + b), the robot's heading
-    //# minus the heading of the parabola's tangent at x_r.
-    //= spec/pierre2022.md#edge-offset-desired-lateral-distance
-    //# The lateral error MUST be y = s·D − (a x_r² + b x_r + c) cos φ with
-    //# φ = arctan(2 a x_r + b), s = +1 for an edge on the left and −1 on the
-    //# right, so that y > 0 when the robot is left of the line it follows.
-    pub fn tracking_error(
-        &self,
-        side: Side,
-        offset: Meters,
-        x_r: f64,
-    ) -> Result<TrackingError, Precondition> {
-        let edge_y = self.at(x_r);
-        let phi = libm::atan(self.slope(x_r));
-        let y = side.sign() * offset.get() - edge_y * libm::cos(phi);
-        Ok(TrackingError::to_straight_line(
-            Meters::new(y)?,
-            Radians::new(-phi)?,
-        ))
-    }
+/// The tracking error of the robot, at abscissa `x_r` of the robot frame
+/// (0: the controlled point), to the line it must follow: the parabola's
+/// tangent at `x_r` shifted by the desired lateral distance `offset`
+/// towards the robot (eq. 11 as corrected; EDGE-ERRORS, EDGE-OFFSET).
+///
+/// With `y_e = a x_r² + b x_r + c`, `φ = arctan(2 a x_r + b)` and `s = ±1`
+/// for a left or right edge: `y = s·D − y_e cos φ` (positive when the
+/// robot is left of the line) and `θ̃ = −φ` (robot heading minus line
+/// heading). Curvature is reported as zero (the laws get a straight line).
+/// Errors with `LIB-FINITE` if the result overflows.
+//= spec/pierre2022.md#edge-errors-lateral-and-angular-errors-at-the-robot
+//# The angular error MUST be θ̃ = −arctan(2 a x_r + b), the robot's heading
+//# minus the heading of the parabola's tangent at x_r.
+//= spec/pierre2022.md#edge-offset-desired-lateral-distance
+//# The lateral error MUST be y = s·D − (a x_r² + b x_r + c) cos φ with
+//# φ = arctan(2 a x_r + b), s = +1 for an edge on the left and −1 on the
+//# right, so that y > 0 when the robot is left of the line it follows.
+pub fn tracking_error(
+    parabola: &ParabolaFit,
+    side: Side,
+    offset: Meters,
+    x_r: f64,
+) -> Result<TrackingError, Precondition> {
+    let edge_y = parabola.value_at(x_r)?;
+    let phi = libm::atan(parabola.slope_at(x_r)?);
+    let y = side.sign() * offset.get() - edge_y * libm::cos(phi);
+    Ok(TrackingError::to_straight_line(
+        Meters::new(y)?,
+        Radians::new(-phi)?,
+    ))
 }
 
 /// Least-squares parabola through the chain points, eqs. 8-10:
-/// `[a b c]ᵀ = (XᵀX)⁻¹ XᵀY` (EDGE-PARABOLA).
+/// `[a b c]ᵀ = (XᵀX)⁻¹ XᵀY`, solved by the library's shared fit
+/// ([`fit_parabola`], `spec/geometry.md` FIT-PARABOLA: centred and scaled
+/// abscissa, condition-checked normal equations).
 ///
-/// Solved on `u = (x − x̄)/h` (centred and scaled, h = max |x − x̄|) by a
-/// Cholesky factorisation of the 3×3 normal matrix, then expanded back to x,
-/// which is the same minimiser with a far better conditioned matrix.
-///
-/// Errors with `EDGE-PARABOLA` for fewer than 3 points, fewer than 3 distinct
-/// abscissae (a singular or near-singular normal matrix), and with
-/// `LIB-FINITE` on overflow.
-///
-/// The library's shared fit (`geometry::fit::fit_parabola`) is being written
-/// elsewhere; this private copy is to be replaced by it.
+/// Errors with `FIT-DEGENERATE` for fewer than 3 points or fewer than 3
+/// distinct abscissae, and with `LIB-FINITE` on overflow.
 //= spec/pierre2022.md#edge-parabola-least-squares-parabola-of-the-chain
 //# The parabola y = a x² + b x + c MUST be the least-squares fit of the
 //# chain points, [a b c]ᵀ = (XᵀX)⁻¹ XᵀY with rows (p_x², p_x, 1) of X.
 //= spec/pierre2022.md#edge-parabola-least-squares-parabola-of-the-chain
-//# Fewer than 3 points or a singular normal matrix MUST give an `EDGE-PARABOLA`
-//# error, not a parabola.
-pub(super) fn fit_parabola_chain(points: &[Point2<Robot>]) -> Result<Parabola, Precondition> {
-    let few = Precondition::new("EDGE-PARABOLA", "fewer than 3 points to fit");
-    let singular = Precondition::new("EDGE-PARABOLA", "fewer than 3 distinct abscissae");
-    if points.len() < 3 {
-        return Err(few);
-    }
-    let mut n = 0.0_f64;
-    let mut sum_x = 0.0_f64;
-    for p in points {
-        n += 1.0;
-        sum_x += p.x();
-    }
-    let mean = sum_x / n;
-    let half = points
-        .iter()
-        .fold(0.0_f64, |m, p| m.max(libm::fabs(p.x() - mean)));
-    if half.is_nan() || half <= 0.0 {
-        return Err(singular);
-    }
-    // Moments of u = (x − x̄)/h.
-    let (mut s1, mut s2, mut s3, mut s4) = (0.0, 0.0, 0.0, 0.0);
-    let (mut t0, mut t1, mut t2) = (0.0, 0.0, 0.0);
-    for p in points {
-        let u = (p.x() - mean) / half;
-        let u2 = u * u;
-        s1 += u;
-        s2 += u2;
-        s3 += u2 * u;
-        s4 += u2 * u2;
-        t0 += p.y();
-        t1 += u * p.y();
-        t2 += u2 * p.y();
-    }
-    let normal = Matrix3::new(s4, s3, s2, s3, s2, s1, s2, s1, n);
-    let rhs = Vector3::new(t2, t1, t0);
-    let chol = normal.cholesky().ok_or(singular)?;
-    // A pivot this small relative to n means the abscissae are (numerically)
-    // fewer than three distinct values.
-    let min_pivot = chol.l_dirty().diagonal().min();
-    if min_pivot.is_nan() || min_pivot * min_pivot <= 1e-12 * n {
-        return Err(singular);
-    }
-    let sol = chol.solve(&rhs);
-    let (ua, ub, uc) = (sol.x, sol.y, sol.z);
-    // y = ua u² + ub u + uc with u = (x − x̄)/h, expanded in x.
-    let a = ua / (half * half);
-    let b = ub / half - 2.0 * a * mean;
-    let c = a * mean * mean - ub * mean / half + uc;
-    Ok(Parabola {
-        a: finite(a, "parabola a overflows")?,
-        b: finite(b, "parabola b overflows")?,
-        c: finite(c, "parabola c overflows")?,
-    })
+//# Fewer than 3 points or a singular normal matrix MUST give an error, not a
+//# parabola.
+pub(super) fn fit_chain_parabola(points: &[Point2<Robot>]) -> Result<ParabolaFit, Precondition> {
+    fit_parabola(points.iter())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use core::f64::consts::FRAC_PI_6;
+    use nalgebra::{Matrix3, Vector3};
 
     fn pts(xy: &[(f64, f64)]) -> heapless::Vec<Point2<Robot>, 16> {
         xy.iter()
@@ -167,7 +84,7 @@ mod tests {
             (2.0, f(2.0)),
             (3.1, f(3.1)),
         ]);
-        let fit = fit_parabola_chain(&p).unwrap();
+        let fit = fit_chain_parabola(&p).unwrap();
         assert!((fit.a - 0.3).abs() < 1e-12 && (fit.b + 0.2).abs() < 1e-12);
         assert!((fit.c - 1.7).abs() < 1e-12);
         // Noisy points: compare with eq. 9 computed literally.
@@ -180,7 +97,7 @@ mod tests {
             (3.0, 2.1),
         ];
         let p = pts(&xy);
-        let fit = fit_parabola_chain(&p).unwrap();
+        let fit = fit_chain_parabola(&p).unwrap();
         let mut xtx = Matrix3::zeros();
         let mut xty = Vector3::zeros();
         for &(x, y) in &xy {
@@ -196,24 +113,24 @@ mod tests {
 
     //= spec/pierre2022.md#edge-parabola-least-squares-parabola-of-the-chain
     //= type=test
-    //# Fewer than 3 points or a singular normal matrix MUST give an `EDGE-PARABOLA`
-    //# error, not a parabola.
+    //# Fewer than 3 points or a singular normal matrix MUST give an error, not a
+    //# parabola.
     #[test]
     fn too_few_or_repeated_abscissae_are_refused() {
         let two = pts(&[(0.0, 1.0), (1.0, 2.0)]);
         assert_eq!(
-            fit_parabola_chain(&two).unwrap_err().requirement,
-            "EDGE-PARABOLA"
+            fit_chain_parabola(&two).unwrap_err().requirement,
+            "FIT-DEGENERATE"
         );
         let same_x = pts(&[(1.0, 1.0), (1.0, 2.0), (1.0, 3.0), (1.0, 4.0)]);
         assert_eq!(
-            fit_parabola_chain(&same_x).unwrap_err().requirement,
-            "EDGE-PARABOLA"
+            fit_chain_parabola(&same_x).unwrap_err().requirement,
+            "FIT-DEGENERATE"
         );
         let two_x = pts(&[(1.0, 1.0), (1.0, 2.0), (2.0, 3.0), (2.0, 4.0)]);
         assert_eq!(
-            fit_parabola_chain(&two_x).unwrap_err().requirement,
-            "EDGE-PARABOLA"
+            fit_chain_parabola(&two_x).unwrap_err().requirement,
+            "FIT-DEGENERATE"
         );
     }
 
@@ -231,31 +148,31 @@ mod tests {
         let d = Meters::new(1.4).unwrap();
         // A wall on the left, 1 m away (perpendicular), heading 30° to the left
         // of the robot: y_e = 1 / cos 30°, slope tan 30°.
-        let wall = Parabola {
+        let wall = ParabolaFit {
             a: 0.0,
             b: libm::tan(FRAC_PI_6),
             c: 1.0 / libm::cos(FRAC_PI_6),
         };
-        let e = wall.tracking_error(Side::Left, d, 0.0).unwrap();
+        let e = tracking_error(&wall, Side::Left, d, 0.0).unwrap();
         // Too close to the wall: the line to follow is 0.4 m to the robot's right.
         assert!((e.y.get() - 0.4).abs() < 1e-12);
         assert!((e.angular_deviation.get() + FRAC_PI_6).abs() < 1e-12);
         // The same wall on the right, mirrored.
-        let right = Parabola {
+        let right = ParabolaFit {
             a: 0.0,
             b: -wall.b,
             c: -wall.c,
         };
-        let e = right.tracking_error(Side::Right, d, 0.0).unwrap();
+        let e = tracking_error(&right, Side::Right, d, 0.0).unwrap();
         assert!((e.y.get() + 0.4).abs() < 1e-12);
         assert!((e.angular_deviation.get() - FRAC_PI_6).abs() < 1e-12);
         // Eq. 11 at x_r ≠ 0 uses the derivative 2 a x_r + b, not 2 a x_r² + b.
-        let p = Parabola {
+        let p = ParabolaFit {
             a: 0.25,
             b: 0.0,
             c: 2.0,
         };
-        let e = p.tracking_error(Side::Left, d, 2.0).unwrap();
+        let e = tracking_error(&p, Side::Left, d, 2.0).unwrap();
         let phi = libm::atan(1.0);
         assert!((e.angular_deviation.get() + phi).abs() < 1e-12);
         assert!((e.y.get() - (1.4 - 3.0 * libm::cos(phi))).abs() < 1e-12);

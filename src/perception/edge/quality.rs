@@ -3,8 +3,8 @@
 //! standard deviation of the parabola, graded into a [`Verdict`].
 
 use super::config::EdgeConfig;
-use super::parabola::Parabola;
 use crate::error::Precondition;
+use crate::geometry::fit::ParabolaFit;
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::Meters;
 use crate::perception::Verdict;
@@ -34,14 +34,14 @@ impl EdgeQuality {
     pub fn measure(
         chain_points: &[Point2<Robot>],
         length: Meters,
-        parabola: &Parabola,
+        parabola: &ParabolaFit,
     ) -> Result<Self, Precondition> {
         let mut n = 0.0_f64;
         let mut sum_sq = 0.0_f64;
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for p in chain_points {
-            let residual = p.y() - parabola.at(p.x());
+            let residual = parabola.residual(*p)?;
             sum_sq += residual * residual;
             n += 1.0;
             lo = lo.min(p.y());
@@ -97,7 +97,7 @@ mod tests {
     //# and σ_path (exit), smaller being better.
     #[test]
     fn measures_and_verdicts_by_hand() {
-        let line = Parabola {
+        let line = ParabolaFit {
             a: 0.0,
             b: 0.0,
             c: 1.0,
