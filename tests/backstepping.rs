@@ -417,6 +417,39 @@ proptest! {
     }
 }
 
+proptest! {
+    /// The world-frame form moves O at heading + β_R, and on a straight path it
+    /// reproduces the first row of eq. 1: (dy/dt) / (ds/dt) = tan θ̃₂.
+    //= spec/pierre2022.md#pt-model-extended-kinematic-model-with-sideslip
+    //= type=test
+    //# The velocity of the controlled point O MUST point at the heading plus β_R.
+    #[test]
+    fn world_velocity_points_at_heading_plus_rear_sideslip(
+        heading in -3.1..3.1f64,
+        (beta_f, beta_r) in (-0.3..0.3f64, -0.3..0.3f64),
+        steering in -0.5..0.5f64,
+        v in 0.1..5.0f64,
+    ) {
+        let pose = fieldguide::Pose2::<fieldguide::World>::new(1.0, 2.0, heading).unwrap();
+        let slip = Sideslip::new(beta_f, beta_r).unwrap();
+        let wheelbase = Wheelbase::new(2.0).unwrap();
+        let steer = Radians::new(steering).unwrap();
+        let rates = fieldguide::model::bicycle::world_rates(&pose, speed(v), steer, slip, wheelbase)
+            .unwrap();
+        let course = rates.y_dot.atan2(rates.x_dot);
+        let wanted = fieldguide::geometry::units::wrap_angle(heading + beta_r);
+        prop_assert!(fieldguide::geometry::units::wrap_angle(course - wanted).abs() < 1e-12);
+        prop_assert!((rates.x_dot.hypot(rates.y_dot) - v).abs() < 1e-12);
+        prop_assert!((rates.heading_dot - yaw_rate(speed(v), steer, slip, wheelbase).unwrap().get())
+            .abs() < 1e-15);
+        // Path = the world x axis: s grows with x, y with y, θ̃ = heading.
+        prop_assume!((heading + beta_r).cos() > 0.05);
+        let rates_s = frenet_rates(&tracking(0.3, heading, 0.0, 0.0), speed(v), steer, slip, wheelbase)
+            .unwrap();
+        prop_assert!((rates.y_dot / rates.x_dot - rates_s.y).abs() < 1e-9 * (1.0 + rates_s.y.abs()));
+    }
+}
+
 /// The same, on inputs near the domain's edges (tiny 1 − y c, θ̃₂ near ±π/2,
 /// huge gains), where an unchecked division would overflow.
 #[test]

@@ -21,7 +21,16 @@ use fieldguide::control::backstepping::{
 use fieldguide::control::Gains;
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::model::bicycle::{world_rates, Sideslip, Wheelbase};
-use fieldguide::{Meters, MetersPerSecond, Point2, Pose2, TrackingError, World};
+use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, RangeLimits, Scan as EdgeScan, Side};
+use fieldguide::perception::furrow::scan::Scan as FurrowScan;
+use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
+use fieldguide::supervisor::switching::{
+    BehaviourConfig, Input, Report, Switching, SwitchingConfig,
+};
+use fieldguide::{
+    Meters, MetersPerSecond, Odom, Point2, Pose2, Radians, Robot, Seconds, Sensor, TrackingError,
+    Transform2, World,
+};
 
 struct Counting;
 
@@ -127,4 +136,95 @@ fn path_tracking_tick_does_not_allocate() {
         count, 0,
         "the per-tick path tracking calls allocated {count} times"
     );
+}
+
+/// The detectors and the switching machine, one tick after another, on a
+/// wall 1.5 m to the left (horizontal scan) and a ridged field (inclined scan).
+//= spec/library.md#lib-no-alloc-no-allocation
+//= type=test
+//# The core MUST be `no_std` and MUST NOT allocate on the heap: buffers have a
+//# fixed capacity, and a full buffer is a returned value, not a panic.
+#[test]
+fn detectors_and_switching_do_not_allocate() {
+    // Horizontal scan: 360 rays over a full turn, a wall along y = 1.5 m.
+    let step = 2.0 * std::f64::consts::PI / 360.0;
+    let wall: Vec<f64> = (0..360)
+        .map(|k| {
+            let angle = -std::f64::consts::PI + step * f64::from(k);
+            if angle.sin() > 0.05 {
+                1.5 / angle.sin()
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    // Inclined scan: 360 rays over ±0.6 rad, bumps every 20 rays.
+    let furrow_step = 1.2 / 360.0;
+    let ridges: Vec<f64> = (0..360)
+        .map(|k| if (k / 8) % 5 == 0 { 2.4 } else { 2.7 })
+        .collect();
+    let mut edge = EdgeDetector::<512, 128>::new(
+        EdgeConfig::pierre2022().unwrap(),
+        Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
+    );
+    let mut furrow =
+        FurrowDetector::<512, 25>::new(FurrowConfig::new(&FurrowParams::table2()).unwrap())
+            .unwrap();
+    let mut switching = Switching::<2>::new(
+        SwitchingConfig::new(
+            Seconds::new(0.01).unwrap(),
+            [
+                BehaviourConfig::edge_following().unwrap(),
+                BehaviourConfig::furrow_pursuing().unwrap(),
+            ],
+            Seconds::new(0.5).unwrap(),
+            Some(Seconds::new(1.0).unwrap()),
+        )
+        .unwrap(),
+    );
+    let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
+
+    let mut modes = Vec::with_capacity(100);
+    let count = allocations_in(|| {
+        for tick in 0..100u32 {
+            let horizontal = EdgeScan {
+                start: Radians::new(-std::f64::consts::PI).unwrap(),
+                increment: Radians::new(step).unwrap(),
+                ranges: &wall,
+                limits,
+            };
+            let edge_outcome = edge.detect(&horizontal, Side::Left).unwrap();
+            let inclined = FurrowScan {
+                ranges: &ridges,
+                angle_min: Radians::new(-0.6).unwrap(),
+                angle_increment: Radians::new(furrow_step).unwrap(),
+            };
+            let odom = Pose2::<Odom>::new(0.007 * f64::from(tick), 0.0, 0.0).unwrap();
+            let furrow_outcome = furrow.step(&inclined, &odom).unwrap();
+            let output = switching.step(&Input {
+                behaviours: [
+                    Report::consistent(edge_outcome.verdict),
+                    Report::consistent(furrow_outcome.verdict),
+                ],
+                localisation_valid: true,
+            });
+            modes.push(output.mode);
+        }
+    });
+    assert_eq!(modes.len(), 100);
+    assert_eq!(count, 0, "detectors and switching allocated {count} times");
+    // The wall was seen: the edge detector's verdicts drove the machine.
+    assert!(edge
+        .detect(
+            &EdgeScan {
+                start: Radians::new(-std::f64::consts::PI).unwrap(),
+                increment: Radians::new(step).unwrap(),
+                ranges: &wall,
+                limits,
+            },
+            Side::Left
+        )
+        .unwrap()
+        .verdict
+        .estimate_is_valid());
 }

@@ -22,6 +22,9 @@ pub enum Inversion {
     /// Gives e' = k_θ e exactly (up to θ̃_obj'). The library's default.
     #[default]
     Exact,
+    //= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
+    //# The law as printed in eq. 6, without the factor cos θ̃₂ / cos β_R, SHOULD be
+    //# available as an explicit option for comparison with the paper.
     /// The law as printed: tan(δ + β_F) = tan β_R + L [k_θ e + c] / (1 − y c(s)),
     /// which drops the factor cos θ̃₂ / cos β_R (equal to 1 for small angles).
     Printed,

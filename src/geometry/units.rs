@@ -108,6 +108,26 @@ impl Radians {
     }
 }
 
+/// Distinct meanings are distinct types: none of these compiles.
+///
+/// ```compile_fail
+/// let _: fieldguide::Meters = fieldguide::Radians::ZERO;
+/// ```
+///
+/// ```compile_fail
+/// let _: fieldguide::Curvature = fieldguide::Meters::ZERO;
+/// ```
+///
+/// ```compile_fail
+/// let _: fieldguide::MetersPerSecond = fieldguide::RadiansPerSecond::ZERO;
+/// ```
+//= spec/library.md#lib-units-typed-quantities
+//= type=test
+//# Quantities that mean different things MUST have different types (`Meters`,
+//# `Radians`, `Curvature`, `MetersPerSecond`, `RadiansPerSecond`, `Seconds`).
+#[cfg(doctest)]
+pub struct DistinctUnitTypes;
+
 #[cfg(test)]
 #[allow(clippy::float_cmp)] // exact values are the point of these checks
 mod tests {

@@ -1,3 +1,3 @@
-//! Supervision: the switching between behaviours.
+//! Supervision: the switching between behaviours (Pierre 2022, section 3).
 
 pub mod switching;

@@ -1,1 +1,326 @@
-//! Horizontal 2D LiDAR ray-cast against hedges, walls and posts.
+//! A horizontal 2D LiDAR ray-cast through the world's grid against hedges,
+//! walls and posts (Pierre 2022, section 2.2, Fig. 3): mount pose on the
+//! robot, field of view, ray count, range limits and Gaussian range noise.
+//!
+//! Its scans are what `fieldguide::perception::edge` consumes: the ranges
+//! here, the geometry by [`HorizontalLidar::scan_view`], the mount by
+//! [`HorizontalLidar::mount`].
+
+use core::f64::consts::TAU;
+
+use fieldguide::perception::edge::{RangeLimits, Scan};
+use fieldguide::{Meters, Pose2, Precondition, Radians, Robot, Sensor, Transform2, World};
+use rand::Rng;
+use rand_distr::{Distribution, Normal};
+
+use crate::world::grid::Grid;
+use crate::world::hedge::InvalidSpec;
+
+/// The parameters of a horizontal LiDAR.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HorizontalLidarSpec {
+    /// Mount position on the robot (robot frame: x forward, y left), metres.
+    pub mount_xy: [f64; 2],
+    /// Mount heading on the robot, radians (0: facing forward).
+    pub mount_heading: f64,
+    /// Field of view, radians, in (0, 2π], centred on the sensor's x axis.
+    pub field_of_view: f64,
+    /// Number of rays, ≥ 2.
+    pub rays: usize,
+    /// Smallest valid range, metres, ≥ 0.
+    pub range_min: f64,
+    /// Largest valid range, metres, > `range_min`.
+    pub range_max: f64,
+    /// Standard deviation of the Gaussian range noise, metres, ≥ 0.
+    pub noise_sigma: f64,
+}
+
+impl HorizontalLidarSpec {
+    /// A 360-ray, 360° LiDAR 1.2 m ahead of the rear axle, 0.05-30 m,
+    /// σ = 0.01 m: the simulator's default for edge following.
+    pub const DEFAULT: Self = Self {
+        mount_xy: [1.2, 0.0],
+        mount_heading: 0.0,
+        field_of_view: TAU,
+        rays: 360,
+        range_min: 0.05,
+        range_max: 30.0,
+        noise_sigma: 0.01,
+    };
+}
+
+/// A validated horizontal LiDAR.
+#[derive(Debug, Clone, Copy)]
+pub struct HorizontalLidar {
+    spec: HorizontalLidarSpec,
+    mount: Transform2<Sensor, Robot>,
+    limits: RangeLimits,
+    start: f64,
+    increment: f64,
+    noise: Option<Normal<f64>>,
+}
+
+fn invalid(field: &'static str, reason: &'static str) -> InvalidSpec {
+    InvalidSpec { field, reason }
+}
+
+impl HorizontalLidar {
+    /// Checks `spec` and prepares the ray geometry. A full circle of view
+    /// spaces the rays by `fov / rays` (no ray twice); a partial one by
+    /// `fov / (rays − 1)` (both edges of the view included).
+    pub fn new(spec: HorizontalLidarSpec) -> Result<Self, InvalidSpec> {
+        let mount = Transform2::new(spec.mount_xy[0], spec.mount_xy[1], spec.mount_heading)
+            .map_err(|_| invalid("mount", "must be finite"))?;
+        if !(spec.field_of_view > 0.0 && spec.field_of_view <= TAU) {
+            return Err(invalid("field_of_view", "must be in (0, 2 pi]"));
+        }
+        if spec.rays < 2 {
+            return Err(invalid("rays", "must be at least 2"));
+        }
+        let limits = match (Meters::new(spec.range_min), Meters::new(spec.range_max)) {
+            (Ok(lo), Ok(hi)) => RangeLimits::new(lo, hi)
+                .map_err(|_| invalid("range_max", "need 0 <= range_min < range_max <= 1e6 m"))?,
+            _ => return Err(invalid("range_min", "range limits must be finite")),
+        };
+        let noise = if spec.noise_sigma == 0.0 {
+            None
+        } else if spec.noise_sigma > 0.0 && spec.noise_sigma.is_finite() {
+            Normal::new(0.0, spec.noise_sigma).ok()
+        } else {
+            return Err(invalid("noise_sigma", "must be finite and >= 0"));
+        };
+        let full_circle = spec.field_of_view >= TAU - 1e-12;
+        let gaps = if full_circle {
+            spec.rays as f64
+        } else {
+            (spec.rays - 1) as f64
+        };
+        Ok(Self {
+            spec,
+            mount,
+            limits,
+            start: -0.5 * spec.field_of_view,
+            increment: spec.field_of_view / gaps,
+            noise,
+        })
+    }
+
+    /// The parameters.
+    #[must_use]
+    pub fn spec(&self) -> &HorizontalLidarSpec {
+        &self.spec
+    }
+
+    /// The mount pose as the core takes it (sensor → robot).
+    #[must_use]
+    pub fn mount(&self) -> Transform2<Sensor, Robot> {
+        self.mount
+    }
+
+    /// The angle of ray `k` in the sensor frame, radians.
+    #[must_use]
+    pub fn ray_angle(&self, k: usize) -> f64 {
+        self.start + k as f64 * self.increment
+    }
+
+    /// Ray-casts one scan from a robot at `pose` into `out` (cleared first,
+    /// one range per ray, metres): the true distance to the nearest obstacle
+    /// plus Gaussian noise, or +∞ when nothing is hit within `range_max`.
+    pub fn scan(
+        &self,
+        pose: &Pose2<World>,
+        world: &Grid,
+        rng: &mut impl Rng,
+        out: &mut Vec<f64>,
+    ) -> Result<(), Precondition> {
+        out.clear();
+        let to_world = pose.body_to_frame::<Robot>();
+        let sensor_pose = to_world.apply_pose(Pose2::<Robot> {
+            position: self.mount.apply(fieldguide::Point2::origin())?,
+            heading: self.mount.angle(),
+        })?;
+        let origin = [sensor_pose.position.x(), sensor_pose.position.y()];
+        let heading = sensor_pose.heading.get();
+        for k in 0..self.spec.rays {
+            let a = heading + self.ray_angle(k);
+            let dir = [a.cos(), a.sin()];
+            let range = match world.cast(origin, dir, self.spec.range_max) {
+                Some(t) => t + self.noise.map_or(0.0, |n| n.sample(rng)),
+                None => f64::INFINITY,
+            };
+            out.push(range);
+        }
+        Ok(())
+    }
+
+    /// The scan geometry for the core's edge detector, over `ranges`.
+    pub fn scan_view<'a>(&self, ranges: &'a [f64]) -> Result<Scan<'a>, Precondition> {
+        Ok(Scan {
+            start: Radians::new(self.start)?,
+            increment: Radians::new(self.increment)?,
+            ranges,
+            limits: self.limits,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::world::hedge::{HedgeSpec, Obstacles};
+    use fieldguide::perception::edge::{detect, EdgeConfig, Side};
+    use fieldguide::Verdict;
+    use rand::rngs::StdRng;
+    use rand::SeedableRng;
+
+    fn wall_world(y: f64) -> Grid {
+        let mut o = Obstacles::default();
+        o.add_wall([-50.0, y], [50.0, y]).unwrap();
+        Grid::new(o, 0.5).unwrap()
+    }
+
+    #[test]
+    fn a_ray_hits_a_wall_at_its_known_distance() {
+        let lidar = HorizontalLidar::new(HorizontalLidarSpec {
+            noise_sigma: 0.0,
+            ..HorizontalLidarSpec::DEFAULT
+        })
+        .unwrap();
+        // Robot at (3, 0) heading north; wall 5 m north: the ray straight
+        // ahead (k = 180, angle 0) sees it 5 − 1.2 m away.
+        let pose = Pose2::<World>::new(3.0, 0.0, core::f64::consts::FRAC_PI_2).unwrap();
+        let mut ranges = Vec::new();
+        lidar
+            .scan(
+                &pose,
+                &wall_world(5.0),
+                &mut StdRng::seed_from_u64(0),
+                &mut ranges,
+            )
+            .unwrap();
+        assert_eq!(ranges.len(), 360);
+        assert!(lidar.ray_angle(180).abs() < 1e-12);
+        assert!((ranges[180] - 3.8).abs() < 1e-9);
+        // Rays pointing away from the wall see nothing.
+        assert!(ranges[0].is_infinite());
+        // A 45° ray to the left: 3.8 / cos 45°.
+        let k45 = 180 + 45;
+        assert!((ranges[k45] - 3.8 * std::f64::consts::SQRT_2).abs() < 1e-9);
+    }
+
+    #[test]
+    fn noise_has_the_requested_spread_and_limits_are_checked() {
+        let lidar = HorizontalLidar::new(HorizontalLidarSpec::DEFAULT).unwrap();
+        let pose = Pose2::<World>::new(0.0, 0.0, core::f64::consts::FRAC_PI_2).unwrap();
+        let grid = wall_world(5.0);
+        let mut rng = StdRng::seed_from_u64(3);
+        let mut ranges = Vec::new();
+        let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
+        for _ in 0..400 {
+            lidar.scan(&pose, &grid, &mut rng, &mut ranges).unwrap();
+            let e = ranges[180] - 3.8;
+            n += 1.0;
+            sum += e;
+            sum2 += e * e;
+        }
+        let mean = sum / n;
+        let sd = (sum2 / n - mean * mean).sqrt();
+        assert!(mean.abs() < 0.003, "mean {mean}");
+        assert!((sd - 0.01).abs() < 0.002, "sd {sd}");
+        for (spec, field) in [
+            (
+                HorizontalLidarSpec {
+                    rays: 1,
+                    ..HorizontalLidarSpec::DEFAULT
+                },
+                "rays",
+            ),
+            (
+                HorizontalLidarSpec {
+                    field_of_view: 7.0,
+                    ..HorizontalLidarSpec::DEFAULT
+                },
+                "field_of_view",
+            ),
+            (
+                HorizontalLidarSpec {
+                    range_max: 0.01,
+                    ..HorizontalLidarSpec::DEFAULT
+                },
+                "range_max",
+            ),
+            (
+                HorizontalLidarSpec {
+                    noise_sigma: -1.0,
+                    ..HorizontalLidarSpec::DEFAULT
+                },
+                "noise_sigma",
+            ),
+            (
+                HorizontalLidarSpec {
+                    mount_heading: f64::NAN,
+                    ..HorizontalLidarSpec::DEFAULT
+                },
+                "mount",
+            ),
+        ] {
+            assert_eq!(HorizontalLidar::new(spec).unwrap_err().field, field);
+        }
+        // A partial view includes both edges.
+        let half = HorizontalLidar::new(HorizontalLidarSpec {
+            field_of_view: core::f64::consts::PI,
+            rays: 181,
+            ..HorizontalLidarSpec::DEFAULT
+        })
+        .unwrap();
+        assert!((half.ray_angle(0) + core::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert!((half.ray_angle(180) - core::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_core_detects_a_simulated_hedge_at_its_distance() {
+        // A ragged hedge whose near face is 1.4 m to the left of the robot,
+        // parallel to it: the detected lateral error is about D − 1.4 = 0.
+        let mut rng = StdRng::seed_from_u64(11);
+        let mut o = Obstacles::default();
+        o.add_hedge(
+            &HedgeSpec {
+                start: [-10.0, 1.4 + 0.5],
+                heading: 0.0,
+                length: 30.0,
+                thickness: 1.0,
+                raggedness: 0.03,
+                vertex_spacing: 0.25,
+                gaps: vec![],
+            },
+            &mut rng,
+        )
+        .unwrap();
+        let grid = Grid::new(o, 0.5).unwrap();
+        let lidar = HorizontalLidar::new(HorizontalLidarSpec::DEFAULT).unwrap();
+        let pose = Pose2::<World>::new(0.0, 0.0, 0.0).unwrap();
+        let mut ranges = Vec::new();
+        lidar.scan(&pose, &grid, &mut rng, &mut ranges).unwrap();
+        let config = EdgeConfig::pierre2022().unwrap();
+        let det = detect::<512, 256>(
+            &lidar.scan_view(&ranges).unwrap(),
+            &lidar.mount(),
+            Side::Left,
+            &config,
+        )
+        .unwrap();
+        assert_eq!(det.verdict, Verdict::Enter);
+        let e = det.usable_error().unwrap();
+        assert!(e.y.get().abs() < 0.05, "{e:?}");
+        assert!(e.angular_deviation.get().abs() < 0.05, "{e:?}");
+        // Asked on the right, where there is nothing: Absent.
+        let right = detect::<512, 256>(
+            &lidar.scan_view(&ranges).unwrap(),
+            &lidar.mount(),
+            Side::Right,
+            &config,
+        )
+        .unwrap();
+        assert_eq!(right.verdict, Verdict::Absent);
+    }
+}

@@ -1,1 +1,478 @@
-//! Hedges, walls and post rows.
+//! Hedges, walls and post rows: the structures a horizontal LiDAR sees and
+//! edge following follows (Pierre 2022, section 2.2 and experiment 1).
+//!
+//! A hedge is a strip of vegetation with ragged faces, cut by gaps; a wall is
+//! a segment; a post row is a line of circles. Everything is generated in the
+//! world frame (x east, y north, metres) from a spec and a caller's random
+//! number generator, so a seed reproduces a world.
+
+use rand::Rng;
+
+/// A straight obstacle boundary from `a` to `b`, world frame, metres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// One end.
+    pub a: [f64; 2],
+    /// The other end.
+    pub b: [f64; 2],
+}
+
+/// A round obstacle (a post, a trunk), world frame, metres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    /// Centre.
+    pub center: [f64; 2],
+    /// Radius, > 0.
+    pub radius: f64,
+}
+
+/// A spec that cannot be built: the field and the reason.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InvalidSpec {
+    /// The offending field.
+    pub field: &'static str,
+    /// Why it is refused.
+    pub reason: &'static str,
+}
+
+impl core::fmt::Display for InvalidSpec {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "invalid `{}`: {}", self.field, self.reason)
+    }
+}
+
+impl std::error::Error for InvalidSpec {}
+
+fn check(ok: bool, field: &'static str, reason: &'static str) -> Result<(), InvalidSpec> {
+    if ok {
+        Ok(())
+    } else {
+        Err(InvalidSpec { field, reason })
+    }
+}
+
+/// A straight hedge: a strip of `thickness` metres along a centre line from
+/// `start`, heading `heading`, `length` metres long, whose two faces are
+/// polylines with a vertex every `vertex_spacing` metres, each vertex moved
+/// across the hedge by a uniform draw in ±`raggedness`. `gaps` are
+/// intervals `[from, to]` of along-hedge distance with no hedge.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HedgeSpec {
+    /// Start of the centre line, world frame, metres.
+    pub start: [f64; 2],
+    /// Direction of the centre line, radians, counter-clockwise from east.
+    pub heading: f64,
+    /// Length along the centre line, metres, > 0.
+    pub length: f64,
+    /// Distance between the two nominal faces, metres, > 0.
+    pub thickness: f64,
+    /// Largest displacement of a face vertex across the hedge, metres,
+    /// in [0, thickness / 2).
+    pub raggedness: f64,
+    /// Along-hedge distance between face vertices, metres, > 0.
+    pub vertex_spacing: f64,
+    /// Along-hedge intervals `[from, to]` without hedge, metres.
+    pub gaps: Vec<[f64; 2]>,
+}
+
+/// Which face of a hedge, looking along its heading.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Face {
+    /// The face on the left of the heading.
+    Left,
+    /// The face on the right of the heading.
+    Right,
+}
+
+impl HedgeSpec {
+    /// Checks the spec: finite values, positive length, thickness and vertex
+    /// spacing, raggedness in [0, thickness/2), gaps ordered within the hedge.
+    pub fn validate(&self) -> Result<(), InvalidSpec> {
+        check(
+            self.start.iter().all(|v| v.is_finite()),
+            "start",
+            "must be finite",
+        )?;
+        check(self.heading.is_finite(), "heading", "must be finite")?;
+        check(
+            self.length.is_finite() && self.length > 0.0,
+            "length",
+            "must be finite and > 0",
+        )?;
+        check(
+            self.thickness.is_finite() && self.thickness > 0.0,
+            "thickness",
+            "must be finite and > 0",
+        )?;
+        check(
+            self.raggedness >= 0.0 && self.raggedness < 0.5 * self.thickness,
+            "raggedness",
+            "must be in [0, thickness / 2)",
+        )?;
+        check(
+            self.vertex_spacing.is_finite() && self.vertex_spacing > 0.0,
+            "vertex_spacing",
+            "must be finite and > 0",
+        )?;
+        check(
+            self.gaps
+                .iter()
+                .all(|g| g[0].is_finite() && g[1].is_finite() && g[0] < g[1]),
+            "gaps",
+            "each gap must be [from, to] with from < to",
+        )
+    }
+
+    /// The world point at along-hedge distance `along` and signed offset
+    /// `across` (positive to the left of the heading) from the centre line.
+    #[must_use]
+    pub fn point(&self, along: f64, across: f64) -> [f64; 2] {
+        let (c, s) = (self.heading.cos(), self.heading.sin());
+        [
+            self.start[0] + along * c - across * s,
+            self.start[1] + along * s + across * c,
+        ]
+    }
+
+    /// The nominal (not ragged) line of a face: its two ends, gaps ignored.
+    /// This is the ground truth an edge follower's offset is measured from.
+    #[must_use]
+    pub fn nominal_face(&self, face: Face) -> Segment {
+        let across = match face {
+            Face::Left => 0.5 * self.thickness,
+            Face::Right => -0.5 * self.thickness,
+        };
+        Segment {
+            a: self.point(0.0, across),
+            b: self.point(self.length, across),
+        }
+    }
+
+    /// The along-hedge intervals that carry hedge: `[0, length]` minus the gaps.
+    #[must_use]
+    pub fn pieces(&self) -> Vec<[f64; 2]> {
+        let mut gaps: Vec<[f64; 2]> = self.gaps.clone();
+        gaps.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        let mut pieces = Vec::new();
+        let mut from = 0.0;
+        for g in gaps {
+            let to = g[0].min(self.length);
+            if to > from {
+                pieces.push([from, to]);
+            }
+            from = from.max(g[1]);
+        }
+        if self.length > from {
+            pieces.push([from, self.length]);
+        }
+        pieces
+    }
+
+    /// The outline segments of the hedge: for each piece between gaps, its
+    /// two ragged faces and its two end caps (a closed polygon).
+    pub fn generate(&self, rng: &mut impl Rng) -> Result<Vec<Segment>, InvalidSpec> {
+        self.validate()?;
+        let half = 0.5 * self.thickness;
+        let mut out = Vec::new();
+        for [a0, a1] in self.pieces() {
+            let mut left = Vec::new();
+            let mut right = Vec::new();
+            let mut along = a0;
+            loop {
+                let jitter_l = self.jitter(rng);
+                let jitter_r = self.jitter(rng);
+                left.push(self.point(along, half + jitter_l));
+                right.push(self.point(along, -half + jitter_r));
+                if along >= a1 {
+                    break;
+                }
+                along = (along + self.vertex_spacing).min(a1);
+            }
+            for face in [&left, &right] {
+                out.extend(face.windows(2).filter_map(|w| match w {
+                    [a, b] => Some(Segment { a: *a, b: *b }),
+                    _ => None,
+                }));
+            }
+            if let (Some(l0), Some(r0), Some(l1), Some(r1)) =
+                (left.first(), right.first(), left.last(), right.last())
+            {
+                out.push(Segment { a: *l0, b: *r0 });
+                out.push(Segment { a: *l1, b: *r1 });
+            }
+        }
+        Ok(out)
+    }
+
+    fn jitter(&self, rng: &mut impl Rng) -> f64 {
+        if self.raggedness > 0.0 {
+            rng.random_range(-self.raggedness..=self.raggedness)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// A row of posts: `count` circles of `radius` along a line from `start`
+/// heading `heading`, `spacing` metres apart, each moved along the row by a
+/// uniform draw in ±`spacing_noise`, and each missing with probability
+/// `missing`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PostRowSpec {
+    /// Centre of the first post, world frame, metres.
+    pub start: [f64; 2],
+    /// Direction of the row, radians.
+    pub heading: f64,
+    /// Number of post positions.
+    pub count: usize,
+    /// Distance between post positions, metres, > 0.
+    pub spacing: f64,
+    /// Post radius, metres, > 0.
+    pub radius: f64,
+    /// Largest displacement of a post along the row, metres, in [0, spacing / 2).
+    pub spacing_noise: f64,
+    /// Probability that a post is missing, in [0, 1].
+    pub missing: f64,
+}
+
+impl PostRowSpec {
+    /// The posts, after checking the spec.
+    pub fn generate(&self, rng: &mut impl Rng) -> Result<Vec<Circle>, InvalidSpec> {
+        check(
+            self.start.iter().all(|v| v.is_finite()) && self.heading.is_finite(),
+            "start",
+            "start and heading must be finite",
+        )?;
+        check(
+            self.spacing.is_finite() && self.spacing > 0.0,
+            "spacing",
+            "must be finite and > 0",
+        )?;
+        check(
+            self.radius.is_finite() && self.radius > 0.0,
+            "radius",
+            "must be finite and > 0",
+        )?;
+        check(
+            self.spacing_noise >= 0.0 && self.spacing_noise < 0.5 * self.spacing,
+            "spacing_noise",
+            "must be in [0, spacing / 2)",
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.missing),
+            "missing",
+            "must be a probability in [0, 1]",
+        )?;
+        let (c, s) = (self.heading.cos(), self.heading.sin());
+        let mut out = Vec::with_capacity(self.count);
+        let mut along = 0.0;
+        for _ in 0..self.count {
+            let shift = if self.spacing_noise > 0.0 {
+                rng.random_range(-self.spacing_noise..=self.spacing_noise)
+            } else {
+                0.0
+            };
+            let present = self.missing <= 0.0 || !rng.random_bool(self.missing);
+            if present {
+                let a = along + shift;
+                out.push(Circle {
+                    center: [self.start[0] + a * c, self.start[1] + a * s],
+                    radius: self.radius,
+                });
+            }
+            along += self.spacing;
+        }
+        Ok(out)
+    }
+}
+
+/// Everything a horizontal LiDAR can hit.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Obstacles {
+    /// Straight boundaries: hedge outlines and walls.
+    pub segments: Vec<Segment>,
+    /// Posts and trunks.
+    pub circles: Vec<Circle>,
+}
+
+impl Obstacles {
+    /// Adds a wall from `a` to `b`.
+    pub fn add_wall(&mut self, a: [f64; 2], b: [f64; 2]) -> Result<(), InvalidSpec> {
+        check(
+            a.iter().chain(&b).all(|v| v.is_finite()),
+            "wall",
+            "ends must be finite",
+        )?;
+        self.segments.push(Segment { a, b });
+        Ok(())
+    }
+
+    /// Adds a generated hedge.
+    pub fn add_hedge(&mut self, spec: &HedgeSpec, rng: &mut impl Rng) -> Result<(), InvalidSpec> {
+        let segments = spec.generate(rng)?;
+        self.segments.extend(segments);
+        Ok(())
+    }
+
+    /// Adds a generated post row.
+    pub fn add_post_row(
+        &mut self,
+        spec: &PostRowSpec,
+        rng: &mut impl Rng,
+    ) -> Result<(), InvalidSpec> {
+        let posts = spec.generate(rng)?;
+        self.circles.extend(posts);
+        Ok(())
+    }
+
+    /// The distance along the ray from `origin` in the unit direction `dir`
+    /// to the nearest obstacle, if one is hit within `max_range`: every
+    /// obstacle is tested (the reference the spatial index is checked against).
+    #[must_use]
+    pub fn cast_brute(&self, origin: [f64; 2], dir: [f64; 2], max_range: f64) -> Option<f64> {
+        let seg = self
+            .segments
+            .iter()
+            .filter_map(|s| ray_segment(origin, dir, s));
+        let circ = self
+            .circles
+            .iter()
+            .filter_map(|c| ray_circle(origin, dir, c));
+        seg.chain(circ)
+            .filter(|t| *t <= max_range)
+            .min_by(f64::total_cmp)
+    }
+}
+
+/// Distance `t ≥ 0` along the ray `origin + t dir` (unit `dir`) to segment
+/// `s`, if the ray crosses it. A ray along a segment (parallel) misses it.
+#[must_use]
+pub fn ray_segment(origin: [f64; 2], dir: [f64; 2], s: &Segment) -> Option<f64> {
+    let e = [s.b[0] - s.a[0], s.b[1] - s.a[1]];
+    let denom = dir[0] * e[1] - dir[1] * e[0];
+    if denom.abs() < 1e-15 {
+        return None;
+    }
+    let w = [s.a[0] - origin[0], s.a[1] - origin[1]];
+    let t = (w[0] * e[1] - w[1] * e[0]) / denom;
+    let u = (w[0] * dir[1] - w[1] * dir[0]) / denom;
+    (t >= 0.0 && (0.0..=1.0).contains(&u)).then_some(t)
+}
+
+/// Distance `t ≥ 0` along the ray (unit `dir`) to the first crossing of
+/// circle `c`'s boundary, if any.
+#[must_use]
+pub fn ray_circle(origin: [f64; 2], dir: [f64; 2], c: &Circle) -> Option<f64> {
+    let m = [origin[0] - c.center[0], origin[1] - c.center[1]];
+    let b = m[0] * dir[0] + m[1] * dir[1];
+    let cc = m[0] * m[0] + m[1] * m[1] - c.radius * c.radius;
+    let disc = b * b - cc;
+    if disc < 0.0 {
+        return None;
+    }
+    let root = disc.sqrt();
+    let (t0, t1) = (-b - root, -b + root);
+    if t0 >= 0.0 {
+        Some(t0)
+    } else if t1 >= 0.0 {
+        Some(t1)
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::rngs::StdRng;
+    use rand::SeedableRng;
+
+    fn hedge() -> HedgeSpec {
+        HedgeSpec {
+            start: [0.0, 2.0],
+            heading: 0.0,
+            length: 20.0,
+            thickness: 1.0,
+            raggedness: 0.1,
+            vertex_spacing: 0.2,
+            gaps: vec![[8.0, 10.0]],
+        }
+    }
+
+    #[test]
+    fn a_gap_gives_no_return() {
+        let mut obstacles = Obstacles::default();
+        obstacles
+            .add_hedge(&hedge(), &mut StdRng::seed_from_u64(1))
+            .unwrap();
+        // Looking north (across the hedge) from the robot's side.
+        let through_gap = obstacles.cast_brute([9.0, 0.0], [0.0, 1.0], 30.0);
+        assert_eq!(through_gap, None);
+        let at_hedge = obstacles.cast_brute([5.0, 0.0], [0.0, 1.0], 30.0).unwrap();
+        // The near face is at y = 1.5 ± 0.1.
+        assert!((at_hedge - 1.5).abs() <= 0.1 + 1e-12);
+        // Two pieces, each a closed outline.
+        assert_eq!(hedge().pieces(), vec![[0.0, 8.0], [10.0, 20.0]]);
+    }
+
+    #[test]
+    fn same_seed_same_hedge_and_bad_specs_name_their_field() {
+        let a = hedge().generate(&mut StdRng::seed_from_u64(7)).unwrap();
+        let b = hedge().generate(&mut StdRng::seed_from_u64(7)).unwrap();
+        let c = hedge().generate(&mut StdRng::seed_from_u64(8)).unwrap();
+        assert_eq!(a, b);
+        assert_ne!(a, c);
+        let bad = HedgeSpec {
+            raggedness: 0.6,
+            ..hedge()
+        };
+        assert_eq!(
+            bad.generate(&mut StdRng::seed_from_u64(1))
+                .unwrap_err()
+                .field,
+            "raggedness"
+        );
+        let posts = PostRowSpec {
+            start: [0.0, 0.0],
+            heading: 0.0,
+            count: 10,
+            spacing: 1.0,
+            radius: 0.05,
+            spacing_noise: 0.0,
+            missing: 2.0,
+        };
+        assert_eq!(
+            posts
+                .generate(&mut StdRng::seed_from_u64(1))
+                .unwrap_err()
+                .field,
+            "missing"
+        );
+    }
+
+    #[test]
+    fn rays_hit_walls_and_posts_at_known_distances() {
+        let mut obstacles = Obstacles::default();
+        obstacles.add_wall([5.0, -10.0], [5.0, 10.0]).unwrap();
+        obstacles
+            .add_post_row(
+                &PostRowSpec {
+                    start: [2.0, 3.0],
+                    heading: 0.0,
+                    count: 3,
+                    spacing: 1.0,
+                    radius: 0.1,
+                    spacing_noise: 0.0,
+                    missing: 0.0,
+                },
+                &mut StdRng::seed_from_u64(0),
+            )
+            .unwrap();
+        let t = obstacles.cast_brute([0.0, 0.0], [1.0, 0.0], 30.0).unwrap();
+        assert!((t - 5.0).abs() < 1e-12);
+        let t = obstacles.cast_brute([3.0, 0.0], [0.0, 1.0], 30.0).unwrap();
+        assert!((t - 2.9).abs() < 1e-12);
+        // Beyond the range: nothing.
+        assert_eq!(obstacles.cast_brute([0.0, 0.0], [1.0, 0.0], 4.0), None);
+    }
+}

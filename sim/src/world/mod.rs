@@ -5,6 +5,7 @@
 //! run over, and the plots whose true centre lines score furrow pursuing.
 
 pub mod crops;
+pub mod grid;
 pub mod hedge;
 pub mod terrain;
 

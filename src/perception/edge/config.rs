@@ -1,0 +1,345 @@
+//! The edge detector's configuration, validated once (requirement EDGE-CONFIG),
+//! and the side of the robot on which an edge is searched.
+
+use core::f64::consts::{FRAC_PI_2, TAU};
+
+use crate::error::Precondition;
+use crate::geometry::units::{Meters, Radians};
+use crate::perception::{Better, QualityThresholds};
+
+/// The side of the robot where the chain is built (Pierre 2022, Algorithm 1, `s`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// The edge is on the robot's left (y > 0); the circle rolls on its right.
+    Left,
+    /// The edge is on the robot's right (y < 0); the circle rolls on its left.
+    Right,
+}
+
+impl Side {
+    /// `+1` for the left, `−1` for the right: the direction of the translation
+    /// along the robot's y axis and the sense of the rotation (counter-clockwise
+    /// for the left).
+    #[must_use]
+    pub const fn sign(self) -> f64 {
+        match self {
+            Self::Left => 1.0,
+            Self::Right => -1.0,
+        }
+    }
+
+    /// The other side.
+    #[must_use]
+    pub const fn mirrored(self) -> Self {
+        match self {
+            Self::Left => Self::Right,
+            Self::Right => Self::Left,
+        }
+    }
+}
+
+/// The raw parameters of the edge detector, before validation
+/// (Pierre 2022, Table 1 and section 3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeParameters {
+    /// Radius r of the rolling circle, metres (Table 1: 1 m).
+    pub radius: f64,
+    /// Largest rotation θ_max about one pivot, radians, in (0, 2π) (not in Table 1).
+    pub max_rotation: f64,
+    /// Chain length l_max at which the chain stops, metres (Table 1: 3 m).
+    pub max_chain_length: f64,
+    /// Largest translation of the circle when searching the first point,
+    /// metres (Table 1: "maximal distance to search an edge", 3 m).
+    pub search_distance: f64,
+    /// Desired lateral distance D between the robot and the edge, metres (Table 1: 1.4 m).
+    pub offset: f64,
+    /// Chain length l_min the chain must exceed to be followed, metres (eq. 21; not in Table 1).
+    pub min_chain_length: f64,
+    /// Spread w_max of the chain along the robot's y axis that it must stay
+    /// below, metres (eq. 21; not in Table 1).
+    pub max_width: f64,
+    /// Fewest chain points for a detection, ≥ 4: a parabola has 3
+    /// coefficients, so the residual of eq. 21 needs more points to mean
+    /// anything (not in the paper).
+    pub min_points: usize,
+    /// σ_edge: residual standard deviation below which edge following may be
+    /// entered, metres (Table 1: 0.15 m).
+    pub sigma_enter: f64,
+    /// σ_path: residual standard deviation above which edge following is
+    /// left, metres (Table 1: 0.5 m).
+    pub sigma_exit: f64,
+}
+
+impl EdgeParameters {
+    /// Table 1 of Pierre 2022 for edge following, completed with the library's
+    /// choices for the values the paper does not give: θ_max = π/2,
+    /// l_min = 1.5 m, w_max = 1 m, 5 points at least (`spec/pierre2022.md`,
+    /// EDGE-CONFIG).
+    pub const PIERRE2022: Self = Self {
+        radius: 1.0,
+        max_rotation: FRAC_PI_2,
+        max_chain_length: 3.0,
+        search_distance: 3.0,
+        offset: 1.4,
+        min_chain_length: 1.5,
+        max_width: 1.0,
+        min_points: 5,
+        sigma_enter: 0.15,
+        sigma_exit: 0.5,
+    };
+}
+
+/// A validated edge-detector configuration (EDGE-CONFIG).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeConfig {
+    radius: f64,
+    max_rotation: f64,
+    max_chain_length: f64,
+    search_distance: f64,
+    offset: f64,
+    min_chain_length: f64,
+    max_width: f64,
+    min_points: usize,
+    thresholds: QualityThresholds,
+}
+
+fn require(ok: bool, violated: &'static str) -> Result<(), Precondition> {
+    if ok {
+        Ok(())
+    } else {
+        Err(Precondition::new("EDGE-CONFIG", violated))
+    }
+}
+
+impl EdgeConfig {
+    /// Validates `p` once, so that detection never re-checks it.
+    ///
+    /// Errors with `EDGE-CONFIG` naming the failed condition (every value
+    /// finite; `r > 0`; `0 < θ_max < 2π`; `l_max > 0`; search distance > 0;
+    /// `D ≥ 0`; `0 ≤ l_min < l_max`; `w_max > 0`; at least 4 points;
+    /// `σ_edge > 0`), and with
+    /// `SW-THRESHOLDS` when `σ_edge < σ_path` does not hold.
+    //= spec/pierre2022.md#edge-config-detector-configuration
+    //# A configuration MUST be refused at construction, with an error naming
+    //# the requirement, unless r > 0, 0 < θ_max < 2π, l_max > 0, the search
+    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0, the fewest
+    //# chain points is at least 4 and 0 < σ_edge < σ_path, every value being
+    //# finite.
+    pub fn new(p: &EdgeParameters) -> Result<Self, Precondition> {
+        let values = [
+            p.radius,
+            p.max_rotation,
+            p.max_chain_length,
+            p.search_distance,
+            p.offset,
+            p.min_chain_length,
+            p.max_width,
+            p.sigma_enter,
+            p.sigma_exit,
+        ];
+        require(
+            values.iter().all(|v| v.is_finite()),
+            "every parameter must be finite",
+        )?;
+        require(p.radius > 0.0, "radius r must be > 0")?;
+        require(
+            p.max_rotation > 0.0 && p.max_rotation < TAU,
+            "theta_max must be in (0, 2 pi)",
+        )?;
+        require(p.max_chain_length > 0.0, "l_max must be > 0")?;
+        require(p.search_distance > 0.0, "search distance must be > 0")?;
+        require(p.offset >= 0.0, "desired lateral distance D must be >= 0")?;
+        require(
+            p.min_chain_length >= 0.0 && p.min_chain_length < p.max_chain_length,
+            "l_min must be in [0, l_max)",
+        )?;
+        require(p.max_width > 0.0, "w_max must be > 0")?;
+        require(p.min_points >= 4, "the fewest chain points must be >= 4")?;
+        require(p.sigma_enter > 0.0, "sigma_edge must be > 0")?;
+        let thresholds = QualityThresholds::new(p.sigma_enter, p.sigma_exit, Better::Lower)?;
+        Ok(Self {
+            radius: p.radius,
+            max_rotation: p.max_rotation,
+            max_chain_length: p.max_chain_length,
+            search_distance: p.search_distance,
+            offset: p.offset,
+            min_chain_length: p.min_chain_length,
+            max_width: p.max_width,
+            min_points: p.min_points,
+            thresholds,
+        })
+    }
+
+    /// The configuration of [`EdgeParameters::PIERRE2022`].
+    pub fn pierre2022() -> Result<Self, Precondition> {
+        Self::new(&EdgeParameters::PIERRE2022)
+    }
+
+    /// Radius r of the rolling circle.
+    #[must_use]
+    pub const fn radius(&self) -> Meters {
+        Meters(self.radius)
+    }
+
+    /// Largest rotation θ_max about one pivot.
+    #[must_use]
+    pub const fn max_rotation(&self) -> Radians {
+        Radians(self.max_rotation)
+    }
+
+    /// Chain length l_max.
+    #[must_use]
+    pub const fn max_chain_length(&self) -> Meters {
+        Meters(self.max_chain_length)
+    }
+
+    /// Largest translation of the circle when searching the first point.
+    #[must_use]
+    pub const fn search_distance(&self) -> Meters {
+        Meters(self.search_distance)
+    }
+
+    /// Desired lateral distance D to the edge.
+    #[must_use]
+    pub const fn offset(&self) -> Meters {
+        Meters(self.offset)
+    }
+
+    /// Chain length l_min to exceed.
+    #[must_use]
+    pub const fn min_chain_length(&self) -> Meters {
+        Meters(self.min_chain_length)
+    }
+
+    /// Chain spread w_max along y to stay below.
+    #[must_use]
+    pub const fn max_width(&self) -> Meters {
+        Meters(self.max_width)
+    }
+
+    /// Fewest chain points for a detection.
+    #[must_use]
+    pub const fn min_points(&self) -> usize {
+        self.min_points
+    }
+
+    /// σ_edge / σ_path hysteresis on the residual standard deviation.
+    #[must_use]
+    pub const fn thresholds(&self) -> QualityThresholds {
+        self.thresholds
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    //= spec/pierre2022.md#edge-config-detector-configuration
+    //= type=test
+    //# A configuration MUST be refused at construction, with an error naming
+    //# the requirement, unless r > 0, 0 < θ_max < 2π, l_max > 0, the search
+    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0, the fewest
+    //# chain points is at least 4 and 0 < σ_edge < σ_path, every value being
+    //# finite.
+    #[test]
+    fn each_bad_parameter_is_refused_with_its_requirement() {
+        let good = EdgeParameters::PIERRE2022;
+        assert!(EdgeConfig::new(&good).is_ok());
+        let bad: [(EdgeParameters, &str); 13] = [
+            (
+                EdgeParameters {
+                    min_points: 3,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    radius: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    radius: f64::NAN,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_rotation: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_rotation: TAU,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_chain_length: -1.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    search_distance: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    offset: -0.1,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    min_chain_length: 3.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_width: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    sigma_enter: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    sigma_exit: 0.15,
+                    ..good
+                },
+                "SW-THRESHOLDS",
+            ),
+            (
+                EdgeParameters {
+                    sigma_exit: f64::INFINITY,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+        ];
+        for (p, id) in bad {
+            assert_eq!(EdgeConfig::new(&p).unwrap_err().requirement, id, "{p:?}");
+        }
+    }
+}

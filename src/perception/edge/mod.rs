@@ -1,0 +1,244 @@
+//! Edge following perception on a horizontal 2D LiDAR (Pierre 2022,
+//! section 2.2, Algorithm 1, eqs. 8-11, and eq. 21 with Table 1;
+//! `spec/pierre2022.md`, section "Edge following").
+//!
+//! One tick: [`scan_to_points`] turns a scan into robot-frame points
+//! (EDGE-SCAN); [`build_chain`] rolls a circle along the edge on the requested
+//! side with exact contacts (EDGE-CHAIN-*); a least-squares parabola is fitted
+//! to the chain (EDGE-PARABOLA); [`tracking_error`] gives the
+//! robot's errors to the line at the desired lateral distance (EDGE-ERRORS,
+//! EDGE-OFFSET); [`EdgeQuality`] grades the detection (EDGE-QUALITY).
+//! [`EdgeDetector`] does all of it per tick in buffers it owns (the form a
+//! vehicle stack uses); [`detect`] and [`detect_points`] do the same and
+//! return the chain by value. Nothing allocates and nothing panics; invalid
+//! data gives [`Verdict::Absent`] or a [`Precondition`] error.
+
+mod chain;
+mod config;
+mod parabola;
+mod quality;
+mod scan;
+mod search;
+
+pub use crate::geometry::fit::ParabolaFit;
+pub use chain::{
+    build_chain, build_chain_into, rotation_contact, translation_contact, Chain, ChainEnd,
+};
+pub use config::{EdgeConfig, EdgeParameters, Side};
+pub use parabola::tracking_error;
+pub use quality::EdgeQuality;
+pub use scan::{scan_into, scan_to_points, RangeLimits, Scan, ScanPoints, MAX_COORDINATE};
+
+use crate::error::Precondition;
+use crate::geometry::frame::{Point2, Robot, Sensor, Transform2};
+use crate::geometry::tracking::TrackingError;
+use crate::perception::Verdict;
+
+/// The robot's abscissa in its own frame, x_r of eq. 11: the controlled point
+/// O is the robot frame's origin.
+const ROBOT_X: f64 = 0.0;
+
+/// The parabola, its quality and the robot's errors, when the chain could be fitted.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeFit {
+    /// The parabola of the chain, robot frame (eqs. 8-10).
+    pub parabola: ParabolaFit,
+    /// The measures of eq. 21.
+    pub quality: EdgeQuality,
+    /// The robot's error to the line at the desired lateral distance (eq. 11).
+    pub error: TrackingError,
+}
+
+/// What one detection concludes, without the chain: a small `Copy` value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeOutcome {
+    /// The side searched.
+    pub side: Side,
+    /// The fit of the chain; `None` when the verdict is `Absent`.
+    pub fit: Option<EdgeFit>,
+    /// Enter / Hold / Exit from eq. 21, or Absent when there is no fit.
+    pub verdict: Verdict,
+    /// Why the chain stopped.
+    pub chain_end: ChainEnd,
+    /// Number of chain points.
+    pub chain_points: usize,
+}
+
+impl EdgeOutcome {
+    /// The error to command from, only when the verdict allows it (Enter or
+    /// Hold): a rejected or missing detection never yields a command.
+    #[must_use]
+    pub fn usable_error(&self) -> Option<TrackingError> {
+        if self.verdict.estimate_is_valid() {
+            self.fit.map(|f| f.error)
+        } else {
+            None
+        }
+    }
+}
+
+/// An edge detector with its buffers: up to `N` scan points and `M` chain
+/// points, reused every tick (Pierre 2022, section 2.2; EDGE-DETECT).
+#[derive(Debug, Clone)]
+pub struct EdgeDetector<const N: usize, const M: usize> {
+    config: EdgeConfig,
+    mount: Transform2<Sensor, Robot>,
+    points: ScanPoints<N>,
+    chain: Chain<M>,
+}
+
+impl<const N: usize, const M: usize> EdgeDetector<N, M> {
+    /// A detector with a validated configuration and the LiDAR's mount pose
+    /// (sensor → robot).
+    #[must_use]
+    pub const fn new(config: EdgeConfig, mount: Transform2<Sensor, Robot>) -> Self {
+        Self {
+            config,
+            mount,
+            points: ScanPoints::new(),
+            chain: Chain::empty(ChainEnd::NoEdge),
+        }
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub const fn config(&self) -> &EdgeConfig {
+        &self.config
+    }
+
+    /// Detects the edge on `side` in `scan`. The points and the chain stay
+    /// in the detector ([`Self::points`], [`Self::chain`]) until the next call.
+    ///
+    /// Errors with `EDGE-SCAN` when more than `N` rays are valid or a point
+    /// lies beyond [`MAX_COORDINATE`]; the chain is then empty.
+    pub fn detect(&mut self, scan: &Scan<'_>, side: Side) -> Result<EdgeOutcome, Precondition> {
+        if let Err(e) = scan::scan_into(scan, &self.mount, &mut self.points) {
+            build_chain_into(&[], side, &self.config, &mut self.chain);
+            return Err(e);
+        }
+        Ok(evaluate(
+            self.points.as_slice(),
+            side,
+            &self.config,
+            &mut self.chain,
+        ))
+    }
+
+    /// The robot-frame points of the last scan.
+    #[must_use]
+    pub fn points(&self) -> &[Point2<Robot>] {
+        self.points.as_slice()
+    }
+
+    /// The chain of the last detection.
+    #[must_use]
+    pub const fn chain(&self) -> &Chain<M> {
+        &self.chain
+    }
+}
+
+/// Chain, fit and grade `points` (already checked to be bounded) into `chain`.
+fn evaluate<const M: usize>(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    chain: &mut Chain<M>,
+) -> EdgeOutcome {
+    build_chain_into(points, side, config, chain);
+    let fit = if chain.len() >= config.min_points() {
+        fit_chain(chain, side, config)
+    } else {
+        None
+    };
+    let verdict = match &fit {
+        Some(f) => f.quality.grade(config),
+        None => Verdict::Absent,
+    };
+    EdgeOutcome {
+        side,
+        fit,
+        verdict,
+        chain_end: chain.end(),
+        chain_points: chain.len(),
+    }
+}
+
+/// The result of one edge detection: the chain, the fit when there is one,
+/// and the verdict for the switching machine.
+#[derive(Debug, Clone)]
+pub struct EdgeDetection<const M: usize> {
+    /// The side searched.
+    pub side: Side,
+    /// The chain of Algorithm 1.
+    pub chain: Chain<M>,
+    /// The fit of the chain; `None` when the verdict is `Absent`.
+    pub fit: Option<EdgeFit>,
+    /// Enter / Hold / Exit from eq. 21, or Absent when there is no fit.
+    pub verdict: Verdict,
+}
+
+impl<const M: usize> EdgeDetection<M> {
+    /// The error to command from, only when the verdict allows it (Enter or
+    /// Hold): a rejected or missing detection never yields a command.
+    #[must_use]
+    pub fn usable_error(&self) -> Option<TrackingError> {
+        if self.verdict.estimate_is_valid() {
+            self.fit.map(|f| f.error)
+        } else {
+            None
+        }
+    }
+}
+
+/// Detects the edge on `side` in a scan taken by a LiDAR mounted at `mount`
+/// (sensor → robot), holding at most `N` valid points and `M` chain points.
+///
+/// Errors with `EDGE-SCAN` when more than `N` rays are valid or a point lies
+/// beyond [`MAX_COORDINATE`]. An empty scan, a scan of invalid ranges or
+/// nothing on `side` gives `Ok` with [`Verdict::Absent`].
+pub fn detect<const N: usize, const M: usize>(
+    scan: &Scan<'_>,
+    mount: &Transform2<Sensor, Robot>,
+    side: Side,
+    config: &EdgeConfig,
+) -> Result<EdgeDetection<M>, Precondition> {
+    let points = scan_to_points::<N>(scan, mount)?;
+    detect_points(points.as_slice(), side, config)
+}
+
+/// Detects the edge on `side` among robot-frame `points` (EDGE-DETECT).
+///
+/// Errors with `EDGE-SCAN` when a point lies beyond [`MAX_COORDINATE`].
+//= spec/pierre2022.md#edge-detect-one-detection
+//# A detection MUST be Absent, with no fit, when the chain has fewer points
+//# than the configured fewest or cannot be fitted (fewer than 3 distinct
+//# abscissae).
+//= spec/pierre2022.md#edge-detect-one-detection
+//# A tracking error MUST be offered for commanding only when the verdict is
+//# Enter or Hold.
+pub fn detect_points<const M: usize>(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+) -> Result<EdgeDetection<M>, Precondition> {
+    scan::check_bounded(points)?;
+    let mut chain = Chain::empty(ChainEnd::NoEdge);
+    let outcome = evaluate(points, side, config, &mut chain);
+    Ok(EdgeDetection {
+        side,
+        chain,
+        fit: outcome.fit,
+        verdict: outcome.verdict,
+    })
+}
+
+fn fit_chain<const M: usize>(chain: &Chain<M>, side: Side, config: &EdgeConfig) -> Option<EdgeFit> {
+    let parabola = parabola::fit_chain_parabola(chain.points()).ok()?;
+    let quality = EdgeQuality::measure(chain.points(), chain.length(), &parabola).ok()?;
+    let error = tracking_error(&parabola, side, config.offset(), ROBOT_X).ok()?;
+    Some(EdgeFit {
+        parabola,
+        quality,
+        error,
+    })
+}

@@ -1,0 +1,378 @@
+//! Properties of the exact rolling-circle chain (Pierre 2022, Algorithm 1;
+//! `spec/pierre2022.md`, EDGE-CHAIN-TRANSLATE, EDGE-CHAIN-ROTATE,
+//! EDGE-CHAIN-STOP), against the paper's stepped version as a reference.
+#![allow(
+    clippy::arithmetic_side_effects,
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::float_cmp,
+    clippy::panic
+)]
+
+mod edge_support;
+
+use edge_support::{hedge, pt, stepped_chain, wall};
+use fieldguide::perception::edge::{
+    build_chain, rotation_contact, translation_contact, Chain, ChainEnd, EdgeConfig,
+    EdgeParameters, Side,
+};
+use fieldguide::{Point2, Robot};
+use proptest::prelude::*;
+
+const M: usize = 128;
+
+fn config() -> EdgeConfig {
+    EdgeConfig::pierre2022().unwrap()
+}
+
+fn side() -> impl Strategy<Value = Side> {
+    prop_oneof![Just(Side::Left), Just(Side::Right)]
+}
+
+/// A ragged hedge: 5..60 points, along-hedge abscissae in [−2, 6] m, jitter
+/// ±`j` around a line 0.6..2.8 m away, heading within ±0.5 rad.
+fn ragged(j: f64) -> impl Strategy<Value = (Side, Vec<Point2<Robot>>)> {
+    (
+        side(),
+        0.6..2.8f64,
+        -0.5..0.5f64,
+        prop::collection::vec((-2.0..6.0f64, -1.0..1.0f64), 5..60),
+    )
+        .prop_map(move |(s, d, a, xj)| {
+            let (xs, js): (Vec<f64>, Vec<f64>) = xj.into_iter().map(|(x, u)| (x, u * j)).unzip();
+            (s, hedge(s, d, a, &xs, &js))
+        })
+}
+
+/// The checks every chain must pass, whatever the input.
+fn check_invariants(points: &[Point2<Robot>], side: Side, config: &EdgeConfig, chain: &Chain<M>) {
+    let r = config.radius().get();
+    let s = side.sign();
+    assert_eq!(chain.points().len(), chain.indices().len());
+    assert_eq!(chain.points().len(), chain.centers().len());
+    assert!(chain.len() <= M);
+    // Every chain point is a scan point of the requested side, taken once.
+    for (k, (&i, p)) in chain.indices().iter().zip(chain.points()).enumerate() {
+        assert_eq!(points[i], *p);
+        assert!(s * p.y() > 0.0);
+        assert!(!chain.indices()[..k].contains(&i));
+    }
+    // Each circle position touches its point(s) and holds no point strictly inside.
+    for (k, c) in chain.centers().iter().enumerate() {
+        let tol = 1e-9 * (1.0 + c.x().abs() + c.y().abs());
+        assert!((c.distance_to(chain.points()[k]) - r).abs() < tol);
+        if k > 0 {
+            assert!((c.distance_to(chain.points()[k - 1]) - r).abs() < tol);
+        }
+        for q in points.iter().filter(|q| s * q.y() > 0.0) {
+            assert!(
+                c.distance_to(*q) >= r - tol,
+                "point {q:?} inside circle {k} at {c:?}"
+            );
+        }
+    }
+    // Links are shorter than 2r; the length is their sum and is bounded.
+    let mut length = 0.0;
+    for w in chain.points().windows(2) {
+        let d = w[0].distance_to(w[1]);
+        assert!(d > 0.0 && d < 2.0 * r);
+        length += d;
+    }
+    assert!((chain.length().get() - length).abs() < 1e-9);
+    let l_max = config.max_chain_length().get();
+    assert!(chain.length().get() < l_max + 2.0 * r);
+    match chain.end() {
+        ChainEnd::NoEdge => assert!(chain.is_empty()),
+        ChainEnd::LengthLimit => assert!(chain.length().get() >= l_max),
+        ChainEnd::Capacity => assert_eq!(chain.len(), M),
+        ChainEnd::RotationLimit | ChainEnd::Closed => {
+            assert!(chain.length().get() < l_max && !chain.is_empty())
+        }
+    }
+}
+
+//= spec/pierre2022.md#edge-chain-translate-first-point-by-translation
+//= type=test
+//# The first chain point MUST be the point with the smallest translation
+//# contact t(q), and there MUST be no chain when that smallest t(q) exceeds
+//# the search distance.
+//= spec/pierre2022.md#edge-chain-rotate-next-point-by-rotation
+//= type=test
+//# Each next chain point MUST be the point with the smallest contact angle
+//# about the current pivot, and the circle MUST move to the position where it
+//# touches both the pivot and that point.
+/// Each contact is the minimum of the closed-form contacts over all points.
+fn check_minimal_contacts(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    chain: &Chain<M>,
+) {
+    let r = config.radius();
+    let first = points
+        .iter()
+        .filter_map(|q| translation_contact(*q, side, r).map(|t| t.get()))
+        .fold(f64::INFINITY, f64::min);
+    if chain.is_empty() {
+        assert!(first.is_infinite() || first > config.search_distance().get());
+        return;
+    }
+    let t0 = translation_contact(chain.points()[0], side, r)
+        .unwrap()
+        .get();
+    assert_eq!(t0, first);
+    for k in 1..chain.len() {
+        let (p, c) = (chain.points()[k - 1], chain.centers()[k - 1]);
+        let theta = rotation_contact(p, c, chain.points()[k], side, r)
+            .unwrap()
+            .get();
+        assert!(theta < config.max_rotation().get());
+        for (i, q) in points.iter().enumerate() {
+            if i == chain.indices()[k - 1] || side.sign() * q.y() <= 0.0 {
+                continue;
+            }
+            if let Some(other) = rotation_contact(p, c, *q, side, r) {
+                assert!(other.get() >= theta - 1e-12, "point {i} touches first");
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    //= spec/pierre2022.md#edge-chain-stop-rotation-and-length-limits
+    //= type=test
+    //# The chain MUST stop when no point has a contact angle below θ_max, when
+    //# its polyline length reaches l_max, when the next contact is a point
+    //# already in the chain, or when its buffer is full.
+    #[test]
+    fn chains_of_ragged_hedges_keep_their_invariants((side, points) in ragged(0.3)) {
+        let config = config();
+        let chain = build_chain::<M>(&points, side, &config);
+        check_invariants(&points, side, &config, &chain);
+        check_minimal_contacts(&points, side, &config, &chain);
+    }
+
+    #[test]
+    fn chains_of_arbitrary_points_keep_their_invariants(
+        side in side(),
+        points in prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 0..40),
+        radius in 0.2..2.0f64,
+        max_rotation in 0.1..6.2f64,
+    ) {
+        let points: Vec<_> = points.into_iter().map(|(x, y)| pt(x, y)).collect();
+        let config = EdgeConfig::new(&EdgeParameters { radius, max_rotation, ..EdgeParameters::PIERRE2022 }).unwrap();
+        let chain = build_chain::<M>(&points, side, &config);
+        check_invariants(&points, side, &config, &chain);
+        check_minimal_contacts(&points, side, &config, &chain);
+    }
+
+    /// A chain along a gently jittered hedge runs forward along it.
+    #[test]
+    fn chain_points_are_in_order_along_the_edge((side, points) in ragged(0.05)) {
+        let config = config();
+        let chain = build_chain::<M>(&points, side, &config);
+        // Recover the hedge heading from the generator: the along-hedge
+        // abscissa is the projection on the chain's overall direction.
+        if chain.len() >= 2 {
+            let (a, b) = (chain.points()[0], *chain.points().last().unwrap());
+            let (dx, dy) = (b.x() - a.x(), b.y() - a.y());
+            let along: Vec<f64> = chain.points().iter().map(|p| p.x() * dx + p.y() * dy).collect();
+            for w in along.windows(2) {
+                prop_assert!(w[1] > w[0], "chain goes backward: {:?}", along);
+            }
+        }
+    }
+
+    //= spec/pierre2022.md#edge-chain-rotate-next-point-by-rotation
+    //= type=test
+    //# The contact angle of a point q at distance 0 < d < 2r from the pivot MUST
+    //# be the smallest θ ≥ 0 at which |c(θ) − q| = r with q entering the disk,
+    //# where c(θ) is the centre rotated by s·θ about the pivot; a point at d = 0
+    //# or d ≥ 2r MUST have no contact.
+    #[test]
+    fn rotation_contact_solves_the_circle_equation(
+        side in side(),
+        phi in -3.1..3.1f64,
+        qx in -2.5..2.5f64,
+        qy in -2.5..2.5f64,
+    ) {
+        let r = 1.0;
+        let s = side.sign();
+        let p = pt(0.3, 0.7);
+        let c = pt(0.3 + r * phi.cos(), 0.7 + r * phi.sin());
+        let q = pt(qx, qy);
+        let d = p.distance_to(q);
+        let inside_now = c.distance_to(q) < r;
+        match rotation_contact(p, c, q, side, fieldguide::Meters::new(r).unwrap()) {
+            None => prop_assert!(d >= 2.0 * r || d == 0.0),
+            Some(theta) if !inside_now => {
+                let th = theta.get();
+                prop_assert!((0.0..core::f64::consts::TAU).contains(&th));
+                let at = |t: f64| {
+                    let (ux, uy) = (c.x() - p.x(), c.y() - p.y());
+                    let (cs, sn) = (t.cos(), (s * t).sin());
+                    pt(p.x() + cs * ux - sn * uy, p.y() + sn * ux + cs * uy)
+                };
+                // On the circle at θ, outside just before, inside just after.
+                prop_assert!((at(th).distance_to(q) - r).abs() < 1e-9);
+                if th > 1e-6 {
+                    prop_assert!(at(th - 1e-6).distance_to(q) > r);
+                    // Never inside between 0 and θ.
+                    for k in 1..50 {
+                        prop_assert!(at(th * f64::from(k) / 50.0).distance_to(q) >= r - 1e-12);
+                    }
+                }
+                prop_assert!(at(th + 1e-6).distance_to(q) < r);
+            }
+            Some(_) => {}
+        }
+    }
+
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// The exact and the stepped chains agree once the step is smaller than
+    /// the gap between competing contacts.
+    #[test]
+    fn exact_and_stepped_chains_agree_as_the_step_shrinks((side, points) in ragged(0.3)) {
+        let config = config();
+        let exact = build_chain::<M>(&points, side, &config);
+        let step = 1e-4;
+        prop_assume!(well_separated(&points, side, &config, &exact));
+        let stepped = stepped_chain(&points, side, &config, step, step, M);
+        prop_assert_eq!(exact.indices(), &stepped[..]);
+    }
+}
+
+/// Whether every decision of the exact chain wins by more than `gap`: the
+/// first translation contact and each rotation contact against the runner-up
+/// and against θ_max, and the final length against l_max.
+fn well_separated(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    chain: &Chain<M>,
+) -> bool {
+    let r = config.radius();
+    let s = side.sign();
+    let mut ts: Vec<f64> = points
+        .iter()
+        .filter_map(|q| translation_contact(*q, side, r).map(|t| t.get()))
+        .collect();
+    ts.sort_by(f64::total_cmp);
+    if ts.len() >= 2 && ts[1] - ts[0] < gap_t(config) {
+        return false;
+    }
+    if let Some(t) = ts.first() {
+        if (t - config.search_distance().get()).abs() < gap_t(config) {
+            return false;
+        }
+    }
+    let theta_max = config.max_rotation().get();
+    for k in 0..chain.len() {
+        let (p, c) = (chain.points()[k], chain.centers()[k]);
+        let mut th: Vec<f64> = points
+            .iter()
+            .enumerate()
+            .filter(|(i, q)| *i != chain.indices()[k] && s * q.y() > 0.0)
+            .filter_map(|(_, q)| rotation_contact(p, c, *q, side, r).map(|t| t.get()))
+            .collect();
+        th.sort_by(f64::total_cmp);
+        let gap = 2e-3;
+        if th.len() >= 2 && th[1] - th[0] < gap {
+            return false;
+        }
+        if th.first().is_some_and(|t| (t - theta_max).abs() < gap) {
+            return false;
+        }
+    }
+    (chain.length().get() - config.max_chain_length().get()).abs() > 1e-3
+}
+
+fn gap_t(_config: &EdgeConfig) -> f64 {
+    2e-3
+}
+
+#[test]
+fn straight_wall_is_chained_point_by_point_in_order() {
+    let config = config();
+    for side in [Side::Left, Side::Right] {
+        let points = wall(side, 1.4, 0.2, 0.05, -1.0, 5.0);
+        let chain = build_chain::<M>(&points, side, &config);
+        check_invariants(&points, side, &config, &chain);
+        assert_eq!(chain.end(), ChainEnd::LengthLimit);
+        // Consecutive wall points, from the one abeam of the robot's rear point.
+        for w in chain.indices().windows(2) {
+            assert_eq!(w[1], w[0] + 1);
+        }
+    }
+}
+
+#[test]
+fn circle_rolling_round_a_post_closes_or_stops() {
+    // A post of radius 0.1 m at (1, 1.2), 24 points round it.
+    let config = EdgeConfig::new(&EdgeParameters {
+        max_rotation: 6.0,
+        max_chain_length: 50.0,
+        ..EdgeParameters::PIERRE2022
+    })
+    .unwrap();
+    let points: Vec<_> = (0..24)
+        .map(|k| {
+            let a = f64::from(k) * core::f64::consts::TAU / 24.0;
+            pt(1.0 + 0.1 * a.cos(), 1.2 + 0.1 * a.sin())
+        })
+        .collect();
+    let chain = build_chain::<M>(&points, Side::Left, &config);
+    check_invariants(&points, Side::Left, &config, &chain);
+    assert_eq!(chain.end(), ChainEnd::Closed);
+    assert_eq!(chain.len(), 24);
+}
+
+#[test]
+fn nothing_within_the_search_distance_gives_no_chain() {
+    let config = config();
+    // 3 m search + 1 m radius: a wall 4.2 m away is out of reach, 3.8 m is in.
+    let far = wall(Side::Left, 4.2, 0.0, 0.1, -1.0, 5.0);
+    assert_eq!(
+        build_chain::<M>(&far, Side::Left, &config).end(),
+        ChainEnd::NoEdge
+    );
+    let near = wall(Side::Left, 3.8, 0.0, 0.1, -1.0, 5.0);
+    assert!(!build_chain::<M>(&near, Side::Left, &config).is_empty());
+    // Right side asked, only left points.
+    assert_eq!(
+        build_chain::<M>(&near, Side::Right, &config).end(),
+        ChainEnd::NoEdge
+    );
+}
+
+#[test]
+fn a_full_buffer_stops_the_chain() {
+    let config = config();
+    let points = wall(Side::Left, 1.4, 0.0, 0.01, -1.0, 5.0);
+    let chain = build_chain::<8>(&points, Side::Left, &config);
+    assert_eq!(chain.end(), ChainEnd::Capacity);
+    assert_eq!(chain.len(), 8);
+    let none = build_chain::<0>(&points, Side::Left, &config);
+    assert!(none.is_empty());
+}
+
+#[test]
+fn more_points_than_the_candidate_buffer_still_give_minimal_contacts() {
+    // 2000 points of a ragged wall within reach: beyond the 1024-point buffer.
+    let config = config();
+    let xs: Vec<f64> = (0..2000).map(|k| -1.0 + 0.003 * f64::from(k)).collect();
+    let js: Vec<f64> = (0..2000)
+        .map(|k| 0.05 * (f64::from(k) * 0.37).sin())
+        .collect();
+    let points = hedge(Side::Left, 1.4, 0.1, &xs, &js);
+    let chain = build_chain::<M>(&points, Side::Left, &config);
+    assert!(chain.len() > 10);
+    check_invariants(&points, Side::Left, &config, &chain);
+    check_minimal_contacts(&points, Side::Left, &config, &chain);
+}
