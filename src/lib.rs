@@ -19,6 +19,10 @@
 //! 4. The selected behaviour's error goes to a law in [`control`], which returns
 //!    a saturated steering command.
 //!
+//! [`guidance::Guidance`] runs these four steps once per control tick, scans,
+//! poses and odometry in, a command at the selected behaviour's speed out
+//! (`spec/guidance.md`).
+//!
 //! ## Conventions
 //!
 //! Frames are x forward, y left, z up; angles counter-clockwise positive,
@@ -49,6 +53,7 @@
 pub mod control;
 pub mod error;
 pub mod geometry;
+pub mod guidance;
 pub mod model;
 pub mod perception;
 pub mod supervisor;

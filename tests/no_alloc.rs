@@ -13,13 +13,15 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use fieldguide::control::backstepping::{
     steering_command, BacksteppingConfig, Inversion, SteeringLimit,
 };
 use fieldguide::control::Gains;
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
+use fieldguide::guidance::{
+    EdgeFollowingParams, Guidance, GuidanceConfig, GuidanceParams, Priority, TickInput,
+};
 use fieldguide::model::bicycle::{world_rates, Sideslip, Wheelbase};
 use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, RangeLimits, Scan as EdgeScan, Side};
 use fieldguide::perception::furrow::scan::Scan as FurrowScan;
@@ -34,19 +36,25 @@ use fieldguide::{
 
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
+// Both the switch and the counter are per thread: tests run in parallel, and
+// another test's allocations must not be counted in this one's section.
 thread_local! {
     static WATCHING: Cell<bool> = const { Cell::new(false) };
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// Counts one allocation if this thread is watching.
+fn count_one() {
+    if WATCHING.with(Cell::get) {
+        ALLOCATIONS.with(|n| n.set(n.get() + 1));
+    }
 }
 
 // SAFETY: every call is forwarded unchanged to the system allocator; the
-// wrapper only counts, and the thread-local read cannot allocate.
+// wrapper only counts, and the const-initialised thread-locals cannot allocate.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if WATCHING.with(Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        }
+        count_one();
         // SAFETY: same contract as the caller's.
         unsafe { System.alloc(layout) }
     }
@@ -57,9 +65,7 @@ unsafe impl GlobalAlloc for Counting {
     }
 
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if WATCHING.with(Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        }
+        count_one();
         // SAFETY: same contract as the caller's.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -70,11 +76,11 @@ static GLOBAL: Counting = Counting;
 
 /// Runs `f` and returns how many heap allocations this thread made inside it.
 fn allocations_in(f: impl FnOnce()) -> usize {
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = ALLOCATIONS.with(Cell::get);
     WATCHING.with(|w| w.set(true));
     f();
     WATCHING.with(|w| w.set(false));
-    ALLOCATIONS.load(Ordering::SeqCst) - before
+    ALLOCATIONS.with(Cell::get) - before
 }
 
 //= spec/library.md#lib-no-alloc-no-allocation
@@ -229,4 +235,80 @@ fn detectors_and_switching_do_not_allocate() {
         .unwrap()
         .verdict
         .estimate_is_valid());
+}
+
+/// The whole per-tick pipeline, 100 ticks: both detectors on 360-ray scans
+/// (a wall 1.5 m to the left, ridges under the inclined LiDAR), GNSS,
+/// odometry, switching, laws and command.
+//= spec/guidance.md#gd-no-alloc-no-allocation-no-clock
+//= type=test
+//# A tick MUST NOT allocate on the heap and MUST NOT read a clock: the
+//# pipeline's buffers are fixed by its const parameters and time is counted in
+//# ticks.
+#[test]
+fn guidance_pipeline_does_not_allocate() {
+    let step = 2.0 * std::f64::consts::PI / 360.0;
+    let wall: Vec<f64> = (0..360)
+        .map(|k| {
+            let angle = -std::f64::consts::PI + step * f64::from(k);
+            if angle.sin() > 0.05 {
+                1.5 / angle.sin()
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    let furrow_step = 1.2 / 360.0;
+    let ridges: Vec<f64> = (0..360)
+        .map(|k| if (k / 8) % 5 == 0 { 2.4 } else { 2.7 })
+        .collect();
+    let waypoints: Vec<Point2<World>> = (0..200)
+        .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
+        .collect();
+    let path = ReferencePath::<256>::from_waypoints(&waypoints, PathConfig::default()).unwrap();
+    let params = GuidanceParams {
+        edge: Some(
+            EdgeFollowingParams::pierre2022(
+                Side::Left,
+                Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
+            )
+            .unwrap(),
+        ),
+        priority: Priority::EdgeFirst,
+        ..GuidanceParams::pierre2022_furrow().unwrap()
+    };
+    let config = GuidanceConfig::new(&params).unwrap();
+    let mut guidance = Guidance::<256>::new(config, &path).unwrap();
+    let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
+
+    let mut outputs = Vec::with_capacity(100);
+    let count = allocations_in(|| {
+        for tick in 0..100u32 {
+            let x = 0.007 * f64::from(tick);
+            let input = TickInput {
+                horizontal: Some(EdgeScan {
+                    start: Radians::new(-std::f64::consts::PI).unwrap(),
+                    increment: Radians::new(step).unwrap(),
+                    ranges: &wall,
+                    limits,
+                }),
+                inclined: (tick % 10 == 0).then(|| FurrowScan {
+                    ranges: &ridges,
+                    angle_min: Radians::new(-0.6).unwrap(),
+                    angle_increment: Radians::new(furrow_step).unwrap(),
+                }),
+                gnss: (tick < 60).then(|| Pose2::<World>::new(x, 0.05, 0.0).unwrap()),
+                odometry: Pose2::<Odom>::new(x, 0.05, 0.0).unwrap(),
+                sideslip: Sideslip::new(0.01, -0.02).unwrap(),
+            };
+            outputs.push(guidance.step(&input).unwrap());
+        }
+    });
+    assert_eq!(outputs.len(), 100);
+    assert_eq!(count, 0, "the guidance pipeline allocated {count} times");
+    // The wall was followed: the ticks went through detection, switching and
+    // the edge law, not only path tracking.
+    assert!(outputs
+        .iter()
+        .any(|o| o.mode == fieldguide::guidance::ActiveMode::EdgeFollowing && o.command.is_some()));
 }

@@ -1,0 +1,1423 @@
+//! The per-tick guidance pipeline end to end on synthetic scans
+//! (`spec/guidance.md`, GD-*): path tracking without detections, entry into a
+//! behaviour after its delay with the command the law gives for that
+//! detector's error, held detections moved by odometry, localisation lost in a
+//! behaviour, Stop, priority, plan flags, malformed input, configuration, and
+//! properties over random tick sequences and arbitrary scans.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic,
+    clippy::as_conversions,
+    clippy::arithmetic_side_effects,
+    clippy::float_cmp,
+    clippy::cast_precision_loss
+)]
+
+mod furrow_common;
+
+use core::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use fieldguide::control::backstepping::steering_command;
+use fieldguide::geometry::path::{PathConfig, ReferencePath};
+use fieldguide::guidance::odometry::{
+    moved_edge_error, moved_line_error, moved_rows_error, pose_in_scan_frame,
+};
+use fieldguide::guidance::{
+    ActiveMode, Command, EdgeFollowingParams, Guidance, GuidanceConfig, GuidanceParams, LawOutcome,
+    PlanCheck, Priority, Source, TickInput, TickOutput,
+};
+use fieldguide::model::bicycle::Sideslip;
+use fieldguide::perception::edge::{
+    EdgeConfig, EdgeDetector, EdgeFit, EdgeQuality, ParabolaFit, RangeLimits, Scan as EdgeScan,
+    Side,
+};
+use fieldguide::perception::furrow::lines::{self, RowLine};
+use fieldguide::perception::furrow::scan::Scan as FurrowScan;
+use fieldguide::perception::furrow::selection::Pair;
+use fieldguide::perception::furrow::{FurrowDetector, FurrowParams, RowLines};
+use fieldguide::supervisor::switching::PlanTolerance;
+use fieldguide::{
+    Meters, MetersPerSecond, Odom, Point2, Pose2, Radians, Robot, Seconds, Sensor, TrackingError,
+    Transform2, Verdict, World,
+};
+use furrow_common::{ridge_scan, Lidar, Ridge};
+use proptest::prelude::*;
+
+const PATH_N: usize = 256;
+type Pipeline<'p> = Guidance<'p, PATH_N>;
+
+/// The horizontal LiDAR: 360 rays over a full turn, 1.2 m ahead of O.
+const MOUNT_X: f64 = 1.2;
+const RAYS: usize = 360;
+
+fn m(v: f64) -> Meters {
+    Meters::new(v).unwrap()
+}
+
+fn mount() -> Transform2<Sensor, Robot> {
+    Transform2::new(MOUNT_X, 0.0, 0.0).unwrap()
+}
+
+fn limits() -> RangeLimits {
+    RangeLimits::new(m(0.05), m(30.0)).unwrap()
+}
+
+fn edge_scan(ranges: &[f64]) -> EdgeScan<'_> {
+    EdgeScan {
+        start: Radians::new(-PI).unwrap(),
+        increment: Radians::new(TAU / RAYS as f64).unwrap(),
+        ranges,
+        limits: limits(),
+    }
+}
+
+/// A wall along the world x axis at `y`, from `x_min` to `x_max`.
+#[derive(Clone, Copy)]
+struct Wall {
+    y: f64,
+    x_min: f64,
+    x_max: f64,
+}
+
+/// Exact ranges to `wall` from the LiDAR of a robot at `pose` (x, y, heading).
+fn wall_ranges(pose: (f64, f64, f64), wall: Wall) -> Vec<f64> {
+    let (x, y, psi) = pose;
+    let (sx, sy) = (x + MOUNT_X * psi.cos(), y + MOUNT_X * psi.sin());
+    (0..RAYS)
+        .map(|k| {
+            let a = psi - PI + TAU * k as f64 / RAYS as f64;
+            let (c, s) = (a.cos(), a.sin());
+            if s.abs() < 1e-9 {
+                return f64::INFINITY;
+            }
+            let t = (wall.y - sy) / s;
+            let hit = sx + t * c;
+            if t > 0.0 && t <= 30.0 && hit >= wall.x_min && hit <= wall.x_max {
+                t
+            } else {
+                f64::INFINITY
+            }
+        })
+        .collect()
+}
+
+fn long_wall(y: f64) -> Wall {
+    Wall {
+        y,
+        x_min: -100.0,
+        x_max: 500.0,
+    }
+}
+
+fn furrow_params() -> FurrowParams {
+    FurrowParams::table2()
+}
+
+fn furrow_lidar() -> Lidar {
+    Lidar::centred(360, FRAC_PI_2)
+}
+
+fn furrow_scan<'a>(ranges: &'a [f64], l: &Lidar) -> FurrowScan<'a> {
+    FurrowScan {
+        ranges,
+        angle_min: Radians::new(l.angle_min).unwrap(),
+        angle_increment: Radians::new(l.increment).unwrap(),
+    }
+}
+
+/// Two rows 0.75 m apart about the world x axis, 0.3 m tall.
+fn two_rows() -> Vec<Ridge> {
+    [-0.375, 0.375]
+        .iter()
+        .map(|&c| Ridge {
+            center_y: c,
+            half_width: 0.08,
+            height: 0.3,
+        })
+        .collect()
+}
+
+/// A straight path along the world x axis from −20 m to 300 m.
+fn straight_path() -> ReferencePath<PATH_N> {
+    let points: Vec<Point2<World>> = (0..=64)
+        .map(|i| Point2::new(-20.0 + 5.0 * f64::from(i), 0.0).unwrap())
+        .collect();
+    ReferencePath::from_waypoints(&points, PathConfig::default()).unwrap()
+}
+
+fn world(p: (f64, f64, f64)) -> Pose2<World> {
+    Pose2::new(p.0, p.1, p.2).unwrap()
+}
+
+fn odom(p: (f64, f64, f64)) -> Pose2<Odom> {
+    Pose2::new(p.0, p.1, p.2).unwrap()
+}
+
+fn edge_params() -> GuidanceParams {
+    GuidanceParams::pierre2022_edge(Side::Left, mount()).unwrap()
+}
+
+fn both_params(priority: Priority) -> GuidanceParams {
+    GuidanceParams {
+        edge: Some(EdgeFollowingParams::pierre2022(Side::Left, mount()).unwrap()),
+        priority,
+        ..GuidanceParams::pierre2022_furrow().unwrap()
+    }
+}
+
+fn pipeline<'p>(params: &GuidanceParams, path: &'p ReferencePath<PATH_N>) -> Pipeline<'p> {
+    Guidance::new(GuidanceConfig::new(params).unwrap(), path).unwrap()
+}
+
+/// A tick with only poses: no scan.
+fn bare(pose: (f64, f64, f64), gnss: bool) -> TickInput<'static> {
+    TickInput {
+        horizontal: None,
+        inclined: None,
+        gnss: gnss.then(|| world(pose)),
+        odometry: odom(pose),
+        sideslip: Sideslip::ZERO,
+    }
+}
+
+fn command(out: &TickOutput) -> Command {
+    out.command.expect("a command")
+}
+
+/// The edge detector's own error on a scan, straight from the detector.
+fn edge_error_of(ranges: &[f64]) -> (Verdict, TrackingError) {
+    let mut detector = EdgeDetector::<512, 64>::new(EdgeConfig::pierre2022().unwrap(), mount());
+    let outcome = detector.detect(&edge_scan(ranges), Side::Left).unwrap();
+    (outcome.verdict, outcome.fit.unwrap().error)
+}
+
+//= spec/guidance.md#gd-prediction-sideslip-and-prediction-only-in-path-tracking
+//= type=test
+//# Path tracking MUST use the sideslip estimate, when compensation is
+//# configured, and the curvature c(s + vT) with v its desired speed and T the
+//# prediction horizon; edge following and furrow pursuing MUST use zero sideslip
+//# and a straight line, c = c(s + vT) = 0.
+//= spec/guidance.md#gd-speed-desired-speed-per-mode
+//= type=test
+//# The speed of a command MUST be the desired speed of its source: path
+//# tracking, edge following or furrow pursuing (Tables 1 and 2: 0.8, 0.4 and
+//# 0.7 m/s).
+#[test]
+fn path_tracking_without_detections_uses_sideslip_and_prediction() {
+    // 10 m straight, then a left arc of radius 5 m: at s = 9 the smoothed
+    // curvature is still small but 0.8 m ahead (v T = 0.8 m/s × 1 s) it is not.
+    let mut points: Vec<Point2<World>> = (0..=20)
+        .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
+        .collect();
+    for i in 1..=30 {
+        let a = f64::from(i) * 0.05;
+        points.push(Point2::new(10.0 + 5.0 * a.sin(), 5.0 - 5.0 * a.cos()).unwrap());
+    }
+    let path = ReferencePath::<PATH_N>::from_waypoints(&points, PathConfig::default()).unwrap();
+    let params = both_params(Priority::FurrowFirst);
+    let mut g = pipeline(&params, &path);
+    let pose = (9.0, 0.02, 0.0);
+    let slip = Sideslip::new(-0.02, -0.03).unwrap();
+    let out = g
+        .step(&TickInput {
+            sideslip: slip,
+            ..bare(pose, true)
+        })
+        .unwrap();
+    assert_eq!(out.mode, ActiveMode::PathTracking);
+    assert_eq!(out.source, Some(Source::PathTracking));
+    assert!(out.path.localisation_valid);
+    assert_eq!(out.edge.detected, Verdict::Absent);
+    assert_eq!(out.furrow.detected, Verdict::Absent);
+
+    // The same computation by hand: global projection with look-ahead 0.8 m,
+    // the law of Table 1 with the sideslip, at 0.8 m/s.
+    let frenet = path.project(&world(pose), m(0.8)).unwrap();
+    assert!(
+        frenet.curvature_ahead.get() > frenet.curvature.get() + 0.05,
+        "{frenet:?}"
+    );
+    let law = params.path.law;
+    let v = MetersPerSecond::new(0.8).unwrap();
+    let expected = steering_command(&law, &frenet.tracking_error(), slip, v).unwrap();
+    let c = command(&out);
+    assert_eq!(c.speed, v);
+    assert_eq!(c.steering, expected.steering);
+    assert_eq!(out.path.frenet, Some(frenet));
+    assert_eq!(out.path.sideslip_used, slip);
+    // Both the sideslip and the prediction change the command.
+    let no_slip = steering_command(&law, &frenet.tracking_error(), Sideslip::ZERO, v).unwrap();
+    assert!(!c.saturated, "{c:?}");
+    assert!((no_slip.steering.get() - c.steering.get()).abs() > 1e-3);
+    let now = path.project(&world(pose), Meters::ZERO).unwrap();
+    let no_prediction = steering_command(&law, &now.tracking_error(), slip, v).unwrap();
+    assert!((no_prediction.steering.get() - c.steering.get()).abs() > 1e-3);
+
+    // Compensation off: zero sideslip.
+    let mut off = params;
+    off.path.sideslip_compensation = false;
+    let mut g = pipeline(&off, &path);
+    let out = g
+        .step(&TickInput {
+            sideslip: slip,
+            ..bare(pose, true)
+        })
+        .unwrap();
+    assert_eq!(out.path.sideslip_used, Sideslip::ZERO);
+    assert_eq!(command(&out).steering, no_slip.steering);
+}
+
+//= spec/guidance.md#gd-command-the-command-of-the-selected-source
+//= type=test
+//# The command MUST be the saturated output of the selected source's control law
+//# on that source's error of the tick, and no other; when the machine selects no
+//# source outside Stop, there MUST be no command.
+//= spec/guidance.md#gd-order-pipeline-order
+//= type=test
+//# Each call of `step` MUST process one control tick in this order: the
+//# detections of the tick's scans (or the ageing of the held ones), the Frénet
+//# projection of the GNSS pose, the plan consistency of each detected line, the
+//# control law of each source whose estimate is valid, one step of the switching
+//# machine, and the command of the source the machine selects.
+//= spec/guidance.md#gd-prediction-sideslip-and-prediction-only-in-path-tracking
+//= type=test
+//# Path tracking MUST use the sideslip estimate, when compensation is
+//# configured, and the curvature c(s + vT) with v its desired speed and T the
+//# prediction horizon; edge following and furrow pursuing MUST use zero sideslip
+//# and a straight line, c = c(s + vT) = 0.
+#[test]
+fn forty_enter_ticks_bring_edge_following_with_the_laws_command() {
+    let path = straight_path();
+    let params = edge_params();
+    let mut g = pipeline(&params, &path);
+    let pose = (0.0, 0.0, 0.0);
+    let ranges = wall_ranges(pose, long_wall(1.5));
+    let (verdict, error) = edge_error_of(&ranges);
+    assert_eq!(verdict, Verdict::Enter);
+    // Eq. 11 by hand: a parallel wall 1.5 m left, D = 1.4 m: y = 1.4 − 1.5.
+    assert!((error.y.get() + 0.1).abs() < 1e-9, "{error:?}");
+    assert!(error.angular_deviation.get().abs() < 1e-9);
+    let slip = Sideslip::new(0.05, -0.04).unwrap();
+    let tick = TickInput {
+        horizontal: Some(edge_scan(&ranges)),
+        sideslip: slip,
+        ..bare(pose, true)
+    };
+    // Table 1: 0.4 s at 100 Hz is 40 ticks of Enter verdicts.
+    for k in 1..=39 {
+        let out = g.step(&tick).unwrap();
+        assert_eq!(out.mode, ActiveMode::PathTracking, "tick {k}");
+        assert_eq!(out.source, Some(Source::PathTracking));
+        assert_eq!(out.edge.detected, Verdict::Enter);
+        assert_eq!(out.edge.error, Some(error));
+        assert_eq!(command(&out).speed.get(), 0.8);
+    }
+    let out = g.step(&tick).unwrap();
+    assert_eq!(out.mode, ActiveMode::EdgeFollowing);
+    assert_eq!(out.source, Some(Source::EdgeFollowing));
+    // The law of Table 1 on the detector's error: no sideslip, straight line,
+    // at 0.4 m/s, whatever the input's sideslip.
+    let v = MetersPerSecond::new(0.4).unwrap();
+    let law = params.edge.unwrap().law;
+    let expected = steering_command(&law, &error, Sideslip::ZERO, v).unwrap();
+    let c = command(&out);
+    assert_eq!(c.speed, v);
+    assert_eq!(c.steering, expected.steering);
+    assert_eq!(c.saturated, expected.saturated);
+    assert_eq!(out.edge.law, LawOutcome::Steer(expected));
+    // The path law ran too (the pipeline runs every valid source's law).
+    assert!(matches!(out.path.law, LawOutcome::Steer(_)));
+}
+
+/// The robot drives along x at 0.7 m/s (0.007 m per 10 ms tick), 5 cm left of
+/// the rows' middle; the inclined LiDAR scans every 10th tick.
+fn furrow_drive(
+    params: &GuidanceParams,
+    path: &ReferencePath<PATH_N>,
+    ticks: usize,
+    mut each: impl FnMut(usize, (f64, f64, f64), bool, &TickOutput),
+) {
+    let mut g = pipeline(params, path);
+    let lidar = furrow_lidar();
+    let rows = two_rows();
+    for k in 0..ticks {
+        let pose = (0.007 * k as f64, 0.05, 0.0);
+        let scanned = k % 10 == 0;
+        let ranges = ridge_scan(&furrow_params(), &lidar, pose, &rows);
+        let out = g
+            .step(&TickInput {
+                inclined: scanned.then(|| furrow_scan(&ranges, &lidar)),
+                ..bare(pose, true)
+            })
+            .unwrap();
+        each(k, pose, scanned, &out);
+    }
+}
+
+//= spec/guidance.md#gd-scan-age-held-detections
+//= type=test
+//# In a tick without a new scan, a behaviour MUST report the verdict of its
+//# latest scan, with the tracking error to that scan's line moved to the current
+//# pose through odometry, as long as that scan is at most the maximal scan age
+//# old; an older scan, a scan the detector refused, or no scan at all MUST give
+//# Absent.
+#[test]
+fn furrow_scans_at_10_hz_are_held_and_entered_after_50_enter_ticks() {
+    let path = straight_path();
+    let params = GuidanceParams::pierre2022_furrow().unwrap();
+    let furrow = params.furrow.unwrap();
+    let mut twin = FurrowDetector::<512, 32>::new(furrow.detector).unwrap();
+    let lidar = furrow_lidar();
+    let rows = two_rows();
+    let mut latest = None;
+    let mut first_enter: Option<usize> = None;
+    let mut entered: Option<usize> = None;
+    furrow_drive(&params, &path, 400, |k, pose, scanned, out| {
+        if scanned {
+            let ranges = ridge_scan(&furrow_params(), &lidar, pose, &rows);
+            let d = twin
+                .step(&furrow_scan(&ranges, &lidar), &odom(pose))
+                .unwrap();
+            latest = Some((d, pose));
+        }
+        let (d, at) = latest.unwrap();
+        assert_eq!(out.furrow.scan_age, Some((k % 10) as u16));
+        assert_eq!(out.furrow.detected, d.verdict, "tick {k}");
+        match d.error {
+            None => assert_eq!(out.furrow.error, None),
+            Some(e) => {
+                let got = out.furrow.error.unwrap();
+                if scanned {
+                    assert_eq!(got, e);
+                } else {
+                    // Moved straight ahead by dx: each row's y = y₀ + dx sin θ̃₀,
+                    // then the mean of the two rows (GD-ODOMETRY).
+                    let dx = pose.0 - at.0;
+                    let Some(RowLines::Two(Pair { left, right })) = d.lines else {
+                        panic!("two rows expected");
+                    };
+                    let (l, r) = (
+                        lines::tracking_error(&left).unwrap(),
+                        lines::tracking_error(&right).unwrap(),
+                    );
+                    let moved = |e: TrackingError| e.y.get() + dx * e.angular_deviation.get().sin();
+                    let y = 0.5 * moved(l) + 0.5 * moved(r);
+                    assert!((got.y.get() - y).abs() < 1e-12);
+                    assert!(
+                        (got.angular_deviation.get() - e.angular_deviation.get()).abs() < 1e-12
+                    );
+                    assert!(
+                        (got.y.get() - e.y.get() - dx * e.angular_deviation.get().sin()).abs()
+                            < 1e-3
+                    );
+                }
+            }
+        }
+        if out.furrow.reported == Verdict::Enter {
+            first_enter.get_or_insert(k);
+        } else if entered.is_none() {
+            first_enter = None;
+        }
+        if out.mode == ActiveMode::FurrowPursuing && entered.is_none() {
+            entered = Some(k);
+            let error = out.furrow.error.unwrap();
+            let v = MetersPerSecond::new(0.7).unwrap();
+            let expected = steering_command(&furrow.law, &error, Sideslip::ZERO, v).unwrap();
+            assert_eq!(command(out).steering, expected.steering);
+            assert_eq!(command(out).speed, v);
+            assert_eq!(out.source, Some(Source::FurrowPursuing));
+        }
+    });
+    // Table 2: 0.5 s at 100 Hz, 50 consecutive ticks of Enter, held between scans.
+    let (first, entered) = (first_enter.unwrap(), entered.unwrap());
+    assert_eq!(
+        entered,
+        first + 49,
+        "first Enter {first}, entered {entered}"
+    );
+}
+
+//= spec/guidance.md#gd-scan-age-held-detections
+//= type=test
+//# In a tick without a new scan, a behaviour MUST report the verdict of its
+//# latest scan, with the tracking error to that scan's line moved to the current
+//# pose through odometry, as long as that scan is at most the maximal scan age
+//# old; an older scan, a scan the detector refused, or no scan at all MUST give
+//# Absent.
+//= spec/guidance.md#gd-input-malformed-input
+//= type=test
+//# Sensor data MUST NOT be malformed input: any range, NaN and infinities
+//# included, and any scan a detector refuses MUST give a tick output, the
+//# refused scan counting as no estimate.
+#[test]
+fn a_held_edge_detection_expires_after_the_maximal_age_and_a_refused_scan_drops_it() {
+    let path = straight_path();
+    let params = edge_params();
+    let config = GuidanceConfig::new(&params).unwrap();
+    assert_eq!(config.max_scan_age_ticks(), 10); // 0.1 s at 0.01 s
+    let mut g = pipeline(&params, &path);
+    let pose = (0.0, 0.0, 0.0);
+    let ranges = wall_ranges(pose, long_wall(1.5));
+    let out = g
+        .step(&TickInput {
+            horizontal: Some(edge_scan(&ranges)),
+            ..bare(pose, true)
+        })
+        .unwrap();
+    assert_eq!(
+        (out.edge.detected, out.edge.scan_age),
+        (Verdict::Enter, Some(0))
+    );
+    for age in 1..=10 {
+        let out = g.step(&bare(pose, true)).unwrap();
+        assert_eq!(out.edge.detected, Verdict::Enter, "age {age}");
+        assert_eq!(out.edge.scan_age, Some(age));
+        assert!(out.edge.error.is_some());
+    }
+    let out = g.step(&bare(pose, true)).unwrap();
+    assert_eq!(out.edge.detected, Verdict::Absent);
+    assert_eq!(out.edge.error, None);
+    assert_eq!(out.edge.scan_age, Some(11));
+
+    // A detector with room for 200 points takes the wall (about 177 valid
+    // rays), then refuses a scan of 360 valid rays: the held wall is dropped.
+    let mut small: Guidance<'_, PATH_N, 200> =
+        Guidance::new(GuidanceConfig::new(&params).unwrap(), &path).unwrap();
+    small
+        .step(&TickInput {
+            horizontal: Some(edge_scan(&ranges)),
+            ..bare(pose, true)
+        })
+        .unwrap();
+    assert_eq!(small.last_edge().map(|o| o.verdict), Some(Verdict::Enter));
+    let circle = vec![5.0; RAYS];
+    let out = small
+        .step(&TickInput {
+            horizontal: Some(edge_scan(&circle)),
+            ..bare(pose, true)
+        })
+        .unwrap();
+    assert_eq!(out.edge.scan_refused.unwrap().requirement, "EDGE-SCAN");
+    assert_eq!(out.edge.detected, Verdict::Absent);
+    assert_eq!(out.edge.error, None);
+    assert!(small.last_edge().is_none());
+    assert_eq!(out.mode, ActiveMode::PathTracking);
+}
+
+//= spec/guidance.md#gd-localisation-localisation-for-path-tracking
+//= type=test
+//# Localisation MUST be valid in a tick exactly when a GNSS pose is given, its
+//# projection on the path succeeds and the path-tracking law gives a command
+//# from it.
+#[test]
+fn losing_localisation_in_edge_following_keeps_the_behaviour() {
+    let path = straight_path();
+    let params = edge_params();
+    let mut g = pipeline(&params, &path);
+    let pose = (0.0, 0.0, 0.0);
+    let ranges = wall_ranges(pose, long_wall(1.5));
+    let scan = |gnss: bool| TickInput {
+        horizontal: Some(edge_scan(&ranges)),
+        ..bare(pose, gnss)
+    };
+    for _ in 0..40 {
+        g.step(&scan(true)).unwrap();
+    }
+    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    let with_gnss = command(&g.step(&scan(true)).unwrap());
+    for k in 0..300 {
+        let out = g.step(&scan(false)).unwrap();
+        assert!(!out.path.localisation_valid);
+        assert_eq!(out.path.frenet, None);
+        assert_eq!(out.path.law, LawOutcome::NotRun);
+        assert_eq!(out.mode, ActiveMode::EdgeFollowing, "tick {k}");
+        assert_eq!(out.source, Some(Source::EdgeFollowing));
+        assert_eq!(command(&out), with_gnss);
+    }
+    // Facing backwards along the path: the projection exists but the law
+    // refuses it (PT-HEADING), so localisation is not valid.
+    let mut g = pipeline(&params, &path);
+    let out = g.step(&bare((5.0, 0.1, PI), true)).unwrap();
+    assert!(out.path.frenet.is_some());
+    match out.path.law {
+        LawOutcome::Refused(e) => assert_eq!(e.requirement, "PT-HEADING"),
+        other => panic!("{other:?}"),
+    }
+    assert!(!out.path.localisation_valid);
+    assert_eq!(out.command, None);
+    assert_eq!(out.source, None);
+}
+
+//= spec/guidance.md#gd-localisation-localisation-for-path-tracking
+//= type=test
+//# The projection MUST search the path locally, within the search window plus
+//# the odometry distance travelled since the last successful projection, around
+//# that projection's abscissa, and globally only before the first one.
+#[test]
+fn projection_is_local_and_its_window_grows_with_the_odometry_travelled() {
+    // A U-turn: out along y = 0, a half circle of radius 1.5 m, back along y = 3.
+    let mut points: Vec<Point2<World>> = (0..=40)
+        .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
+        .collect();
+    for i in 1..20 {
+        let a = PI * f64::from(i) / 20.0;
+        points.push(Point2::new(20.0 + 1.5 * a.sin(), 1.5 - 1.5 * a.cos()).unwrap());
+    }
+    for i in 0..=40 {
+        points.push(Point2::new(20.0 - 0.5 * f64::from(i), 3.0).unwrap());
+    }
+    let path = ReferencePath::<PATH_N>::from_waypoints(&points, PathConfig::default()).unwrap();
+    let mut g = pipeline(&GuidanceParams::pierre2022_path().unwrap(), &path);
+    // First tick: global search, on the first leg.
+    let out = g.step(&bare((5.0, 0.0, 0.0), true)).unwrap();
+    assert!((out.path.frenet.unwrap().s.get() - 5.0).abs() < 1e-9);
+    // Drift to 1.6 m left of the first leg, 1.4 m from the return leg: the
+    // local search keeps the first leg.
+    for k in 1..=16 {
+        let y = 0.1 * f64::from(k);
+        let out = g.step(&bare((5.0, y, 0.0), true)).unwrap();
+        let f = out.path.frenet.unwrap();
+        assert!((f.s.get() - 5.0).abs() < 1e-9 && (f.y.get() - y).abs() < 1e-9);
+    }
+    // A pipeline starting there would take the return leg (global search).
+    let mut fresh = pipeline(&GuidanceParams::pierre2022_path().unwrap(), &path);
+    let out = fresh.step(&bare((5.0, 1.6, 0.0), true)).unwrap();
+    assert!(out.path.frenet.unwrap().s.get() > 30.0);
+
+    // GNSS lost over 12 m of odometry: the window grows by that distance, so
+    // the next pose is found at s = 17, beyond the 3 m base window.
+    let mut g = pipeline(&GuidanceParams::pierre2022_path().unwrap(), &path);
+    g.step(&bare((5.0, 0.0, 0.0), true)).unwrap();
+    for k in 1..=120 {
+        g.step(&bare((5.0 + 0.1 * f64::from(k), 0.0, 0.0), false))
+            .unwrap();
+    }
+    let out = g.step(&bare((17.0, 0.0, 0.0), true)).unwrap();
+    let f = out.path.frenet.unwrap();
+    assert!((f.s.get() - 17.0).abs() < 1e-9, "{f:?}");
+    assert!(out.path.localisation_valid);
+}
+
+//= spec/guidance.md#gd-stop-the-stop-command
+//= type=test
+//# In Stop the command MUST be a speed of 0 m/s with the steering of the last
+//# command made, or 0 rad before any command, never saturated.
+#[test]
+fn without_a_source_for_the_stop_delay_the_command_is_a_stop() {
+    let path = straight_path();
+    let params = edge_params();
+    let mut g = pipeline(&params, &path);
+    let mut last = None;
+    for _ in 0..10 {
+        last = Some(command(&g.step(&bare((2.0, 0.4, 0.0), true)).unwrap()));
+    }
+    let steering = last.unwrap().steering;
+    assert!(steering.get() < -0.01);
+    // No GNSS, no scan: no source. 0.5 s at 100 Hz: Stop in the 50th tick.
+    for k in 1..=49 {
+        let out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
+        assert_eq!(out.mode, ActiveMode::PathTracking, "tick {k}");
+        assert_eq!((out.command, out.source), (None, None));
+    }
+    for _ in 0..20 {
+        let out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
+        assert_eq!(out.mode, ActiveMode::Stop);
+        assert_eq!(out.source, None);
+        assert_eq!(
+            out.command,
+            Some(Command {
+                speed: MetersPerSecond::ZERO,
+                steering,
+                saturated: false,
+            })
+        );
+    }
+    // Localisation returns: path tracking at once.
+    let out = g.step(&bare((2.0, 0.4, 0.0), true)).unwrap();
+    assert_eq!(out.mode, ActiveMode::PathTracking);
+    assert_eq!(command(&out).speed.get(), 0.8);
+
+    // Before any command, the stop steers straight.
+    let mut g = pipeline(&params, &path);
+    let mut out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
+    for _ in 1..50 {
+        out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
+    }
+    assert_eq!(out.mode, ActiveMode::Stop);
+    assert_eq!(command(&out).steering, Radians::ZERO);
+    assert_eq!(command(&out).speed, MetersPerSecond::ZERO);
+}
+
+/// Drives along x with a wall 1.5 m left and two rows under the inclined
+/// LiDAR; returns the modes.
+fn both_detectors(priority: Priority) -> Vec<TickOutput> {
+    let path = straight_path();
+    let params = both_params(priority);
+    let mut g = pipeline(&params, &path);
+    let lidar = furrow_lidar();
+    let rows = two_rows();
+    (0..300)
+        .map(|k| {
+            let pose = (0.007 * k as f64, 0.0, 0.0);
+            let inclined = ridge_scan(&furrow_params(), &lidar, pose, &rows);
+            let horizontal = wall_ranges(pose, long_wall(1.5));
+            g.step(&TickInput {
+                horizontal: (k % 10 == 5).then(|| edge_scan(&horizontal)),
+                inclined: (k % 10 == 0).then(|| furrow_scan(&inclined, &lidar)),
+                ..bare(pose, true)
+            })
+            .unwrap()
+        })
+        .collect()
+}
+
+//= spec/guidance.md#gd-behaviours-two-behaviours-in-a-priority-order
+//= type=test
+//# The pipeline MUST run a switching machine with exactly two specialised
+//# behaviours, edge following and furrow pursuing, in the configured priority
+//# order, and a behaviour that is not configured MUST report Absent in every
+//# tick.
+#[test]
+fn both_detectors_at_once_follow_the_priority_order() {
+    // Furrow first: the wall is entered first (the rows need five scans for a
+    // line), then furrow pursuing takes over as soon as its entry is complete.
+    let outs = both_detectors(Priority::FurrowFirst);
+    let furrow_at = outs
+        .iter()
+        .position(|o| o.mode == ActiveMode::FurrowPursuing)
+        .unwrap();
+    let edge_at = outs
+        .iter()
+        .position(|o| o.mode == ActiveMode::EdgeFollowing)
+        .unwrap();
+    assert!(edge_at < furrow_at);
+    assert!(outs[furrow_at..]
+        .iter()
+        .all(|o| o.mode == ActiveMode::FurrowPursuing));
+    assert!(outs[furrow_at..]
+        .iter()
+        .all(|o| o.edge.detected == Verdict::Enter));
+    assert_eq!(
+        outs[furrow_at].switching.mode,
+        fieldguide::supervisor::switching::Mode::Behaviour(0)
+    );
+    // Edge first: once in edge following, the rows never take over.
+    let outs = both_detectors(Priority::EdgeFirst);
+    let edge_at = outs
+        .iter()
+        .position(|o| o.mode == ActiveMode::EdgeFollowing)
+        .unwrap();
+    assert!(outs[edge_at..]
+        .iter()
+        .all(|o| o.mode == ActiveMode::EdgeFollowing));
+    assert!(outs.last().unwrap().furrow.detected == Verdict::Enter);
+
+    // Not configured: Absent every tick, whatever happens.
+    let path = straight_path();
+    let mut g = pipeline(&edge_params(), &path);
+    let ranges = wall_ranges((0.0, 0.0, 0.0), long_wall(1.5));
+    for _ in 0..60 {
+        let out = g
+            .step(&TickInput {
+                horizontal: Some(edge_scan(&ranges)),
+                ..bare((0.0, 0.0, 0.0), true)
+            })
+            .unwrap();
+        assert!(!out.furrow.configured);
+        assert_eq!(out.furrow.detected, Verdict::Absent);
+        assert_eq!(out.furrow.reported, Verdict::Absent);
+        assert_ne!(out.mode, ActiveMode::FurrowPursuing);
+    }
+}
+
+//= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
+//= type=test
+//# A behaviour's line MUST be reported consistent with the plan when plan
+//# consistency is not configured or when the path has no projection in the tick;
+//# otherwise it MUST be reported as `PlanTolerance::is_consistent` judges its
+//# tracking error against the path's.
+#[test]
+fn a_line_far_from_the_plan_is_not_entered() {
+    let path = straight_path();
+    let tolerance = PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap();
+    let params = GuidanceParams {
+        plan: Some(PlanCheck {
+            tolerance,
+            delay: Seconds::new(0.5).unwrap(),
+        }),
+        ..edge_params()
+    };
+    let pose = (0.0, 0.0, 0.0);
+    // The wall 2.5 m left: the line to follow is 1.1 m left of the path.
+    let far = wall_ranges(pose, long_wall(2.5));
+    let mut g = pipeline(&params, &path);
+    for _ in 0..100 {
+        let out = g
+            .step(&TickInput {
+                horizontal: Some(edge_scan(&far)),
+                ..bare(pose, true)
+            })
+            .unwrap();
+        assert_eq!(out.edge.detected, Verdict::Enter);
+        let plan = out.edge.plan.unwrap();
+        assert!((plan.offset.get() - 1.1).abs() < 1e-9, "{plan:?}");
+        let line = out.edge.error.unwrap();
+        let path_error = out.path.frenet.unwrap().tracking_error();
+        assert!(!tolerance.is_consistent(&line, &path_error));
+        assert!(!out.edge.plan_consistent);
+        assert_eq!(out.mode, ActiveMode::PathTracking);
+    }
+    // Without GNSS the check cannot be made: consistent, and entered.
+    let mut g = pipeline(&params, &path);
+    let mut out = None;
+    for _ in 0..40 {
+        out = Some(
+            g.step(&TickInput {
+                horizontal: Some(edge_scan(&far)),
+                ..bare(pose, false)
+            })
+            .unwrap(),
+        );
+    }
+    let out = out.unwrap();
+    assert!(out.edge.plan_consistent && out.edge.plan.is_none());
+    assert_eq!(out.mode, ActiveMode::EdgeFollowing);
+    // Without a plan check: consistent, and entered, with GNSS.
+    let mut g = pipeline(&edge_params(), &path);
+    for _ in 0..40 {
+        g.step(&TickInput {
+            horizontal: Some(edge_scan(&far)),
+            ..bare(pose, true)
+        })
+        .unwrap();
+    }
+    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    // A wall 1.5 m left: the line is 0.1 m from the path, consistent.
+    let near = wall_ranges(pose, long_wall(1.5));
+    let mut g = pipeline(&params, &path);
+    for _ in 0..40 {
+        let out = g
+            .step(&TickInput {
+                horizontal: Some(edge_scan(&near)),
+                ..bare(pose, true)
+            })
+            .unwrap();
+        assert!(out.edge.plan_consistent);
+    }
+    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+}
+
+//= spec/guidance.md#gd-command-the-command-of-the-selected-source
+//= type=test
+//# A behaviour whose law refuses its error MUST be reported to the switching
+//# machine as Exit in that tick, so that a command source is always a source
+//# whose law gave a command.
+#[test]
+fn a_law_that_refuses_a_held_estimate_reports_exit() {
+    let path = straight_path();
+    let mut g = pipeline(&edge_params(), &path);
+    let pose = (0.0, 0.0, 0.0);
+    let ranges = wall_ranges(pose, long_wall(1.5));
+    for _ in 0..40 {
+        g.step(&TickInput {
+            horizontal: Some(edge_scan(&ranges)),
+            ..bare(pose, true)
+        })
+        .unwrap();
+    }
+    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    // Odometry says the robot has turned 2 rad since the scan: the held line is
+    // now behind its side, |θ̃| > π/2, and the law refuses it.
+    let out = g
+        .step(&TickInput {
+            odometry: odom((0.0, 0.0, 2.0)),
+            ..bare(pose, true)
+        })
+        .unwrap();
+    assert_eq!(out.edge.detected, Verdict::Enter);
+    assert!((out.edge.error.unwrap().angular_deviation.get() - 2.0).abs() < 1e-9);
+    match out.edge.law {
+        LawOutcome::Refused(e) => assert_eq!(e.requirement, "PT-HEADING"),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(out.edge.reported, Verdict::Exit);
+    // Still in edge following (its exit delay runs), steered by path tracking.
+    assert_eq!(out.mode, ActiveMode::EdgeFollowing);
+    assert_eq!(out.source, Some(Source::PathTracking));
+    assert_eq!(command(&out).speed.get(), 0.8);
+}
+
+//= spec/guidance.md#gd-input-malformed-input
+//= type=test
+//# A tick whose input is malformed MUST be refused with an error before any
+//# state changes: a sideslip estimate outside |β| < π/2 (`PT-SIDESLIP`), or a
+//# scan for a behaviour that is not configured (`GD-INPUT`).
+#[test]
+fn malformed_input_is_refused_and_changes_nothing() {
+    let path = straight_path();
+    let mut g = pipeline(&edge_params(), &path);
+    let pose = (0.0, 0.0, 0.0);
+    let wall = wall_ranges(pose, long_wall(1.5));
+    let good = TickInput {
+        horizontal: Some(edge_scan(&wall)),
+        ..bare(pose, true)
+    };
+    for _ in 0..20 {
+        g.step(&good).unwrap();
+    }
+    let before = g.clone();
+    let slip = Sideslip {
+        front: Radians::new(1.7).unwrap(),
+        rear: Radians::ZERO,
+    };
+    let err = g
+        .step(&TickInput {
+            sideslip: slip,
+            ..good
+        })
+        .unwrap_err();
+    assert_eq!(err.requirement, "PT-SIDESLIP");
+    let ridges = vec![2.0; 360];
+    let l = furrow_lidar();
+    let err = g
+        .step(&TickInput {
+            inclined: Some(furrow_scan(&ridges, &l)),
+            ..good
+        })
+        .unwrap_err();
+    assert_eq!(err.requirement, "GD-INPUT");
+    // The refused ticks did not count: both pipelines continue identically
+    // and enter edge following in the same (40th accepted) tick.
+    let mut before = before;
+    for k in 21..=45 {
+        let a = g.step(&good).unwrap();
+        let b = before.step(&good).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(a.mode == ActiveMode::EdgeFollowing, k >= 40, "tick {k}");
+    }
+    // A horizontal scan for a pipeline without edge following.
+    let mut p = pipeline(&GuidanceParams::pierre2022_furrow().unwrap(), &path);
+    let err = p.step(&good).unwrap_err();
+    assert_eq!(err.requirement, "GD-INPUT");
+}
+
+//= spec/guidance.md#gd-config-configuration-validated-once
+//= type=test
+//# A guidance configuration MUST be validated once, at construction, and refused
+//# with an error naming the requirement that fails: a speed that is not positive
+//# (`GD-SPEED`), a negative prediction horizon (`GD-PREDICTION`), a search window
+//# that is not positive (`GD-LOCALISATION`), a maximal scan age that is negative
+//# or longer than 65 535 ticks (`GD-SCAN-AGE`), or a delay of the switching
+//# machine (`SW-DELAYS`, `SW-STOP`, `SW-PLAN-CONSISTENCY`).
+#[test]
+fn each_bad_parameter_is_refused_naming_its_requirement() {
+    let good = both_params(Priority::FurrowFirst);
+    assert!(GuidanceConfig::new(&good).is_ok());
+    fn s(v: f64) -> Seconds {
+        Seconds::new(v).unwrap()
+    }
+    fn v(x: f64) -> MetersPerSecond {
+        MetersPerSecond::new(x).unwrap()
+    }
+    type Change = Box<dyn Fn(&mut GuidanceParams)>;
+    let cases: Vec<(Change, &str)> = vec![
+        (Box::new(|p| p.path.speed = v(0.0)), "GD-SPEED"),
+        (Box::new(|p| p.path.speed = v(-0.8)), "GD-SPEED"),
+        (
+            Box::new(|p| p.edge.as_mut().unwrap().speed = v(0.0)),
+            "GD-SPEED",
+        ),
+        (
+            Box::new(|p| p.furrow.as_mut().unwrap().speed = v(-1.0)),
+            "GD-SPEED",
+        ),
+        (Box::new(|p| p.path.horizon = s(-0.1)), "GD-PREDICTION"),
+        (
+            Box::new(|p| p.path.search_window = m(0.0)),
+            "GD-LOCALISATION",
+        ),
+        (Box::new(|p| p.max_scan_age = s(-0.01)), "GD-SCAN-AGE"),
+        (Box::new(|p| p.max_scan_age = s(655.36)), "GD-SCAN-AGE"),
+        (Box::new(|p| p.period = s(0.0)), "SW-DELAYS"),
+        (
+            Box::new(|p| p.edge.as_mut().unwrap().enter_delay = s(0.0)),
+            "SW-DELAYS",
+        ),
+        (
+            Box::new(|p| p.furrow.as_mut().unwrap().exit_delay = s(-0.3)),
+            "SW-DELAYS",
+        ),
+        (Box::new(|p| p.stop_delay = s(0.0)), "SW-STOP"),
+        (
+            Box::new(|p| {
+                p.plan = Some(PlanCheck {
+                    tolerance: PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap(),
+                    delay: s(0.0),
+                });
+            }),
+            "SW-PLAN-CONSISTENCY",
+        ),
+    ];
+    for (change, requirement) in cases {
+        let mut p = good;
+        change(&mut p);
+        assert_eq!(
+            GuidanceConfig::new(&p).unwrap_err().requirement,
+            requirement
+        );
+    }
+    // The scan age in ticks: ⌊age / period⌋ without representation error.
+    for (age, ticks) in [
+        (0.0, 0),
+        (0.004, 0),
+        (0.01, 1),
+        (0.095, 9),
+        (0.1, 10),
+        (0.07, 7),
+    ] {
+        let p = GuidanceParams {
+            max_scan_age: s(age),
+            ..good
+        };
+        assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
+    }
+    let p = GuidanceParams {
+        max_scan_age: s(655.35),
+        ..good
+    };
+    assert_eq!(
+        GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(),
+        u16::MAX
+    );
+    // The furrow detector's storage is checked when the pipeline is built.
+    let path = straight_path();
+    let config = GuidanceConfig::new(&good).unwrap();
+    let small = Guidance::<'_, PATH_N, 512, 64, 512, 8>::new(config, &path);
+    assert_eq!(small.unwrap_err().requirement, "FUR-ACCUMULATE");
+}
+
+//= spec/guidance.md#gd-speed-desired-speed-per-mode
+//= type=test
+//# The speed of a command MUST be the desired speed of its source: path
+//# tracking, edge following or furrow pursuing (Tables 1 and 2: 0.8, 0.4 and
+//# 0.7 m/s).
+#[test]
+fn the_presets_are_tables_1_and_2() {
+    let p = both_params(Priority::FurrowFirst);
+    assert_eq!(p.path.speed.get(), 0.8);
+    assert_eq!(p.path.horizon.get(), 1.0);
+    assert_eq!(p.path.law.gains.k_y(), -0.7);
+    assert!(p.path.sideslip_compensation);
+    let e = p.edge.unwrap();
+    assert_eq!(e.speed.get(), 0.4);
+    assert_eq!(e.law.gains.k_y(), -0.75);
+    assert_eq!(e.detector.offset().get(), 1.4);
+    assert_eq!(e.detector.radius().get(), 1.0);
+    assert_eq!(e.detector.max_chain_length().get(), 3.0);
+    let f = p.furrow.unwrap();
+    assert_eq!(f.speed.get(), 0.7);
+    assert_eq!(f.law.gains.k_y(), -0.8);
+    assert_eq!(f.detector.params().averaged_scans, 25);
+    let config = GuidanceConfig::new(&p).unwrap();
+    assert_eq!(config.lookahead().get(), 0.8);
+    // Priority furrow first: behaviour 0 is furrow (0.5 s / 0.3 s), 1 is edge
+    // (0.4 s / 0.26 s), in ticks at 100 Hz.
+    let ticks = config.switching().all_ticks();
+    assert_eq!((ticks[0].enter, ticks[0].exit), (50, 30));
+    assert_eq!((ticks[1].enter, ticks[1].exit), (40, 26));
+    assert_eq!(config.switching().stop_ticks(), 50);
+    // The machine's thresholds are the detectors'.
+    let b = config.switching().behaviour(1).unwrap().thresholds();
+    assert_eq!((b.enter(), b.exit()), (0.15, 0.5));
+    let b = config.switching().behaviour(0).unwrap().thresholds();
+    assert_eq!((b.enter(), b.exit()), (0.4, 0.2));
+    assert_eq!(ActiveMode::FurrowPursuing.label(), "furrow_pursuing");
+}
+
+fn error(y: f64, theta: f64) -> TrackingError {
+    TrackingError::to_straight_line(m(y), Radians::new(theta).unwrap())
+}
+
+/// The error to the line through `q` with heading `phi` (both in some frame)
+/// of a robot at `(x, y, psi)` in that frame, by vectors.
+fn error_to_line(q: (f64, f64), phi: f64, robot: (f64, f64, f64)) -> (f64, f64) {
+    let n = (-phi.sin(), phi.cos());
+    let y = (robot.0 - q.0) * n.0 + (robot.1 - q.1) * n.1;
+    let mut t = robot.2 - phi;
+    while t > PI {
+        t -= TAU;
+    }
+    while t <= -PI {
+        t += TAU;
+    }
+    (y, t)
+}
+
+//= spec/guidance.md#gd-odometry-errors-moved-by-odometry
+//= type=test
+//# For a straight line with error (y₀, θ̃₀) at the scan's pose, the robot at
+//# (p_x, p_y, ψ) in the scan's robot frame MUST get y = y₀ + p_x sin θ̃₀ +
+//# p_y cos θ̃₀ and θ̃ = wrap(θ̃₀ + ψ); for two rows, the mean of the two moved
+//# errors; for an edge parabola, y = y₀(p_x) + p_y cos θ̃₀(p_x) and θ̃ =
+//# wrap(θ̃₀(p_x) + ψ), where (y₀(p_x), θ̃₀(p_x)) is the error of EDGE-OFFSET at
+//# x_r = p_x.
+#[test]
+fn moved_errors_by_hand() {
+    // A line 0.5 m to the robot's right (robot left of it: y₀ = 0.5), heading
+    // 0.2 rad left of the robot (θ̃₀ = −0.2). The robot moves 1 m forward,
+    // 0.1 m left and turns 0.05 rad.
+    let pose = Pose2::<Robot>::new(1.0, 0.1, 0.05).unwrap();
+    let e = moved_line_error(&error(0.5, -0.2), &pose).unwrap();
+    let y = 0.5 + 1.0 * (-0.2_f64).sin() + 0.1 * (-0.2_f64).cos();
+    assert!((e.y.get() - y).abs() < 1e-15);
+    assert!((e.angular_deviation.get() + 0.15).abs() < 1e-15);
+    // Wrapped: θ̃₀ = 3 and ψ = 0.5 give 3.5 − 2π.
+    let turned = Pose2::<Robot>::new(0.0, 0.0, 0.5).unwrap();
+    let e = moved_line_error(&error(0.0, 3.0), &turned).unwrap();
+    assert!((e.angular_deviation.get() - (3.5 - TAU)).abs() < 1e-12);
+
+    // A left wall y = 0.1 x + 1.5 (a straight parabola), D = 1.4: eq. 11 at
+    // x_r = 1 gives y₀ = 1.4 − 1.6 cos φ, θ̃₀ = −φ, φ = arctan 0.1.
+    let fit = EdgeFit {
+        parabola: ParabolaFit {
+            a: 0.0,
+            b: 0.1,
+            c: 1.5,
+        },
+        quality: EdgeQuality {
+            length: m(3.0),
+            width: m(0.3),
+            residual_std: m(0.0),
+        },
+        error: error(0.0, 0.0),
+    };
+    let e = moved_edge_error(&fit, Side::Left, m(1.4), &pose).unwrap();
+    let phi = 0.1_f64.atan();
+    assert!((e.y.get() - (1.4 - 1.6 * phi.cos() + 0.1 * phi.cos())).abs() < 1e-12);
+    assert!((e.angular_deviation.get() - (0.05 - phi)).abs() < 1e-12);
+    // The same by vectors: the wall line shifted 1.4 m to its right.
+    let q = (0.0 + 1.4 * phi.sin(), 1.5 - 1.4 * phi.cos());
+    let (y, t) = error_to_line(q, phi, (1.0, 0.1, 0.05));
+    assert!((e.y.get() - y).abs() < 1e-12 && (e.angular_deviation.get() - t).abs() < 1e-12);
+
+    // Two rows: the mean of both moved errors.
+    let left = RowLine::new(0.05, m(0.4)).unwrap();
+    let right = RowLine::new(-0.02, m(-0.35)).unwrap();
+    let two = moved_rows_error(&RowLines::Two(Pair { left, right }), &pose).unwrap();
+    let l = moved_line_error(&lines::tracking_error(&left).unwrap(), &pose).unwrap();
+    let r = moved_line_error(&lines::tracking_error(&right).unwrap(), &pose).unwrap();
+    assert!((two.y.get() - 0.5 * (l.y.get() + r.y.get())).abs() < 1e-15);
+    assert!(
+        (two.angular_deviation.get()
+            - 0.5 * (l.angular_deviation.get() + r.angular_deviation.get()))
+        .abs()
+            < 1e-15
+    );
+    let one = moved_rows_error(&RowLines::One(left), &pose).unwrap();
+    assert_eq!(one, l);
+}
+
+proptest! {
+    /// The moved error equals the error computed afresh in the new robot
+    /// frame: the row line transformed into it, then FUR-ERRORS (an oracle
+    /// that shares nothing with the motion formula).
+    //= spec/guidance.md#gd-odometry-errors-moved-by-odometry
+    //= type=test
+    //# For a straight line with error (y₀, θ̃₀) at the scan's pose, the robot at
+    //# (p_x, p_y, ψ) in the scan's robot frame MUST get y = y₀ + p_x sin θ̃₀ +
+    //# p_y cos θ̃₀ and θ̃ = wrap(θ̃₀ + ψ); for two rows, the mean of the two moved
+    //# errors; for an edge parabola, y = y₀(p_x) + p_y cos θ̃₀(p_x) and θ̃ =
+    //# wrap(θ̃₀(p_x) + ψ), where (y₀(p_x), θ̃₀(p_x)) is the error of EDGE-OFFSET at
+    //# x_r = p_x.
+    #[test]
+    fn moving_a_row_line_agrees_with_recomputing_it(
+        slope in -1.0..1.0_f64,
+        intercept in -3.0..3.0_f64,
+        then in (-50.0..50.0_f64, -50.0..50.0_f64, -PI..PI),
+        step in (-2.0..2.0_f64, -0.5..0.5_f64, -0.6..0.6_f64),
+    ) {
+        let line = RowLine::new(slope, m(intercept)).unwrap();
+        let then_pose = odom(then);
+        // The new pose: `step` in the old robot frame, into Odom.
+        let (c, s) = (then.2.cos(), then.2.sin());
+        let now_pose = odom((
+            then.0 + c * step.0 - s * step.1,
+            then.1 + s * step.0 + c * step.1,
+            then.2 + step.2,
+        ));
+        let pose = pose_in_scan_frame(&then_pose, &now_pose).unwrap();
+        prop_assert!((pose.position.x() - step.0).abs() < 1e-9);
+        prop_assert!((pose.position.y() - step.1).abs() < 1e-9);
+        let moved = moved_rows_error(&RowLines::One(line), &pose).unwrap();
+        // Oracle: two points of the line into the new frame, a new RowLine.
+        let to_new = |x: f64, y: f64| {
+            let (dx, dy) = (x - step.0, y - step.1);
+            let (c, s) = (step.2.cos(), step.2.sin());
+            (c * dx + s * dy, -s * dx + c * dy)
+        };
+        let p0 = to_new(0.0, line.y_at(0.0));
+        let p1 = to_new(1.0, line.y_at(1.0));
+        let new_slope = (p1.1 - p0.1) / (p1.0 - p0.0);
+        let new_line = RowLine::new(new_slope, m(p0.1 - new_slope * p0.0)).unwrap();
+        let fresh = lines::tracking_error(&new_line).unwrap();
+        prop_assert!((moved.y.get() - fresh.y.get()).abs() < 1e-9);
+        prop_assert!((moved.angular_deviation.get() - fresh.angular_deviation.get()).abs() < 1e-9);
+    }
+}
+
+/// What one synthetic tick holds.
+#[derive(Debug, Clone, Copy)]
+enum Gnss {
+    On,
+    Off,
+    Backwards,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Horizontal {
+    None,
+    Wall,
+    Garbage,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Inclined {
+    None,
+    Rows,
+    Flat,
+    Garbage,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    gnss: Gnss,
+    horizontal: Horizontal,
+    inclined: Inclined,
+    scan_every: usize,
+    ticks: usize,
+}
+
+fn segment() -> impl Strategy<Value = Segment> {
+    (
+        prop_oneof![3 => Just(Gnss::On), 2 => Just(Gnss::Off), 1 => Just(Gnss::Backwards)],
+        prop_oneof![
+            Just(Horizontal::None),
+            Just(Horizontal::Wall),
+            Just(Horizontal::Garbage)
+        ],
+        prop_oneof![
+            Just(Inclined::None),
+            Just(Inclined::Rows),
+            Just(Inclined::Flat),
+            Just(Inclined::Garbage)
+        ],
+        1..12usize,
+        1..90usize,
+    )
+        .prop_map(|(gnss, horizontal, inclined, scan_every, ticks)| Segment {
+            gnss,
+            horizontal,
+            inclined,
+            scan_every,
+            ticks,
+        })
+}
+
+/// Deterministic garbage: any f64, NaN, infinities, negatives, huge values.
+fn garbage(seed: u64, n: usize) -> Vec<f64> {
+    let mut x = seed | 1;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            match x % 8 {
+                0 => f64::NAN,
+                1 => f64::INFINITY,
+                2 => -1.0,
+                3 => f64::from_bits(x),
+                4 => 1e300,
+                _ => (x % 3000) as f64 / 100.0,
+            }
+        })
+        .collect()
+}
+
+fn finite_error(e: &Option<TrackingError>) -> bool {
+    e.is_none_or(|e| e.y.get().is_finite() && e.angular_deviation.get().is_finite())
+}
+
+/// The property checks of one tick (GD-COMMAND, GD-SPEED, GD-STOP).
+fn check_tick(out: &TickOutput, params: &GuidanceParams) -> Result<(), TestCaseError> {
+    let drive = |law: &LawOutcome, speed: MetersPerSecond| {
+        law.command().map(|c| Command {
+            speed,
+            steering: c.steering,
+            saturated: c.saturated,
+        })
+    };
+    match out.source {
+        Some(Source::PathTracking) => {
+            prop_assert!(out.path.localisation_valid);
+            prop_assert_ne!(out.mode, ActiveMode::Stop);
+            prop_assert_eq!(out.command, drive(&out.path.law, params.path.speed));
+        }
+        Some(Source::EdgeFollowing) => {
+            prop_assert_eq!(out.mode, ActiveMode::EdgeFollowing);
+            prop_assert!(out.edge.reported.estimate_is_valid());
+            prop_assert!(out.edge.detected.estimate_is_valid());
+            prop_assert_eq!(
+                out.command,
+                drive(&out.edge.law, params.edge.unwrap().speed)
+            );
+        }
+        Some(Source::FurrowPursuing) => {
+            prop_assert_eq!(out.mode, ActiveMode::FurrowPursuing);
+            prop_assert!(out.furrow.reported.estimate_is_valid());
+            prop_assert_eq!(
+                out.command,
+                drive(&out.furrow.law, params.furrow.unwrap().speed)
+            );
+        }
+        None => match out.command {
+            Some(c) => {
+                prop_assert_eq!(out.mode, ActiveMode::Stop);
+                prop_assert_eq!(c.speed, MetersPerSecond::ZERO);
+                prop_assert!(!c.saturated);
+            }
+            None => prop_assert_ne!(out.mode, ActiveMode::Stop),
+        },
+    }
+    if let Some(c) = out.command {
+        prop_assert!(c.steering.get().is_finite() && c.speed.get().is_finite());
+        prop_assert!(c.steering.get().abs() <= core::f64::consts::FRAC_PI_6 + 1e-12);
+    }
+    for b in [&out.edge, &out.furrow] {
+        prop_assert_eq!(b.detected == Verdict::Absent, b.error.is_none());
+        prop_assert!(finite_error(&b.error));
+        match b.law {
+            LawOutcome::Refused(_) => prop_assert_eq!(b.reported, Verdict::Exit),
+            LawOutcome::Steer(_) => prop_assert_eq!(b.reported, b.detected),
+            LawOutcome::NotRun => prop_assert!(!b.detected.estimate_is_valid()),
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Every command comes from a source valid in its tick, is that source's
+    /// law output at that source's speed, and a command without a source is a
+    /// stop; over random sequences of GNSS outages, walls, rows and garbage.
+    //= spec/guidance.md#gd-command-the-command-of-the-selected-source
+    //= type=test
+    //# The command MUST be the saturated output of the selected source's control law
+    //# on that source's error of the tick, and no other; when the machine selects no
+    //# source outside Stop, there MUST be no command.
+    //= spec/guidance.md#gd-stop-the-stop-command
+    //= type=test
+    //# In Stop the command MUST be a speed of 0 m/s with the steering of the last
+    //# command made, or 0 rad before any command, never saturated.
+    #[test]
+    fn every_command_comes_from_a_source_valid_in_its_tick(
+        segments in prop::collection::vec(segment(), 1..8),
+        edge_first in any::<bool>(),
+        seed in any::<u64>(),
+    ) {
+        let priority = if edge_first { Priority::EdgeFirst } else { Priority::FurrowFirst };
+        let params = both_params(priority);
+        let path = straight_path();
+        let mut g = pipeline(&params, &path);
+        let lidar = furrow_lidar();
+        let rows = two_rows();
+        let mut k = 0usize;
+        let mut last_steering = Radians::ZERO;
+        for seg in segments {
+            for i in 0..seg.ticks {
+                let pose = (0.007 * k as f64, 0.05 * (k as f64 * 0.01).sin(), 0.0);
+                let scan_now = i % seg.scan_every == 0;
+                let h = match seg.horizontal {
+                    Horizontal::Wall => Some(wall_ranges(pose, long_wall(1.5))),
+                    Horizontal::Garbage => Some(garbage(seed ^ k as u64, RAYS)),
+                    Horizontal::None => None,
+                };
+                let f = match seg.inclined {
+                    Inclined::Rows => Some(ridge_scan(&furrow_params(), &lidar, pose, &rows)),
+                    Inclined::Flat => Some(vec![1.0 / (0.38_f64).sin(); 360]),
+                    Inclined::Garbage => Some(garbage(seed.rotate_left(7) ^ k as u64, 360)),
+                    Inclined::None => None,
+                };
+                let gnss = match seg.gnss {
+                    Gnss::On => Some(world(pose)),
+                    Gnss::Off => None,
+                    Gnss::Backwards => Some(world((pose.0, pose.1, PI))),
+                };
+                let input = TickInput {
+                    horizontal: h.as_deref().filter(|_| scan_now).map(edge_scan),
+                    inclined: f.as_deref().filter(|_| scan_now).map(|r| furrow_scan(r, &lidar)),
+                    gnss,
+                    odometry: odom(pose),
+                    sideslip: Sideslip::new(0.01, -0.02).unwrap(),
+                };
+                let out = g.step(&input).unwrap();
+                check_tick(&out, &params)?;
+                if out.mode == ActiveMode::Stop {
+                    prop_assert_eq!(out.command.unwrap().steering, last_steering);
+                } else if let Some(c) = out.command {
+                    last_steering = c.steering;
+                }
+                k += 1;
+            }
+        }
+    }
+
+    /// Scans of any f64 (NaN, infinities, negatives, huge values) and any ray
+    /// geometry give an output, never a panic, and finite numbers.
+    //= spec/guidance.md#gd-input-malformed-input
+    //= type=test
+    //# Sensor data MUST NOT be malformed input: any range, NaN and infinities
+    //# included, and any scan a detector refuses MUST give a tick output, the
+    //# refused scan counting as no estimate.
+    #[test]
+    fn any_scan_gives_an_output(
+        horizontal in prop::collection::vec(any::<f64>(), 0..400),
+        inclined in prop::collection::vec(any::<f64>(), 0..400),
+        start in -10.0..10.0_f64,
+        increment in prop_oneof![Just(0.0), -1.0..1.0_f64, Just(1e300)],
+        angle_min in -10.0..10.0_f64,
+        angle_increment in prop_oneof![Just(0.0), -1.0..1.0_f64, Just(1e-300)],
+        pose in (-1e6..1e6_f64, -1e6..1e6_f64, -10.0..10.0_f64),
+        ticks in 1..4usize,
+    ) {
+        let params = both_params(Priority::FurrowFirst);
+        let path = straight_path();
+        let mut g = pipeline(&params, &path);
+        for _ in 0..ticks {
+            let out = g
+                .step(&TickInput {
+                    horizontal: Some(EdgeScan {
+                        start: Radians::new(start).unwrap(),
+                        increment: Radians::new(increment).unwrap(),
+                        ranges: &horizontal,
+                        limits: limits(),
+                    }),
+                    inclined: Some(FurrowScan {
+                        ranges: &inclined,
+                        angle_min: Radians::new(angle_min).unwrap(),
+                        angle_increment: Radians::new(angle_increment).unwrap(),
+                    }),
+                    gnss: Some(world(pose)),
+                    odometry: odom(pose),
+                    sideslip: Sideslip::ZERO,
+                })
+                .unwrap();
+            check_tick(&out, &params)?;
+            if let Some(f) = out.path.frenet {
+                prop_assert!(f.y.get().is_finite() && f.s.get().is_finite());
+            }
+        }
+    }
+}
