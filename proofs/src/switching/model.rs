@@ -118,7 +118,7 @@ fn report_variants(sym: Sym, plan_check: bool) -> ([Report; 4], usize) {
 }
 
 /// Calls `visit` with every concrete input the abstract tick stands for
-/// (every combination of [`report_variants`] over the behaviours), until it
+/// (every combination of `report_variants` over the behaviours), until it
 /// returns false; returns whether it never did. Allocates nothing.
 pub fn all_concretisations<const K: usize>(
     tick: &Tick<K>,
