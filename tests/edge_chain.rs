@@ -81,14 +81,56 @@ fn check_invariants(points: &[Point2<Robot>], side: Side, config: &EdgeConfig, c
     assert!((chain.length().get() - length).abs() < 1e-9);
     let l_max = config.max_chain_length().get();
     assert!(chain.length().get() < l_max + 2.0 * r);
+    // No link is longer than l_link (EDGE-GAP) or turns from the chord by
+    // more than φ_turn (EDGE-CORNER).
+    let pts = chain.points();
+    for k in 1..pts.len() {
+        assert!(pts[k - 1].distance_to(pts[k]) <= config.max_link().get());
+        if k >= 2 {
+            assert!(turn(pts[0], pts[k - 1], pts[k]) <= config.max_turn().get() + 1e-9);
+        }
+    }
     match chain.end() {
         ChainEnd::NoEdge => assert!(chain.is_empty()),
         ChainEnd::LengthLimit => assert!(chain.length().get() >= l_max),
         ChainEnd::Capacity => assert_eq!(chain.len(), M),
-        ChainEnd::RotationLimit | ChainEnd::Closed => {
+        ChainEnd::RotationLimit | ChainEnd::Closed | ChainEnd::Gap | ChainEnd::Corner => {
             assert!(chain.length().get() < l_max && !chain.is_empty())
         }
     }
+}
+
+/// The angle, in [0, π], between the link `pivot → next` and the chord `first → pivot`.
+fn turn(first: Point2<Robot>, pivot: Point2<Robot>, next: Point2<Robot>) -> f64 {
+    let a = (pivot.y() - first.y()).atan2(pivot.x() - first.x());
+    let b = (next.y() - pivot.y()).atan2(next.x() - pivot.x());
+    let mut d = (b - a).abs();
+    if d > core::f64::consts::PI {
+        d = core::f64::consts::TAU - d;
+    }
+    d
+}
+
+/// The next contact about the last pivot of `chain` (the point the chain
+/// refused, when it stopped at a gap or a corner): its index and point.
+fn refused_contact(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    chain: &Chain<M>,
+) -> Option<(usize, Point2<Robot>)> {
+    let k = chain.len().checked_sub(1)?;
+    let (p, c) = (chain.points()[k], chain.centers()[k]);
+    points
+        .iter()
+        .enumerate()
+        .filter(|(i, q)| *i != chain.indices()[k] && side.sign() * q.y() > 0.0)
+        .filter_map(|(i, q)| {
+            rotation_contact(p, c, *q, side, config.radius())
+                .map(|t| (t.get(), p.distance_to(*q), i, *q))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
+        .map(|(_, _, i, q)| (i, q))
 }
 
 //= spec/pierre2022.md#edge-chain-translate-first-point-by-translation
@@ -136,6 +178,54 @@ fn check_minimal_contacts(
             }
         }
     }
+    check_stop_at_gap_or_corner(points, side, config, chain);
+}
+
+//= spec/pierre2022.md#edge-gap-the-chain-stops-at-a-gap-in-the-edge
+//= type=test
+//# The chain MUST stop, before taking it, at a next contact farther than
+//# l_link from the pivot: a link longer than l_link is a gap, and the two
+//# sides of a gap are two edges.
+//= spec/pierre2022.md#edge-corner-the-chain-stops-at-a-corner-or-the-end-of-the-edge
+//= type=test
+//# The chain MUST stop, before taking it, at a next contact q whose link
+//# from the pivot p_k turns from the chain's direction, the vector from its
+//# first point p_0 to p_k, by more than φ_turn: (q − p_k) · (p_k − p_0) <
+//# cos φ_turn · |q − p_k| |p_k − p_0|.
+/// A chain that ended at a gap or a corner refused the point the circle
+/// touched next, and that point is beyond the gap or round the corner.
+fn check_stop_at_gap_or_corner(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    chain: &Chain<M>,
+) {
+    let refused = refused_contact(points, side, config, chain);
+    let last = chain.len().saturating_sub(1);
+    match chain.end() {
+        ChainEnd::Gap => {
+            let (_, q) = refused.unwrap();
+            let theta = rotation_contact(
+                chain.points()[last],
+                chain.centers()[last],
+                q,
+                side,
+                config.radius(),
+            )
+            .unwrap();
+            assert!(theta.get() < config.max_rotation().get());
+            assert!(chain.points()[last].distance_to(q) > config.max_link().get());
+        }
+        ChainEnd::Corner => {
+            let (_, q) = refused.unwrap();
+            assert!(chain.len() >= 2, "the first link cannot turn");
+            assert!(chain.points()[last].distance_to(q) <= config.max_link().get());
+            assert!(
+                turn(chain.points()[0], chain.points()[last], q) > config.max_turn().get() - 1e-9
+            );
+        }
+        _ => {}
+    }
 }
 
 proptest! {
@@ -160,9 +250,18 @@ proptest! {
         points in prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 0..40),
         radius in 0.2..2.0f64,
         max_rotation in 0.1..6.2f64,
+        max_link in 0.1..4.0f64,
+        max_turn in 0.1..=core::f64::consts::PI,
     ) {
         let points: Vec<_> = points.into_iter().map(|(x, y)| pt(x, y)).collect();
-        let config = EdgeConfig::new(&EdgeParameters { radius, max_rotation, ..EdgeParameters::PIERRE2022 }).unwrap();
+        let config = EdgeConfig::new(&EdgeParameters {
+            radius,
+            max_rotation,
+            max_link,
+            max_turn,
+            ..EdgeParameters::PIERRE2022
+        })
+        .unwrap();
         let chain = build_chain::<M>(&points, side, &config);
         check_invariants(&points, side, &config, &chain);
         check_minimal_contacts(&points, side, &config, &chain);
@@ -232,6 +331,155 @@ proptest! {
 
 }
 
+/// A straight wall on `side` at distance `dist` and heading `angle`, sampled
+/// every 5 cm from −1 m to 6 m along it, without the points strictly inside
+/// the gap `(g0, g0 + width)`; with each point's along-wall abscissa.
+fn wall_with_gap(
+    side: Side,
+    dist: f64,
+    angle: f64,
+    g0: f64,
+    width: f64,
+) -> (Vec<Point2<Robot>>, Vec<f64>) {
+    let along: Vec<f64> = (0..=140)
+        .map(|k| -1.0 + 0.05 * f64::from(k))
+        .filter(|a| *a <= g0 + 1e-9 || *a >= g0 + width - 1e-9)
+        .collect();
+    let zeros = vec![0.0; along.len()];
+    (hedge(side, dist, angle, &along, &zeros), along)
+}
+
+/// Two straight legs on `side`: from 1 m behind the robot's abscissa along
+/// the robot's x axis at distance `dist` to the corner at x = `c`, then 2 m
+/// turning by `turn` (positive: away from the robot), points every 5 cm;
+/// with whether each point is on the second leg (the corner excluded).
+fn corner(side: Side, dist: f64, c: f64, turn: f64) -> (Vec<Point2<Robot>>, Vec<bool>) {
+    let s = side.sign();
+    let mut points = Vec::new();
+    let mut second = Vec::new();
+    let mut x = -1.0;
+    while x < c - 1e-9 {
+        points.push(pt(x, s * dist));
+        second.push(false);
+        x += 0.05;
+    }
+    points.push(pt(c, s * dist));
+    second.push(false);
+    for k in 1..=40 {
+        let a = 0.05 * f64::from(k);
+        points.push(pt(c + a * turn.cos(), s * (dist + a * turn.sin())));
+        second.push(true);
+    }
+    (points, second)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    //= spec/pierre2022.md#edge-gap-the-chain-stops-at-a-gap-in-the-edge
+    //= type=test
+    //# The chain MUST stop, before taking it, at a next contact farther than
+    //# l_link from the pivot: a link longer than l_link is a gap, and the two
+    //# sides of a gap are two edges.
+    /// A wall with a gap wider than l_link ahead gives a chain that stops at
+    /// the gap; the paper's rules alone (l_link = 2r) chain across it; a gap
+    /// narrower than l_link is chained across.
+    #[test]
+    fn a_wall_with_a_gap_gives_a_chain_that_stops_at_the_gap(
+        side in side(),
+        dist in 0.8..2.5f64,
+        angle in -0.3..0.3f64,
+        g0 in 0.3..2.0f64,
+        width in 1.05..1.9f64,
+    ) {
+        let config = config();
+        let (points, along) = wall_with_gap(side, dist, angle, g0, width);
+        // The wall beyond the gap stays on the requested side over a metre.
+        prop_assume!(points
+            .iter()
+            .zip(&along)
+            .filter(|(_, a)| **a >= g0 + width - 1e-9)
+            .take(20)
+            .all(|(p, _)| side.sign() * p.y() > 0.2));
+        let chain = build_chain::<M>(&points, side, &config);
+        check_invariants(&points, side, &config, &chain);
+        prop_assert_eq!(chain.end(), ChainEnd::Gap);
+        // Every chain point is before the gap, the last one at its edge.
+        for &i in chain.indices() {
+            prop_assert!(along[i] <= g0 + 1e-9);
+        }
+        prop_assert!(along[*chain.indices().last().unwrap()] > g0 - 0.05 - 1e-9);
+        // The paper's chain (every contact closer than 2r taken) crosses it.
+        let paper = EdgeConfig::new(&EdgeParameters { max_link: 2.0, ..EdgeParameters::PIERRE2022 }).unwrap();
+        let across = build_chain::<M>(&points, side, &paper);
+        prop_assert!(across.indices().iter().any(|&i| along[i] >= g0 + width - 1e-9));
+        // A gap narrower than l_link is part of the edge.
+        let (narrow, along) = wall_with_gap(side, dist, angle, g0, 0.9);
+        let chain = build_chain::<M>(&narrow, side, &config);
+        prop_assert_ne!(chain.end(), ChainEnd::Gap);
+        prop_assert!(chain.indices().iter().any(|&i| along[i] >= g0 + 0.9 - 1e-9));
+    }
+
+    //= spec/pierre2022.md#edge-corner-the-chain-stops-at-a-corner-or-the-end-of-the-edge
+    //= type=test
+    //# The chain MUST stop, before taking it, at a next contact q whose link
+    //# from the pivot p_k turns from the chain's direction, the vector from its
+    //# first point p_0 to p_k, by more than φ_turn: (q − p_k) · (p_k − p_0) <
+    //# cos φ_turn · |q − p_k| |p_k − p_0|.
+    /// A wall that turns away from the robot by more than φ_turn (the end of
+    /// a hedge, a building's corner) gives a chain that stops at the corner;
+    /// with φ_turn = π, a turn below θ_max is wrapped round.
+    #[test]
+    fn a_corner_stops_the_chain(
+        side in side(),
+        dist in 1.0..2.0f64,
+        c in 0.8..2.2f64,
+        turn_deg in 50.0..150.0f64,
+    ) {
+        let config = config();
+        let (points, second) = corner(side, dist, c, turn_deg.to_radians());
+        let chain = build_chain::<M>(&points, side, &config);
+        check_invariants(&points, side, &config, &chain);
+        check_minimal_contacts(&points, side, &config, &chain);
+        for &i in chain.indices() {
+            prop_assert!(!second[i], "chain point {i} on the second leg: {:?}", chain.end());
+        }
+        if turn_deg < 80.0 {
+            prop_assert_eq!(chain.end(), ChainEnd::Corner);
+            let paper = EdgeConfig::new(&EdgeParameters { max_turn: core::f64::consts::PI, ..EdgeParameters::PIERRE2022 }).unwrap();
+            let wraps = build_chain::<M>(&points, side, &paper);
+            prop_assert!(wraps.indices().iter().any(|&i| second[i]));
+        }
+    }
+
+    /// A gently curved edge (radius ≥ 3 m, either way) is not cut by the
+    /// corner rule: the chain runs to l_max.
+    #[test]
+    fn a_gently_curved_edge_is_not_a_corner(
+        side in side(),
+        dist in 1.0..2.0f64,
+        radius in 3.0..20.0f64,
+        away in any::<bool>(),
+    ) {
+        let config = config();
+        let s = side.sign();
+        // Centre of curvature beyond the edge (curving away) or on the robot's side.
+        let k = if away { 1.0 } else { -1.0 };
+        // Curving towards the robot, the edge must stay on its side over the chain.
+        prop_assume!(away || dist - radius * (1.0 - (4.5 / radius).cos()) > 0.3);
+        let points: Vec<_> = (0..=120)
+            .map(|i| {
+                let a = -1.0 + 0.05 * f64::from(i);
+                let phi = a / radius;
+                pt(radius * phi.sin(), s * (dist + k * radius * (1.0 - phi.cos())))
+            })
+            .collect();
+        let chain = build_chain::<M>(&points, side, &config);
+        check_invariants(&points, side, &config, &chain);
+        prop_assert_eq!(chain.end(), ChainEnd::LengthLimit);
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(96))]
 
@@ -239,12 +487,20 @@ proptest! {
     /// the gap between competing contacts.
     #[test]
     fn exact_and_stepped_chains_agree_as_the_step_shrinks((side, points) in ragged(0.3)) {
-        let config = config();
-        let exact = build_chain::<M>(&points, side, &config);
-        let step = 1e-4;
-        prop_assume!(well_separated(&points, side, &config, &exact));
-        let stepped = stepped_chain(&points, side, &config, step, step, M);
-        prop_assert_eq!(exact.indices(), &stepped[..]);
+        // The library's rules, and the paper's alone (no gap, no corner rule).
+        let paper = EdgeConfig::new(&EdgeParameters {
+            max_link: 2.0,
+            max_turn: core::f64::consts::PI,
+            ..EdgeParameters::PIERRE2022
+        })
+        .unwrap();
+        for config in [config(), paper] {
+            let exact = build_chain::<M>(&points, side, &config);
+            let step = 1e-4;
+            prop_assume!(well_separated(&points, side, &config, &exact));
+            let stepped = stepped_chain(&points, side, &config, step, step, M);
+            prop_assert_eq!(exact.indices(), &stepped[..]);
+        }
     }
 }
 
@@ -312,12 +568,55 @@ fn straight_wall_is_chained_point_by_point_in_order() {
     }
 }
 
+//= spec/pierre2022.md#edge-corner-the-chain-stops-at-a-corner-or-the-end-of-the-edge
+//= type=test
+//# The chain MUST stop, before taking it, at a next contact q whose link
+//# from the pivot p_k turns from the chain's direction, the vector from its
+//# first point p_0 to p_k, by more than φ_turn: (q − p_k) · (p_k − p_0) <
+//# cos φ_turn · |q − p_k| |p_k − p_0|.
+#[test]
+fn the_end_face_of_a_hedge_is_not_climbed() {
+    // The face of a hedge 1.4 m to the left ends at x = 1.5; its end face
+    // runs away from the robot, its points scattered by ±1 cm along x as a
+    // LiDAR's range noise scatters them. θ_max = π/2 does not stop the
+    // circle: it climbs the end face by small rotations, each below θ_max.
+    let mut points: Vec<_> = (0..=50)
+        .map(|k| pt(-1.0 + 0.05 * f64::from(k), 1.4))
+        .collect();
+    let face = points.len();
+    for k in 1..=20 {
+        let jitter = if k % 2 == 0 { -0.006 } else { 0.01 };
+        points.push(pt(1.5 + jitter, 1.4 + 0.05 * f64::from(k)));
+    }
+    let paper = EdgeConfig::new(&EdgeParameters {
+        max_turn: core::f64::consts::PI,
+        ..EdgeParameters::PIERRE2022
+    })
+    .unwrap();
+    let climbs = build_chain::<M>(&points, Side::Left, &paper);
+    check_invariants(&points, Side::Left, &paper, &climbs);
+    let top = climbs.points().iter().map(|p| p.y()).fold(0.0, f64::max);
+    assert!(top > 1.4 + 0.3, "the paper's chain climbs {top}");
+    let config = config();
+    let chain = build_chain::<M>(&points, Side::Left, &config);
+    check_invariants(&points, Side::Left, &config, &chain);
+    check_minimal_contacts(&points, Side::Left, &config, &chain);
+    assert_eq!(chain.end(), ChainEnd::Corner);
+    assert!(chain.indices().iter().all(|&i| i < face));
+    assert_eq!(
+        *chain.indices().last().unwrap(),
+        face - 1,
+        "it stops at the corner"
+    );
+}
+
 #[test]
 fn circle_rolling_round_a_post_closes_or_stops() {
     // A post of radius 0.1 m at (1, 1.2), 24 points round it.
     let config = EdgeConfig::new(&EdgeParameters {
         max_rotation: 6.0,
         max_chain_length: 50.0,
+        max_turn: core::f64::consts::PI,
         ..EdgeParameters::PIERRE2022
     })
     .unwrap();

@@ -282,7 +282,7 @@ proptest! {
                 1 => Just(0.0),
                 1 => any::<f64>(),
             ],
-            9,
+            11,
         ),
         min_points in 0usize..10,
         side in side(),
@@ -298,6 +298,8 @@ proptest! {
             max_width: values[6],
             sigma_enter: values[7],
             sigma_exit: values[8],
+            max_link: values[9],
+            max_turn: values[10],
             min_points,
         };
         match EdgeConfig::new(&params) {
@@ -471,8 +473,12 @@ fn rejected_detections_offer_no_error() {
     assert!(det.usable_error().is_none());
     // The same box-shaped hedge graded with σ_edge = 1 cm: its residual
     // (a few cm) is between the thresholds → Hold, and the error is usable.
+    // (The box's sides are corners, its far end is left by a link longer
+    // than 1 m: the paper's chain, φ_turn = π and l_link = 2r, follows them.)
     let strict = EdgeConfig::new(&EdgeParameters {
         sigma_enter: 0.01,
+        max_turn: core::f64::consts::PI,
+        max_link: 2.0,
         ..EdgeParameters::PIERRE2022
     })
     .unwrap();

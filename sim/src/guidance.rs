@@ -5,10 +5,13 @@
 //! selector fed by LiDAR detectors) plug in as new implementations and new
 //! [`Mode`] labels without touching the runner.
 
+pub mod edge;
 pub mod furrow;
+pub mod specialised;
 
 use fieldguide::control::backstepping::{steering_command, BacksteppingConfig};
 use fieldguide::model::bicycle::Sideslip;
+use fieldguide::perception::edge::Scan as HorizontalScan;
 use fieldguide::{Meters, MetersPerSecond, Precondition, TrackingError, Verdict};
 
 use crate::lidar::inclined::InclinedScan;
@@ -23,6 +26,8 @@ pub enum Mode {
     PathTracking,
     /// Following crop rows seen by the inclined LiDAR (Pierre 2022, section 2.3).
     FurrowPursuing,
+    /// Following a hedge or a wall seen by the horizontal LiDAR (Pierre 2022, section 2.2).
+    EdgeFollowing,
 }
 
 impl Mode {
@@ -32,22 +37,25 @@ impl Mode {
         match self {
             Self::PathTracking => "path_tracking",
             Self::FurrowPursuing => "furrow_pursuing",
+            Self::EdgeFollowing => "edge_following",
         }
     }
 
-    /// Plot colour (Pierre 2022, Figs. 8 and 10: path tracking in red,
-    /// furrow pursuing in blue).
+    /// Plot colour (Pierre 2022, Figs. 8 and 10: path tracking in red, the
+    /// specialised behaviour in blue; edge following a lighter blue, so the
+    /// two specialised behaviours stay apart in one legend).
     #[must_use]
     pub const fn colour(self) -> &'static str {
         match self {
             Self::PathTracking => "#d62728",
             Self::FurrowPursuing => "#1f3fd0",
+            Self::EdgeFollowing => "#1f8fd0",
         }
     }
 }
 
 /// What the guidance sees at one tick.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub struct TickInput<'a> {
     /// Time since the start, seconds.
     pub time_s: f64,
@@ -56,6 +64,9 @@ pub struct TickInput<'a> {
     /// The inclined LiDAR's scan, on the ticks it scans (`None` in between
     /// and without a LiDAR).
     pub scan: Option<&'a InclinedScan>,
+    /// The horizontal LiDAR's scan as the core's edge detector reads it, on
+    /// the ticks it scans (`None` in between and without a horizontal LiDAR).
+    pub horizontal: Option<HorizontalScan<'a>>,
 }
 
 /// What the guidance sends to the vehicle at one tick.
@@ -77,18 +88,20 @@ pub struct Command {
     pub detector: Option<DetectorStatus>,
 }
 
-/// A row detector's state at one tick, recorded with the command.
+/// A detector's state at one tick, recorded with the command.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DetectorStatus {
-    /// The verdict of the latest scan (FUR-QUALITY).
+    /// The verdict of the latest scan (FUR-QUALITY, EDGE-QUALITY).
     pub verdict: Verdict,
     /// Whether that scan arrived at this tick.
     pub scanned: bool,
     /// Time since that scan, seconds.
     pub age_s: f64,
-    /// The weaker correlation of that scan's selection, if it selected rows.
+    /// That scan's quality measure, if it has one: the weaker correlation of
+    /// the selection (furrow), the residual standard deviation of the chain's
+    /// parabola in metres (edge).
     pub quality: Option<f64>,
-    /// The detector's own tracking error from that scan, if it fitted lines
+    /// The detector's own tracking error from that scan, if it fitted a line
     /// (reported whatever the verdict; only Enter and Hold may be used).
     pub error: Option<TrackingError>,
 }

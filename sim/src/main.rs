@@ -107,15 +107,19 @@ fn print_table(summaries: &[Summary]) {
         "mean |y| (m)",
         "max |y| (m)",
         "converged after (m)",
-        "in-plot max (m)",
+        "true-line max (m)",
         "success"
     );
     for s in summaries {
         let converged = s
             .converged_after_m
             .map_or_else(|| "never".to_owned(), |d| format!("{d:.2}"));
+        // The error to the true line a specialised behaviour follows: the
+        // rows' centre line inside the plots, or a hedge's offset line
+        // (after convergence) beside it.
         let in_plot = s
             .in_plot_lateral_error_m
+            .or(s.along_hedge_after_convergence_m)
             .map_or_else(|| "-".to_owned(), |e| format!("{:.4}", e.max_abs));
         println!(
             "{:32} {:>12.2} {:>12.4} {:>11.4} {:>19} {:>17} {:>8}",

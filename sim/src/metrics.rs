@@ -18,12 +18,20 @@
 //!   plot's followed rows| over the ticks where O is inside a plot (its
 //!   projection on the centre line within the plot's length); per plot in
 //!   `plots`.
+//! - `along_hedge_lateral_error_m`: |error of O to a hedge's true offset line
+//!   (its nominal face moved by the desired distance)| over the ticks where
+//!   the hedge is present abeam of O (not in a gap); per hedge in `hedges`.
+//!   `along_hedge_converged_after_m` is the distance travelled at the first of
+//!   these ticks within `metrics.along_hedge_band_m`, and
+//!   `along_hedge_after_convergence_m` the statistics from there on. With
+//!   `metrics.along_hedge_mean_abs_m` / `along_hedge_max_abs_m`, success also
+//!   needs that convergence and those statistics within them.
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::runner::{RunEnd, RunOutput, TickRecord};
+use crate::runner::{LineTruth, RunEnd, RunOutput, TickRecord};
 use crate::scenario::Setup;
 
 /// Statistics of |error| over ticks.
@@ -123,7 +131,18 @@ pub struct Summary {
     /// with O inside a plot (null without plots), metres.
     pub in_plot_lateral_error_m: Option<ErrorStats>,
     /// The same per plot, with the distance driven inside it in each mode.
-    pub plots: Vec<PlotSummary>,
+    pub plots: Vec<StretchSummary>,
+    /// |error to a hedge's true offset line| over the ticks with a hedge
+    /// present abeam of O (null without hedges or without `[edge]`), metres.
+    pub along_hedge_lateral_error_m: Option<ErrorStats>,
+    /// Distance travelled at the first along-hedge tick within
+    /// `metrics.along_hedge_band_m` (null if none), metres.
+    pub along_hedge_converged_after_m: Option<f64>,
+    /// |error to the true offset line| over the along-hedge ticks from
+    /// `along_hedge_converged_after_m` on (null if never converged), metres.
+    pub along_hedge_after_convergence_m: Option<ErrorStats>,
+    /// The along-hedge errors per hedge, with the distance driven beside it in each mode.
+    pub hedges: Vec<StretchSummary>,
     /// How many scans the row detector graded with each verdict (empty without one).
     pub verdicts: BTreeMap<&'static str, usize>,
     /// Fraction of ticks whose steering command saturated.
@@ -136,16 +155,18 @@ pub struct Summary {
     pub success: bool,
 }
 
-/// The in-plot metrics of one crop plot.
+/// The metrics of one crop plot or one hedge: the stretch where a
+/// specialised behaviour has a true line to follow.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PlotSummary {
-    /// The plot's name.
+pub struct StretchSummary {
+    /// The plot's or hedge's name.
     pub name: String,
-    /// Length of its rows, metres.
+    /// Length of its rows or of the hedge, metres.
     pub length_m: f64,
-    /// |error to the true centre line| while O is inside it (null if never), metres.
+    /// |error to the true line| while O is inside the plot or beside the
+    /// hedge (null if never), metres.
     pub lateral_error_m: Option<ErrorStats>,
-    /// Distance driven with O inside it, in each mode, metres.
+    /// Distance driven with O inside the plot or beside the hedge, in each mode, metres.
     pub mode_distance_m: BTreeMap<&'static str, f64>,
 }
 
@@ -164,11 +185,60 @@ pub const fn verdict_label(v: fieldguide::Verdict) -> &'static str {
 /// plot `plot` (every plot when `None`), metres.
 #[must_use]
 pub fn in_plot_errors(trace: &[TickRecord], plot: Option<usize>) -> Vec<f64> {
+    truth_errors(trace, |r| r.plot, plot)
+}
+
+/// The true lateral errors to the hedges' offset lines over the ticks with
+/// hedge `hedge` (every hedge when `None`) present abeam of O, metres.
+#[must_use]
+pub fn along_hedge_errors(trace: &[TickRecord], hedge: Option<usize>) -> Vec<f64> {
+    truth_errors(trace, |r| r.hedge, hedge)
+}
+
+/// The errors of the truths `truth` picks, of item `index` (every item when `None`).
+fn truth_errors(
+    trace: &[TickRecord],
+    truth: impl Fn(&TickRecord) -> Option<LineTruth>,
+    index: Option<usize>,
+) -> Vec<f64> {
     trace
         .iter()
-        .filter_map(|r| r.plot)
-        .filter(|p| plot.is_none_or(|i| p.index == i))
+        .filter_map(truth)
+        .filter(|p| index.is_none_or(|i| p.index == i))
         .map(|p| p.lateral_error_m)
+        .collect()
+}
+
+/// The along-hedge ticks from the first one within `band` of the true offset
+/// line on: the distance travelled at that tick and the errors from there.
+#[must_use]
+pub fn along_hedge_after_convergence(trace: &[TickRecord], band: f64) -> Option<(f64, Vec<f64>)> {
+    let along: Vec<(f64, f64)> = trace
+        .iter()
+        .filter_map(|r| r.hedge.map(|h| (r.distance_m, h.lateral_error_m)))
+        .collect();
+    let first = along.iter().position(|(_, e)| e.abs() < band)?;
+    let distance = along.get(first).map(|(d, _)| *d)?;
+    Some((
+        distance,
+        along.get(first..)?.iter().map(|(_, e)| *e).collect(),
+    ))
+}
+
+/// The summaries of the stretches `truth` picks, one per `(name, length)` item.
+fn stretch_summaries(
+    trace: &[TickRecord],
+    items: impl Iterator<Item = (String, f64)>,
+    truth: impl Fn(&TickRecord) -> Option<LineTruth> + Copy,
+) -> Vec<StretchSummary> {
+    items
+        .enumerate()
+        .map(|(i, (name, length_m))| StretchSummary {
+            name,
+            length_m,
+            lateral_error_m: error_stats(truth_errors(trace, truth, Some(i))),
+            mode_distance_m: mode_distances(trace, |r| truth(r).is_some_and(|q| q.index == i)),
+        })
         .collect()
 }
 
@@ -209,18 +279,28 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
         mode_distance.entry(last.mode().label()).or_insert(0.0);
     }
     let in_plot = error_stats(in_plot_errors(trace, None));
-    let plots: Vec<PlotSummary> = setup
-        .world
-        .plots
-        .iter()
-        .enumerate()
-        .map(|(i, p)| PlotSummary {
-            name: p.name.clone(),
-            length_m: p.spec.length,
-            lateral_error_m: error_stats(in_plot_errors(trace, Some(i))),
-            mode_distance_m: mode_distances(trace, |r| r.plot.is_some_and(|q| q.index == i)),
-        })
-        .collect();
+    let plots = stretch_summaries(
+        trace,
+        setup
+            .world
+            .plots
+            .iter()
+            .map(|p| (p.name.clone(), p.spec.length)),
+        |r| r.plot,
+    );
+    let along_hedge = error_stats(along_hedge_errors(trace, None));
+    let hedge_convergence = along_hedge_after_convergence(trace, setup.metrics.along_hedge_band_m);
+    let hedge_converged_m = hedge_convergence.as_ref().map(|(d, _)| *d);
+    let hedge_after = hedge_convergence.and_then(|(_, e)| error_stats(e));
+    let hedges = stretch_summaries(
+        trace,
+        setup
+            .world
+            .hedges
+            .iter()
+            .map(|h| (h.name.clone(), h.spec.length)),
+        |r| r.hedge,
+    );
     let mut verdicts = BTreeMap::new();
     for d in trace.iter().filter_map(|r| r.command.detector) {
         if d.scanned {
@@ -247,7 +327,15 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
             setup.metrics.in_plot_mean_abs_m,
             in_plot.map(|e| e.mean_abs),
         )
-        && within(setup.metrics.in_plot_max_abs_m, in_plot.map(|e| e.max_abs));
+        && within(setup.metrics.in_plot_max_abs_m, in_plot.map(|e| e.max_abs))
+        && within(
+            setup.metrics.along_hedge_mean_abs_m,
+            hedge_after.map(|e| e.mean_abs),
+        )
+        && within(
+            setup.metrics.along_hedge_max_abs_m,
+            hedge_after.map(|e| e.max_abs),
+        );
     let zero = ErrorStats {
         mean_abs: 0.0,
         rms: 0.0,
@@ -279,6 +367,10 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
         crop_plants,
         in_plot_lateral_error_m: in_plot,
         plots,
+        along_hedge_lateral_error_m: along_hedge,
+        along_hedge_converged_after_m: hedge_converged_m,
+        along_hedge_after_convergence_m: hedge_after,
+        hedges,
         verdicts,
         steering_saturated_fraction: if trace.is_empty() {
             0.0

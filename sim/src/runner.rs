@@ -2,10 +2,12 @@
 //!
 //! One tick at time t = k·period:
 //! 1. the true pose is projected on the reference path, and placed relative
-//!    to the crop plots' true centre lines (ground truth: the errors recorded
-//!    and scored are these, never the robot's estimate);
+//!    to the crop plots' true centre lines and to the hedges' true offset
+//!    lines (ground truth: the errors recorded and scored are these, never
+//!    the robot's estimate);
 //! 2. the sensors read the true state (with noise, from the run's generator),
-//!    and on scan ticks the inclined LiDAR scans the world from the true pose;
+//!    and on scan ticks the inclined LiDAR scans the plants and the
+//!    horizontal LiDAR the hedges, from the true pose;
 //! 3. the guidance turns the readings into a command;
 //! 4. the tick is recorded, crop plants under the wheels are counted, and the
 //!    run stops at the end of the path, at the duration, or on a core error;
@@ -15,6 +17,7 @@ use fieldguide::geometry::path::PathPosition;
 use fieldguide::{Meters, Pose2, Precondition, World};
 
 use crate::error::ScenarioError;
+use crate::guidance::edge::EdgeFollowing;
 use crate::guidance::furrow::FurrowPursuing;
 use crate::guidance::{Command, Guidance, Mode, PathTracking, TickInput, SEARCH_WINDOW_M};
 use crate::lidar::inclined::{InclinedLidar, InclinedScan};
@@ -23,25 +26,34 @@ use crate::rng::SimRng;
 use crate::scenario::{Setup, Source};
 use crate::sensors::{Readings, Sensors};
 use crate::world::crops::PlantIndex;
+use crate::world::grid::Grid;
 use crate::world::PlantKind;
 
 /// Cell size of the plant index, metres (a few plants per cell in a row).
 pub const PLANT_INDEX_CELL_M: f64 = 0.5;
 
-/// How far from a plot's centre line the robot still counts as inside the
-/// plot for the in-plot metrics, metres: beyond the rows and the wheels.
+/// How far from a plot's centre line (or a hedge's offset line) the robot
+/// still counts as inside the plot (beside the hedge) for the in-plot
+/// (along-hedge) metrics, metres: beyond the rows and the wheels.
 pub const PLOT_REACH_M: f64 = 2.0;
 
-/// Where the true pose of O lies relative to a crop plot (ground truth).
+/// Cell size of the obstacle grid the horizontal LiDAR casts through, metres.
+pub const OBSTACLE_GRID_CELL_M: f64 = 0.5;
+
+/// Where the true pose of O lies relative to the true line a specialised
+/// behaviour should follow (ground truth): a crop plot's centre line, or the
+/// line at the desired distance from a hedge's nominal face.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlotTruth {
-    /// Index of the plot in `setup.world.plots`.
+pub struct LineTruth {
+    /// Index of the plot in `setup.world.plots`, or of the hedge in `setup.world.hedges`.
     pub index: usize,
-    /// Abscissa along the plot's centre line, metres.
+    /// Abscissa along the plot's centre line or the hedge, metres.
     pub s_m: f64,
-    /// Signed distance of O to the plot's true centre line (the middle of the
-    /// rows followed), metres, positive to the left.
+    /// Signed distance of O to the true line (the middle of the rows
+    /// followed; the hedge's offset line), metres, positive to the left.
     pub lateral_error_m: f64,
+    /// Heading of O minus the true line's heading, radians.
+    pub angular_error_rad: f64,
 }
 
 /// Everything recorded at one tick.
@@ -72,7 +84,10 @@ pub struct TickRecord {
     /// Distance travelled by O, metres.
     pub distance_m: f64,
     /// Where O is relative to a crop plot it is inside, if any.
-    pub plot: Option<PlotTruth>,
+    pub plot: Option<LineTruth>,
+    /// Where O is relative to the offset line of a hedge present abeam of
+    /// it, if any (only with `[edge]`, whose desired distance places the line).
+    pub hedge: Option<LineTruth>,
 }
 
 impl TickRecord {
@@ -115,9 +130,9 @@ pub fn prepare(source: &Source) -> Result<(Setup, SimRng), ScenarioError> {
     Ok((setup, rng))
 }
 
-/// Runs `setup` with its own guidance: furrow pursuing (with path tracking
-/// standing in while the detector has no usable line) when the scenario has a
-/// `[furrow]` section, else path tracking.
+/// Runs `setup` with its own guidance: furrow pursuing or edge following
+/// (with path tracking standing in while the detector has no usable line)
+/// when the scenario has a `[furrow]` or an `[edge]` section, else path tracking.
 #[must_use]
 pub fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
     let c = &setup.control;
@@ -128,12 +143,8 @@ pub fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
         c.lookahead,
         c.sideslip_compensation,
     );
-    match &setup.furrow {
-        None => {
-            let mut guidance = tracking;
-            run_with(setup, &mut guidance, rng)
-        }
-        Some(f) => match FurrowPursuing::new(f, tracking) {
+    match (&setup.furrow, &setup.edge, &setup.horizontal_lidar) {
+        (Some(f), _, _) => match FurrowPursuing::new(f, tracking) {
             Ok(mut guidance) => run_with(setup, &mut guidance, rng),
             Err(e) => RunOutput {
                 trace: Vec::new(),
@@ -141,6 +152,14 @@ pub fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
                 plants_crushed: 0,
             },
         },
+        (None, Some(e), Some(l)) => {
+            let mut guidance = EdgeFollowing::new(e, l.lidar.mount(), tracking);
+            run_with(setup, &mut guidance, rng)
+        }
+        _ => {
+            let mut guidance = tracking;
+            run_with(setup, &mut guidance, rng)
+        }
     }
 }
 
@@ -153,6 +172,19 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     let mut state = VehicleState::at(setup.initial, terrain);
     let mut sensors = Sensors::new(setup.noise, &state);
     let index = PlantIndex::new(setup.world.plants.clone(), PLANT_INDEX_CELL_M);
+    let mut horizontal = match setup.horizontal_lidar {
+        None => None,
+        Some(_) => match Grid::new(setup.world.obstacles.clone(), OBSTACLE_GRID_CELL_M) {
+            Ok(grid) => Some((grid, Vec::new())),
+            Err(e) => {
+                return RunOutput {
+                    trace: Vec::new(),
+                    end: RunEnd::Aborted(format!("obstacle grid: {e}")),
+                    plants_crushed: 0,
+                }
+            }
+        },
+    };
     let mut crushed = vec![false; setup.world.plants.len()];
     let mut near = Vec::new();
     let mut trace = Vec::with_capacity(usize::try_from(max_ticks.min(1 << 20)).unwrap_or(0));
@@ -164,6 +196,15 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
             .lidar
             .filter(|l| k % l.scan_every == 0)
             .map(|l| (l.lidar, &index));
+        let horizontal_scan = setup
+            .horizontal_lidar
+            .filter(|l| k % l.scan_every == 0)
+            .zip(horizontal.as_mut())
+            .map(|(l, (grid, ranges))| HorizontalScanning {
+                lidar: l.lidar,
+                grid,
+                ranges,
+            });
         match tick(
             setup,
             guidance,
@@ -171,7 +212,7 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
             &mut sensors,
             &mut truth_hint,
             t_s,
-            scans,
+            (scans, horizontal_scan),
             rng,
         ) {
             Ok((record, past_end)) => {
@@ -210,8 +251,16 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     }
 }
 
-/// Steps 1-3 of a tick (`lidar`: the LiDAR and the plants, on scan ticks);
-/// returns the record and whether the true projection is past the end.
+/// The horizontal LiDAR, the obstacles it sees and its range buffer, on scan ticks.
+struct HorizontalScanning<'a> {
+    lidar: crate::lidar::horizontal::HorizontalLidar,
+    grid: &'a Grid,
+    ranges: &'a mut Vec<f64>,
+}
+
+/// Steps 1-3 of a tick (`lidars`: the inclined LiDAR and the plants, the
+/// horizontal LiDAR and the obstacles, each on its scan ticks); returns the
+/// record and whether the true projection is past the end.
 #[allow(
     clippy::too_many_arguments,
     reason = "one tick reads the whole loop state; a struct would only rename it"
@@ -223,9 +272,13 @@ fn tick(
     sensors: &mut Sensors,
     truth_hint: &mut Option<Meters>,
     t_s: f64,
-    lidar: Option<(InclinedLidar, &PlantIndex)>,
+    lidars: (
+        Option<(InclinedLidar, &PlantIndex)>,
+        Option<HorizontalScanning<'_>>,
+    ),
     rng: &mut SimRng,
 ) -> Result<(TickRecord, bool), Precondition> {
+    let (lidar, horizontal) = lidars;
     let path = &setup.path;
     let truth = match *truth_hint {
         None => path.project(&state.pose, Meters::ZERO)?,
@@ -239,20 +292,52 @@ fn tick(
     *truth_hint = Some(truth.s);
     let readings = sensors.read(state, setup.control.period_s, rng)?;
     let scan: Option<InclinedScan> = lidar.map(|(l, index)| l.scan(&state.pose, index, rng));
+    let ranges: Option<&[f64]> = match horizontal {
+        None => None,
+        Some(h) => {
+            h.lidar.scan(&state.pose, h.grid, rng, h.ranges)?;
+            Some(h.ranges)
+        }
+    };
+    let horizontal_view = match (ranges, setup.horizontal_lidar) {
+        (Some(r), Some(l)) => Some(l.lidar.scan_view(r)?),
+        _ => None,
+    };
     let command = guidance.step(&TickInput {
         time_s: t_s,
         readings: &readings,
         scan: scan.as_ref(),
+        horizontal: horizontal_view,
     })?;
     let (x, y) = (state.pose.position.x(), state.pose.position.y());
+    let heading = state.pose.heading.get();
     let plot = setup
         .world
         .plot_at(x, y, PLOT_REACH_M)
-        .map(|(index, p)| PlotTruth {
+        .map(|(index, p)| LineTruth {
             index,
             s_m: p.s,
             lateral_error_m: p.lateral,
+            angular_error_rad: fieldguide::geometry::units::wrap_angle(
+                heading
+                    - setup
+                        .world
+                        .plots
+                        .get(index)
+                        .map_or(0.0, |q| q.spec.centre_line(p.s).2),
+            ),
         });
+    let hedge = setup.edge.and_then(|e| {
+        setup
+            .world
+            .hedge_at((x, y, heading), e.detector.offset().get(), PLOT_REACH_M)
+            .map(|(index, h)| LineTruth {
+                index,
+                s_m: h.along,
+                lateral_error_m: h.lateral,
+                angular_error_rad: h.angular,
+            })
+    });
     let past_end = truth.position == PathPosition::PastEnd || truth.s.get() >= path.length().get();
     Ok((
         TickRecord {
@@ -274,6 +359,7 @@ fn tick(
                 .position(|p| p.contains(x, y)),
             distance_m: state.distance_m,
             plot,
+            hedge,
         },
         past_end,
     ))

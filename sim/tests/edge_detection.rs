@@ -1,6 +1,9 @@
 //! The core's edge detector on simulated scans of a ragged hedge with a 2 m
 //! gap (Pierre 2022, section 2.2; `spec/pierre2022.md`, EDGE-CONFIG,
-//! EDGE-DETECT): accurate and usable along the hedge, rarely wrong at the gap.
+//! EDGE-DETECT, EDGE-GAP, EDGE-CORNER): accurate and usable along the hedge,
+//! never usable and wrong at the gap. (With the paper's criteria alone, 8 of
+//! the 298 usable detections near the gap were wrong: chains that jump the
+//! gap or turn round the hedge's end.)
 #![allow(clippy::unwrap_used)]
 
 use fieldguide::perception::edge::{detect, EdgeConfig, Side};
@@ -83,6 +86,11 @@ fn run(seeds: u64, poses: usize) -> Tally {
     tally
 }
 
+//= spec/pierre2022.md#edge-gap-the-chain-stops-at-a-gap-in-the-edge
+//= type=test
+//# The chain MUST stop, before taking it, at a next contact farther than
+//# l_link from the pivot: a link longer than l_link is a gap, and the two
+//# sides of a gap are two edges.
 #[test]
 fn along_the_hedge_every_detection_is_usable_and_accurate() {
     let t = run(20, 40);
@@ -95,11 +103,9 @@ fn along_the_hedge_every_detection_is_usable_and_accurate() {
     assert!(mean_y < 0.05, "{mean_y} {t:?}");
     assert!(t.away_worst_y < 0.15, "{t:?}");
     assert!(t.away_worst_theta < 0.15, "{t:?}");
-    // Near the gap, few usable detections are wrong.
+    // Near the gap, the usable detections (those of chains stopped at the
+    // gap or the hedge's end while long enough) are right.
     assert!(t.gap_usable > 100);
-    assert!(
-        (t.gap_usable_wrong as f64) < 0.1 * t.gap_usable as f64,
-        "{t:?}"
-    );
+    assert_eq!(t.gap_usable_wrong, 0, "{t:?}");
     println!("mean |y error| {mean_y:.4} m, {t:?}");
 }

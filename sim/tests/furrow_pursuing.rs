@@ -353,6 +353,7 @@ fn no_command_comes_from_a_stale_or_invalid_estimate() {
                     d.verdict
                 );
             }
+            Mode::EdgeFollowing => panic!("t = {}: no edge here", r.t_s),
         }
     }
     eprintln!("verdicts [enter, hold, exit, absent]: {verdicts:?}");

@@ -577,3 +577,281 @@ fn the_program_writes_the_furrow_figures_and_summary() {
     assert!(trace.contains(",maize,") && trace.contains(",beans,"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The error of the built-in `hedge-following` text changed by `edit`.
+fn hedge_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
+    let text = Source::builtin("hedge-following").unwrap().text;
+    let source = Source {
+        origin: "edited.toml".to_owned(),
+        text: edit(text),
+        base_dir: None,
+    };
+    source
+        .setup(&mut SimRng::from_seed(1))
+        .expect_err("the edited scenario must be refused")
+}
+
+#[test]
+fn hedge_horizontal_lidar_and_edge_fields_are_named() {
+    let text = Source::builtin("hedge-following").unwrap().text;
+    // (text in the built-in, replacement, field named, part of the reason)
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            "length_m = 40.0",
+            "length_m = 0.0",
+            "world.hedges[0].length_m",
+            "between",
+        ),
+        (
+            "thickness_m = 1.0",
+            "thickness_m = -1.0",
+            "world.hedges[0].thickness_m",
+            "between",
+        ),
+        (
+            "raggedness_m = 0.05",
+            "raggedness_m = 0.5",
+            "world.hedges[0].raggedness_m",
+            "half of thickness_m",
+        ),
+        (
+            "vertex_spacing_m = 0.2",
+            "vertex_spacing_m = 0.0",
+            "world.hedges[0].vertex_spacing_m",
+            "between",
+        ),
+        (
+            "gaps_m = [[18.0, 20.0]]",
+            "gaps_m = [[20.0, 18.0]]",
+            "world.hedges[0].gaps_m[0]",
+            "from_m < to_m",
+        ),
+        (
+            "gaps_m = [[18.0, 20.0]]",
+            "gaps_m = [[18.0, 41.0]]",
+            "world.hedges[0].gaps_m[0][1]",
+            "within",
+        ),
+        (
+            "name = \"hedge\"",
+            "name = \" \"",
+            "world.hedges[0].name",
+            "empty",
+        ),
+        (
+            "mount_heading_deg = 0.0",
+            "mount_heading_deg = 200.0",
+            "horizontal_lidar.mount_heading_deg",
+            "within",
+        ),
+        (
+            "field_of_view_deg = 360.0",
+            "field_of_view_deg = 0.0",
+            "horizontal_lidar.field_of_view_deg",
+            "(0, 360]",
+        ),
+        ("rays = 360", "rays = 1", "horizontal_lidar.rays", "within"),
+        (
+            "rays = 360",
+            "rays = 3000",
+            "horizontal_lidar.rays",
+            "at most 2048",
+        ),
+        (
+            "range_max_m = 30.0",
+            "range_max_m = 0.01",
+            "horizontal_lidar.range_max_m",
+            "above",
+        ),
+        (
+            "rate_hz = 10.0",
+            "rate_hz = 15.0",
+            "horizontal_lidar.rate_hz",
+            "whole number",
+        ),
+        (
+            "speed_m_s = 0.4",
+            "speed_m_s = 0.0",
+            "edge.speed_m_s",
+            "between",
+        ),
+        (
+            "heading_gain = 1.5",
+            "heading_gain = 1.0",
+            "edge.heading_gain",
+            "min_gain_ratio",
+        ),
+        (
+            "side = \"left\"",
+            "side = \"up\"",
+            "edge.side",
+            "unknown variant",
+        ),
+        (
+            "desired_distance_m = 1.4",
+            "desired_distance_m = -1.4",
+            "edge.desired_distance_m",
+            "within",
+        ),
+        (
+            "circle_radius_m = 1.0",
+            "circle_radius_m = 0.0",
+            "edge.circle_radius_m",
+            "between",
+        ),
+        (
+            "max_rotation_deg = 90.0",
+            "max_rotation_deg = 360.0",
+            "edge.max_rotation_deg",
+            "between",
+        ),
+        (
+            "max_chain_length_m = 3.0",
+            "max_chain_length_m = 0.0",
+            "edge.max_chain_length_m",
+            "between",
+        ),
+        (
+            "search_distance_m = 3.0",
+            "search_distance_m = 0.0",
+            "edge.search_distance_m",
+            "between",
+        ),
+        (
+            "min_chain_length_m = 1.5",
+            "min_chain_length_m = 3.0",
+            "edge.min_chain_length_m",
+            "below",
+        ),
+        (
+            "max_width_m = 1.0",
+            "max_width_m = 0.0",
+            "edge.max_width_m",
+            "between",
+        ),
+        (
+            "min_points = 5",
+            "min_points = 3",
+            "edge.min_points",
+            "within",
+        ),
+        (
+            "max_link_m = 1.0",
+            "max_link_m = 0.0",
+            "edge.max_link_m",
+            "between",
+        ),
+        (
+            "max_turn_deg = 45.0",
+            "max_turn_deg = 0.0",
+            "edge.max_turn_deg",
+            "(0, 180]",
+        ),
+        (
+            "max_turn_deg = 45.0",
+            "max_turn_deg = 200.0",
+            "edge.max_turn_deg",
+            "within",
+        ),
+        (
+            "exit_residual_m = 0.5",
+            "exit_residual_m = 0.1",
+            "edge.exit_residual_m",
+            "above",
+        ),
+        ("max_link_m = 1.0\n", "", "edge.max_link_m", "missing field"),
+        (
+            "max_link_m = 1.0",
+            "max_link_m = 1.0\nmax_gap_m = 1.0",
+            "edge.max_gap_m",
+            "unknown field",
+        ),
+        (
+            "along_hedge_band_m = 0.05",
+            "along_hedge_band_m = 0.0",
+            "metrics.along_hedge_band_m",
+            "> 0",
+        ),
+        (
+            "along_hedge_max_abs_m = 0.15",
+            "along_hedge_max_abs_m = -0.15",
+            "metrics.along_hedge_max_abs_m",
+            "> 0",
+        ),
+    ];
+    for (from, to, field, reason) in cases {
+        assert!(
+            text.contains(from),
+            "the built-in no longer contains `{from}`"
+        );
+        let e = hedge_error_of(|t| t.replacen(from, to, 1));
+        assert_field(&e, field, reason);
+    }
+}
+
+#[test]
+fn edge_following_needs_its_sensor_and_is_the_only_specialised_behaviour() {
+    let section = |t: &str, name: &str| -> (usize, usize) {
+        let start = t.find(name).unwrap();
+        let end = t[start + 1..]
+            .find("\n[")
+            .map_or(t.len(), |i| start + 1 + i);
+        (start, end)
+    };
+    let e = hedge_error_of(|t| {
+        let (start, end) = section(&t, "[horizontal_lidar]");
+        format!("{}{}", &t[..start], &t[end..])
+    });
+    assert_field(&e, "edge", "[horizontal_lidar]");
+    // The furrow-pursuing scenario's LiDAR and furrow sections added.
+    let furrow = Source::builtin("furrow-pursuing").unwrap().text;
+    let (l0, l1) = section(&furrow, "[lidar]");
+    let (f0, f1) = section(&furrow, "[furrow]");
+    let e = hedge_error_of(|t| format!("{t}\n{}\n{}", &furrow[l0..l1], &furrow[f0..f1]));
+    assert_field(&e, "edge", "one specialised behaviour");
+}
+
+#[test]
+fn the_program_writes_the_hedge_figures_and_summary() {
+    let dir = scratch("hedge");
+    let run = Command::new(env!("CARGO_BIN_EXE_fieldguide"))
+        .args(["run", "hedge-following", "--out", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let out = dir.join("hedge-following");
+    for f in fieldguide_sim::output::FILES {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    // No plants: no rows figure.
+    assert!(!out.join(fieldguide_sim::output::ROWS_FILE).exists());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let after = &summary["along_hedge_after_convergence_m"];
+    assert!(after["mean_abs"].as_f64().unwrap() < 0.05);
+    assert!(after["max_abs"].as_f64().unwrap() < 0.15);
+    assert!(summary["along_hedge_converged_after_m"].as_f64().unwrap() > 10.0);
+    assert_eq!(summary["hedges"][0]["name"], "hedge");
+    assert!(
+        summary["mode_distance_m"]["edge_following"]
+            .as_f64()
+            .unwrap()
+            > 30.0
+    );
+    assert!(summary["verdicts"]["enter"].as_u64().unwrap() > 500);
+    assert_eq!(summary["success"], true);
+    let trace = std::fs::read_to_string(out.join("trace.csv")).unwrap();
+    let columns = trace.lines().next().unwrap().split(',').count();
+    assert!(trace.lines().all(|l| l.split(',').count() == columns));
+    assert!(trace.contains(",edge_following,enter,1,0.00,"));
+    assert!(trace.contains(",hedge,"));
+    let svg = std::fs::read_to_string(out.join("trajectory.svg")).unwrap();
+    assert!(svg.contains("edge_following") && svg.contains("true offset line"));
+    let svg = std::fs::read_to_string(out.join("lateral_error.svg")).unwrap();
+    assert!(svg.contains("beside a hedge: to the true offset line"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -56,7 +56,9 @@ pub fn hedge(side: Side, dist: f64, angle: f64, xs: &[f64], jitter: &[f64]) -> V
 /// (`spec/pierre2022.md`, EDGE-CHAIN-*): only points strictly on `side`; the
 /// circle's front semicircle sweeps from the robot's x axis (t = −r) by steps
 /// `t_step`; then rotations by `theta_step` about the pivot. A chain point is
-/// never taken twice. Returns the indices of the chain.
+/// never taken twice; the chain stops before a link longer than l_link
+/// (EDGE-GAP) or turning from the chord by more than φ_turn (EDGE-CORNER).
+/// Returns the indices of the chain.
 pub fn stepped_chain(
     points: &[Point2<Robot>],
     side: Side,
@@ -110,7 +112,22 @@ pub fn stepped_chain(
         }
         match found {
             Some(q) if theta < theta_max => {
-                length += dist((px, py), q);
+                let link = dist((px, py), q);
+                // EDGE-GAP: a link longer than l_link is a gap.
+                if link > config.max_link().get() {
+                    break;
+                }
+                // EDGE-CORNER: a link turning from the chord p0 → p by more than φ_turn.
+                let p0 = chain[0];
+                let (cx, cy) = (px - points[p0].x(), py - points[p0].y());
+                let (lx, ly) = (points[q].x() - px, points[q].y() - py);
+                let chord = cx.hypot(cy);
+                if chord > 0.0
+                    && (cx * lx + cy * ly) / (chord * link) < config.max_turn().get().cos()
+                {
+                    break;
+                }
+                length += link;
                 chain.push(q);
             }
             _ => break,

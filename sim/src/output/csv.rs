@@ -5,8 +5,11 @@
 //! columns are ground truth; `est_` columns are what the robot's sensors said.
 //! The last columns are empty without a row detector or outside the plots:
 //! the latest scan's verdict, whether it arrived at this tick, its age and
-//! quality (the weaker correlation of its selection), and the plot O is in
-//! with O's abscissa and true lateral error to that plot's centre line.
+//! quality (the weaker correlation of its selection, or the residual standard
+//! deviation of an edge chain), the plot O is in with O's abscissa and true
+//! lateral error to that plot's centre line, and the hedge present abeam of O
+//! with O's abscissa along it and true lateral and angular errors to its
+//! offset line.
 
 use std::fmt::Write as _;
 
@@ -21,11 +24,17 @@ lateral_error_est_m,angular_error_est_rad,\
 steering_cmd_rad,steering_rad,saturated,\
 beta_front_true_rad,beta_rear_true_rad,beta_front_used_rad,beta_rear_used_rad,\
 slip_patch,mode,\
-verdict,scanned,scan_age_s,scan_quality,plot,plot_s_m,plot_lateral_error_true_m";
+verdict,scanned,scan_age_s,scan_quality,plot,plot_s_m,plot_lateral_error_true_m,\
+hedge,hedge_s_m,hedge_lateral_error_true_m,hedge_angular_error_true_rad";
 
 /// The whole trace as CSV text, header first.
 #[must_use]
-pub fn trace_csv(trace: &[TickRecord], patch_names: &[String], plot_names: &[String]) -> String {
+pub fn trace_csv(
+    trace: &[TickRecord],
+    patch_names: &[String],
+    plot_names: &[String],
+    hedge_names: &[String],
+) -> String {
     let mut out = String::with_capacity(trace.len().saturating_mul(260));
     out.push_str(HEADER);
     out.push('\n');
@@ -60,10 +69,22 @@ pub fn trace_csv(trace: &[TickRecord], patch_names: &[String], plot_names: &[Str
                 format!("{name},{:.4},{:.5}", p.s_m, p.lateral_error_m)
             },
         );
+        let hedge = r.hedge.map_or_else(
+            || ",,,".to_owned(),
+            |h| {
+                let name = hedge_names
+                    .get(h.index)
+                    .map_or(String::new(), |n| n.replace(',', ";"));
+                format!(
+                    "{name},{:.4},{:.5},{:.5}",
+                    h.s_m, h.lateral_error_m, h.angular_error_rad
+                )
+            },
+        );
         // Writing into a String cannot fail.
         let _ = writeln!(
             out,
-            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{}",
+            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{}",
             r.t_s,
             r.truth.position.x(),
             r.truth.position.y(),
@@ -92,6 +113,7 @@ pub fn trace_csv(trace: &[TickRecord], patch_names: &[String], plot_names: &[Str
             r.mode().label(),
             detector,
             plot,
+            hedge,
         );
     }
     out

@@ -45,12 +45,13 @@ pub fn write_run(
         .map(|p| p.name.clone())
         .collect();
     let plot_names: Vec<String> = setup.world.plots.iter().map(|p| p.name.clone()).collect();
+    let hedge_names: Vec<String> = setup.world.hedges.iter().map(|h| h.name.clone()).collect();
     let json = json::summary_json(summary).map_err(|e| SimError::Write {
         file: dir.join("summary.json"),
         source: std::io::Error::other(e),
     })?;
     let contents = [
-        csv::trace_csv(&output.trace, &names, &plot_names),
+        csv::trace_csv(&output.trace, &names, &plot_names, &hedge_names),
         json,
         plots::trajectory_svg(setup, &output.trace),
         plots::lateral_error_svg(setup, &output.trace),

@@ -6,7 +6,7 @@
 use fieldguide::{Meters, Pose2, World};
 
 use crate::guidance::Mode;
-use crate::runner::TickRecord;
+use crate::runner::{LineTruth, TickRecord};
 use crate::scenario::Setup;
 use crate::world::PlantKind;
 
@@ -25,6 +25,16 @@ const TRUTH: Stroke<'static> = Stroke {
     colour: "black",
     width: 0.9,
     dash: None,
+};
+const HEDGE: Stroke<'static> = Stroke {
+    colour: "#2e6b2e",
+    width: 1.2,
+    dash: None,
+};
+const OFFSET_LINE: Stroke<'static> = Stroke {
+    colour: "#2e6b2e",
+    width: 1.0,
+    dash: Some("6 4"),
 };
 
 /// Consecutive ticks of one mode, each with the first point of the next run
@@ -116,11 +126,22 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
         .iter()
         .map(|v| (v.position.x(), v.position.y()))
         .collect();
-    let all = reference.iter().copied().chain(
-        trace
-            .iter()
-            .map(|r| (r.truth.position.x(), r.truth.position.y())),
-    );
+    let hedge_points: Vec<(f64, f64)> = setup
+        .world
+        .obstacles
+        .segments
+        .iter()
+        .flat_map(|g| [(g.a[0], g.a[1]), (g.b[0], g.b[1])])
+        .collect();
+    let all = reference
+        .iter()
+        .copied()
+        .chain(
+            trace
+                .iter()
+                .map(|r| (r.truth.position.x(), r.truth.position.y())),
+        )
+        .chain(hedge_points.iter().copied());
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -167,6 +188,13 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     };
     svg.dots(&axes, &plants(PlantKind::Grass), 0.8, GRASS_COLOUR);
     svg.dots(&axes, &plants(PlantKind::Crop), 1.0, CROP_COLOUR);
+    for g in &setup.world.obstacles.segments {
+        svg.polyline(&axes, &[(g.a[0], g.a[1]), (g.b[0], g.b[1])], HEDGE);
+    }
+    let offset_lines = offset_lines(setup);
+    for line in &offset_lines {
+        svg.polyline(&axes, line, OFFSET_LINE);
+    }
     svg.polyline(&axes, &reference, REFERENCE);
     for (mode, run) in runs_by_mode(trace) {
         let pts: Vec<(f64, f64)> = run
@@ -199,11 +227,50 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
                 .iter()
                 .map(|p| (p.position.x(), p.position.y())),
         )
+        .chain(hedge_points.iter().copied())
         .collect();
     let mut entries = legend_entries(trace, has_patches, "reference path");
     entries.extend(plant_legend(setup));
+    if !setup.world.hedges.is_empty() {
+        entries.push((HEDGE, false, "hedge"));
+    }
+    if !offset_lines.is_empty() {
+        entries.push((OFFSET_LINE, false, "true offset line"));
+    }
     svg.legend(&axes, &entries, &points);
     svg.finish()
+}
+
+/// The true lines an edge follower keeps (each hedge's nominal face on the
+/// reference path's side, moved by the desired distance), piece by piece
+/// between the gaps; none without `[edge]`.
+fn offset_lines(setup: &Setup) -> Vec<Vec<(f64, f64)>> {
+    let Some(edge) = setup.edge else {
+        return Vec::new();
+    };
+    let d = edge.detector.offset().get();
+    let start = setup
+        .path
+        .vertices()
+        .first()
+        .map_or((0.0, 0.0), |v| (v.position.x(), v.position.y()));
+    let mut lines = Vec::new();
+    for h in &setup.world.hedges {
+        let spec = &h.spec;
+        // The side of the hedge where the path starts.
+        let (c, sn) = (spec.heading.cos(), spec.heading.sin());
+        let across = -(start.0 - spec.start[0]) * sn + (start.1 - spec.start[1]) * c;
+        let line = if across >= 0.0 {
+            0.5 * spec.thickness + d
+        } else {
+            -0.5 * spec.thickness - d
+        };
+        for [a, b] in spec.pieces() {
+            let (p, q) = (spec.point(a, line), spec.point(b, line));
+            lines.push(vec![(p[0], p[1]), (q[0], q[1])]);
+        }
+    }
+    lines
 }
 
 /// `lateral_error.svg`: true lateral error y against the abscissa s, coloured
@@ -218,11 +285,19 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
         .get()
         .max(trace.iter().map(|r| r.s_m).fold(0.0, f64::max));
     let s_min = trace.iter().map(|r| r.s_m).fold(0.0, f64::min);
-    let y_lo = trace
-        .iter()
-        .map(|r| r.lateral_error_m)
-        .fold(-band, f64::min);
-    let y_hi = trace.iter().map(|r| r.lateral_error_m).fold(band, f64::max);
+    let errors = || {
+        trace.iter().flat_map(|r| {
+            [
+                Some(r.lateral_error_m),
+                r.plot.map(|p| p.lateral_error_m),
+                r.hedge.map(|h| h.lateral_error_m),
+            ]
+            .into_iter()
+            .flatten()
+        })
+    };
+    let y_lo = errors().fold(-band, f64::min);
+    let y_hi = errors().fold(band, f64::max);
     let axes = Axes::new((s_min, s_max), (y_lo, y_hi), 900.0, 420.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
@@ -243,6 +318,23 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             if let Some(s0) = start {
                 shade(&mut svg, &axes, s0, r.s_m);
             }
+        }
+    }
+    // Shade the s-stretches spent beside a hedge.
+    let along_hedge = truth_pieces(trace, |r| r.hedge);
+    for piece in &along_hedge {
+        if let (Some(a), Some(b)) = (piece.first(), piece.last()) {
+            svg.polygon(
+                &axes,
+                &[
+                    (a.0, axes.y.0),
+                    (b.0, axes.y.0),
+                    (b.0, axes.y.1),
+                    (a.0, axes.y.1),
+                ],
+                HEDGE.colour,
+                0.10,
+            );
         }
     }
     // Shade the s-stretches spent inside a crop plot.
@@ -303,9 +395,10 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             },
         );
     }
-    // Inside the plots, the error to the true centre line of the followed rows.
-    let in_plot = in_plot_pieces(trace);
-    for piece in &in_plot {
+    // Inside the plots, the error to the true centre line of the followed
+    // rows; beside the hedges, to the true offset line.
+    let in_plot = truth_pieces(trace, |r| r.plot);
+    for piece in in_plot.iter().chain(&along_hedge) {
         svg.polyline(&axes, piece, TRUTH);
     }
     let has_patches = trace.iter().any(|r| r.patch.is_some());
@@ -313,6 +406,18 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     let mut entries = legend_entries(trace, has_patches, "");
     entries.remove(0);
     entries.push((dashed, false, &band_label));
+    if !along_hedge.is_empty() {
+        entries.push((TRUTH, false, "beside a hedge: to the true offset line"));
+        entries.push((
+            Stroke {
+                colour: HEDGE.colour,
+                width: 1.0,
+                dash: None,
+            },
+            true,
+            "hedge present",
+        ));
+    }
     if !in_plot.is_empty() {
         entries.push((TRUTH, false, "in a plot: to the rows' true centre line"));
         entries.push((
@@ -330,13 +435,16 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     svg.finish()
 }
 
-/// `(s, error to the plot's true centre line)` over each unbroken stretch of
-/// ticks inside one plot.
-fn in_plot_pieces(trace: &[TickRecord]) -> Vec<Vec<(f64, f64)>> {
+/// `(s, error to the true line)` over each unbroken stretch of ticks with the
+/// truth `truth` picks (a plot's centre line, a hedge's offset line) of one item.
+fn truth_pieces(
+    trace: &[TickRecord],
+    truth: impl Fn(&TickRecord) -> Option<LineTruth>,
+) -> Vec<Vec<(f64, f64)>> {
     let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut current: Option<usize> = None;
     for r in trace {
-        match r.plot {
+        match truth(r) {
             Some(p) => {
                 if current != Some(p.index) {
                     pieces.push(Vec::new());

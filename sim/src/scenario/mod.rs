@@ -31,6 +31,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "furrow-pursuing",
         include_str!("../../scenarios/furrow-pursuing.toml"),
     ),
+    (
+        "hedge-following",
+        include_str!("../../scenarios/hedge-following.toml"),
+    ),
 ];
 
 /// The names of the built-in scenarios.

@@ -40,6 +40,10 @@ pub struct ScenarioFile {
     pub lidar: Option<LidarSection>,
     /// Furrow pursuing (`[furrow]`, optional; needs `[world]` and `[lidar]`).
     pub furrow: Option<FurrowSection>,
+    /// A horizontal 2D LiDAR looking at hedges (`[horizontal_lidar]`, optional).
+    pub horizontal_lidar: Option<HorizontalLidarSection>,
+    /// Edge following (`[edge]`, optional; needs `[horizontal_lidar]`).
+    pub edge: Option<EdgeSection>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.
@@ -236,6 +240,16 @@ pub struct MetricsSection {
     /// When set, success also needs the largest |lateral error to the true
     /// centre line| inside the plots at most this, metres.
     pub in_plot_max_abs_m: Option<f64>,
+    /// |error to a hedge's true offset line| band that counts as converged
+    /// (default 0.05 m).
+    #[serde(default = "default_band_m")]
+    pub along_hedge_band_m: f64,
+    /// When set, success also needs the mean |lateral error to the true
+    /// offset line| along the hedges, after convergence, at most this, metres.
+    pub along_hedge_mean_abs_m: Option<f64>,
+    /// When set, success also needs the largest |lateral error to the true
+    /// offset line| along the hedges, after convergence, at most this, metres.
+    pub along_hedge_max_abs_m: Option<f64>,
 }
 
 /// `[world]`: crop plots and grass.
@@ -248,6 +262,30 @@ pub struct WorldSection {
     /// Rectangles of grass (`[[world.grass]]`).
     #[serde(default)]
     pub grass: Vec<GrassSection>,
+    /// Hedges (`[[world.hedges]]`), in the order the robot meets them.
+    #[serde(default)]
+    pub hedges: Vec<HedgeSection>,
+}
+
+/// `[[world.hedges]]`: a straight hedge with ragged faces and gaps.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HedgeSection {
+    /// Name, for the summary.
+    pub name: String,
+    /// Start of the hedge's centre line and its heading, world frame.
+    pub start: StartPose,
+    /// Length along the centre line, metres.
+    pub length_m: f64,
+    /// Distance between the two nominal faces, metres.
+    pub thickness_m: f64,
+    /// Largest displacement of a face vertex across the hedge, metres.
+    pub raggedness_m: f64,
+    /// Along-hedge distance between face vertices, metres.
+    pub vertex_spacing_m: f64,
+    /// Stretches `[from_m, to_m]` along the hedge without hedge.
+    #[serde(default)]
+    pub gaps_m: Vec<[f64; 2]>,
 }
 
 /// The crop of a plot, with its layout (Pierre 2022, section 4.2).
@@ -370,6 +408,83 @@ pub struct FurrowSection {
     pub enter_correlation: f64,
     /// Correlation below which it must leave it (Table 2: 0.2).
     pub exit_correlation: f64,
+}
+
+/// `[horizontal_lidar]`: a horizontal 2D LiDAR on the robot.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HorizontalLidarSection {
+    /// Sensor position forward of O, metres.
+    pub mount_x_m: f64,
+    /// Sensor position left of O, metres.
+    pub mount_y_m: f64,
+    /// Sensor heading on the robot, degrees, counter-clockwise (0: forward).
+    pub mount_heading_deg: f64,
+    /// Field of view centred on the sensor's x axis, degrees (360: all round).
+    pub field_of_view_deg: f64,
+    /// Number of rays.
+    pub rays: u32,
+    /// Shortest range reported, metres.
+    pub range_min_m: f64,
+    /// Longest range; beyond it no return, metres.
+    pub range_max_m: f64,
+    /// Standard deviation of the range noise, metres.
+    pub range_noise_m: f64,
+    /// Scans per second; the control period must divide the scan period.
+    pub rate_hz: f64,
+}
+
+/// The side of the robot where the edge is followed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SideName {
+    /// The edge is on the robot's left.
+    Left,
+    /// The edge is on the robot's right.
+    Right,
+}
+
+/// `[edge]`: the edge detector (Pierre 2022, section 2.2, Table 1) and the
+/// backstepping law it drives.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeSection {
+    /// Forward speed while following the edge, m/s (Table 1: 0.4).
+    pub speed_m_s: f64,
+    /// Lateral gain g_y (positive); the law uses k_y = −g_y.
+    pub lateral_gain: f64,
+    /// Heading gain g_θ (positive); the law uses k_θ = −g_θ.
+    pub heading_gain: f64,
+    /// Minimum ratio g_θ / g_y accepted.
+    pub min_gain_ratio: f64,
+    /// `"left"` or `"right"`: where the edge is.
+    pub side: SideName,
+    /// D, desired lateral distance to the edge, metres (Table 1: 1.4).
+    pub desired_distance_m: f64,
+    /// r, radius of the rolling circle, metres (Table 1: 1).
+    pub circle_radius_m: f64,
+    /// θ_max, largest rotation about one pivot, degrees.
+    pub max_rotation_deg: f64,
+    /// l_max, chain length at which the chain stops, metres (Table 1: 3).
+    pub max_chain_length_m: f64,
+    /// Largest translation of the circle searching the first point, metres (Table 1: 3).
+    pub search_distance_m: f64,
+    /// l_min, length the chain must exceed to be followed, metres.
+    pub min_chain_length_m: f64,
+    /// w_max, spread of the chain along y it must stay below, metres.
+    pub max_width_m: f64,
+    /// Fewest chain points of a detection.
+    pub min_points: u32,
+    /// Longest link between consecutive chain points; a longer one is a gap
+    /// in the edge, where the chain stops (EDGE-GAP), metres.
+    pub max_link_m: f64,
+    /// Largest turn of a link from the chain's direction; a sharper turn is a
+    /// corner or the end of the edge, where the chain stops (EDGE-CORNER), degrees.
+    pub max_turn_deg: f64,
+    /// σ_edge, residual standard deviation below which the detection may enter, metres (Table 1: 0.15).
+    pub enter_residual_m: f64,
+    /// σ_path, residual standard deviation above which it must leave, metres (Table 1: 0.5).
+    pub exit_residual_m: f64,
 }
 
 fn default_period_s() -> f64 {

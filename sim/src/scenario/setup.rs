@@ -7,23 +7,28 @@ use fieldguide::control::backstepping::{BacksteppingConfig, Inversion, SteeringL
 use fieldguide::control::Gains;
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::model::bicycle::{Sideslip, Wheelbase};
+use fieldguide::perception::edge::{EdgeConfig, EdgeParameters, Side};
 use fieldguide::perception::furrow::{FurrowConfig, FurrowParams, Rows};
 use fieldguide::{Meters, MetersPerSecond, Point2, Pose2, Radians, World};
 
 use super::check::Checker;
 use super::reference::{self, Piece};
 use super::schema::{
-    CropName, FurrowSection, InversionName, LidarSection, ScenarioFile, WorldSection,
+    CropName, EdgeSection, FurrowSection, HorizontalLidarSection, InversionName, LidarSection,
+    ScenarioFile, SideName, WorldSection,
 };
 use crate::error::ScenarioError;
+use crate::guidance::edge::{EDGE_CHAIN, EDGE_RAYS};
 use crate::guidance::furrow::{FURROW_RAYS, FURROW_SCANS};
+use crate::lidar::horizontal::{HorizontalLidar, HorizontalLidarSpec};
 use crate::lidar::inclined::InclinedLidar;
 use crate::plant::{SteeringActuator, VehicleParams};
 use crate::rng::SimRng;
 use crate::sensors::SensorNoise;
 use crate::world::crops::{scatter_grass, PlotSpec, Spread};
+use crate::world::hedge::{HedgeSpec, Obstacles};
 use crate::world::terrain::{SlipPatch, Terrain};
-use crate::world::{Plot, World as SimWorld};
+use crate::world::{Hedge, Plot, World as SimWorld};
 
 /// Most waypoints a reference path may hold (409.6 m at the usual 0.1 m spacing).
 pub const PATH_CAPACITY: usize = 4096;
@@ -70,6 +75,14 @@ pub struct MetricsSpec {
     pub in_plot_mean_abs_m: Option<f64>,
     /// Largest in-plot max |error to the true centre line| of a successful run, metres.
     pub in_plot_max_abs_m: Option<f64>,
+    /// Band on |error to a hedge's true offset line| that counts as converged, metres.
+    pub along_hedge_band_m: f64,
+    /// Largest mean |error to the true offset line| along the hedges after
+    /// convergence of a successful run, metres.
+    pub along_hedge_mean_abs_m: Option<f64>,
+    /// Largest max |error to the true offset line| along the hedges after
+    /// convergence of a successful run, metres.
+    pub along_hedge_max_abs_m: Option<f64>,
 }
 
 /// The inclined LiDAR and how often it scans.
@@ -79,6 +92,30 @@ pub struct LidarSetup {
     pub lidar: InclinedLidar,
     /// A scan every this many control ticks (the scan period over the control period).
     pub scan_every: u64,
+}
+
+/// The horizontal LiDAR and how often it scans.
+#[derive(Debug, Clone, Copy)]
+pub struct HorizontalLidarSetup {
+    /// The sensor and its mount.
+    pub lidar: HorizontalLidar,
+    /// A scan every this many control ticks.
+    pub scan_every: u64,
+}
+
+/// Edge following: the detector's validated configuration, the side, and the law it drives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeSetup {
+    /// The detector (Table 1 with the library's choices), mount taken from `[horizontal_lidar]`.
+    pub detector: EdgeConfig,
+    /// Where the edge is.
+    pub side: Side,
+    /// The backstepping law of edge following, without sideslip (Pierre 2022,
+    /// section 2.2: "this version of the control law does not include an
+    /// estimation of sideslip angles").
+    pub backstepping: BacksteppingConfig,
+    /// Forward speed while following the edge.
+    pub speed: MetersPerSecond,
 }
 
 /// Furrow pursuing: the detector's validated configuration and the law it drives.
@@ -127,6 +164,12 @@ pub struct Setup {
     /// furrow while the detector's verdict allows it, see
     /// [`crate::guidance::furrow`]).
     pub furrow: Option<FurrowSetup>,
+    /// The horizontal LiDAR, if any.
+    pub horizontal_lidar: Option<HorizontalLidarSetup>,
+    /// Edge following, if configured (then the run's guidance follows the
+    /// edge while the detector's verdict allows it, see
+    /// [`crate::guidance::edge`]).
+    pub edge: Option<EdgeSetup>,
 }
 
 /// Builds the setup of `file` (called `origin` in messages; `base_dir` resolves
@@ -168,12 +211,15 @@ pub fn build(
     let vehicle = vehicle(file, &check)?;
     let control = control(file, &check, vehicle)?;
     let initial = initial_pose(file, &check, &path)?;
-    // The plants are drawn after the path's recording noise.
+    // The plants are drawn after the path's recording noise, the hedges after the plants.
     let plants = plants(file.world.as_ref(), &plots, &check, rng)?;
+    let (hedges, obstacles) = hedges(file.world.as_ref(), &check, rng)?;
     let world = SimWorld {
         terrain: terrain(file, &check)?,
         plants,
         plots,
+        hedges,
+        obstacles,
     };
     let noise = noise(file, &check)?;
     let lidar = match &file.lidar {
@@ -196,6 +242,28 @@ pub fn build(
                 control.backstepping.inversion,
                 &check,
             )?)
+        }
+    };
+    let horizontal_lidar = match &file.horizontal_lidar {
+        Some(l) => Some(horizontal_lidar(l, control.period_s, &check)?),
+        None => None,
+    };
+    let edge = match &file.edge {
+        None => None,
+        Some(e) => {
+            let Some(l) = &horizontal_lidar else {
+                return Err(check.error(
+                    "edge",
+                    "needs a `[horizontal_lidar]` section to see the edge",
+                ));
+            };
+            if furrow.is_some() {
+                return Err(check.error(
+                    "edge",
+                    "one specialised behaviour per scenario: `[furrow]` is already set (switching between them is issue 5)",
+                ));
+            }
+            Some(edge(e, l, vehicle, control.backstepping.inversion, &check)?)
         }
     };
     let run = RunLimits {
@@ -225,6 +293,18 @@ pub fn build(
             "metrics.in_plot_max_abs_m",
             file.metrics.in_plot_max_abs_m,
         )?,
+        along_hedge_band_m: check.positive(
+            "metrics.along_hedge_band_m",
+            file.metrics.along_hedge_band_m,
+        )?,
+        along_hedge_mean_abs_m: optional_positive(
+            "metrics.along_hedge_mean_abs_m",
+            file.metrics.along_hedge_mean_abs_m,
+        )?,
+        along_hedge_max_abs_m: optional_positive(
+            "metrics.along_hedge_max_abs_m",
+            file.metrics.along_hedge_max_abs_m,
+        )?,
     };
     Ok(Setup {
         name: file.name.clone(),
@@ -241,6 +321,8 @@ pub fn build(
         metrics,
         lidar,
         furrow,
+        horizontal_lidar,
+        edge,
     })
 }
 
@@ -570,18 +652,7 @@ fn lidar(
             &format!("must be above lidar.range_min_m = {range_min}, got {range_max}"),
         ));
     }
-    let rate = check.open_range("lidar.rate_hz", l.rate_hz, 0.0, 1000.0)?;
-    // The scan period in control ticks must be a whole number (at least 1).
-    let ticks = 1.0 / (rate * period_s);
-    let scan_every = ticks.round();
-    if scan_every < 1.0 || (ticks - scan_every).abs() > 1e-6 * ticks {
-        return Err(check.error(
-            "lidar.rate_hz",
-            &format!(
-                "the scan period 1/{rate} s must be a whole number of control periods ({period_s} s)"
-            ),
-        ));
-    }
+    let scan_every = scan_every(check, "lidar.rate_hz", l.rate_hz, period_s)?;
     Ok(LidarSetup {
         lidar: InclinedLidar {
             mount_x: check.range("lidar.mount_x_m", l.mount_x_m, -20.0, 20.0)?,
@@ -594,8 +665,263 @@ fn lidar(
             range_max,
             range_noise: check.range("lidar.range_noise_m", l.range_noise_m, 0.0, 1.0)?,
         },
-        // A whole number in [1, 1e6 / period]: the conversion is exact.
-        scan_every: scan_every as u64,
+        scan_every,
+    })
+}
+
+/// The scan period of a LiDAR scanning at `rate_hz` (field `field`) in
+/// control periods of `period_s`: it must be a whole number, at least 1.
+fn scan_every(
+    check: &Checker<'_>,
+    field: &str,
+    rate_hz: f64,
+    period_s: f64,
+) -> Result<u64, ScenarioError> {
+    let rate = check.open_range(field, rate_hz, 0.0, 1000.0)?;
+    let ticks = 1.0 / (rate * period_s);
+    let every = ticks.round();
+    if every < 1.0 || (ticks - every).abs() > 1e-6 * ticks {
+        return Err(check.error(
+            field,
+            &format!(
+                "the scan period 1/{rate} s must be a whole number of control periods ({period_s} s)"
+            ),
+        ));
+    }
+    // A whole number in [1, 1e6 / period]: the conversion is exact.
+    Ok(every as u64)
+}
+
+/// The hedges of `[world]`, validated, and their outlines drawn from `rng`.
+fn hedges(
+    world: Option<&WorldSection>,
+    check: &Checker<'_>,
+    rng: &mut SimRng,
+) -> Result<(Vec<Hedge>, Obstacles), ScenarioError> {
+    let mut hedges = Vec::new();
+    let mut obstacles = Obstacles::default();
+    for (i, h) in world.map_or(&[][..], |w| &w.hedges[..]).iter().enumerate() {
+        let field = |name: &str| format!("world.hedges[{i}].{name}");
+        if h.name.trim().is_empty() {
+            return Err(check.error(&field("name"), "must not be empty"));
+        }
+        let length = check.open_range(&field("length_m"), h.length_m, 0.0, 1000.0)?;
+        let thickness = check.open_range(&field("thickness_m"), h.thickness_m, 0.0, 20.0)?;
+        let raggedness = check.range(&field("raggedness_m"), h.raggedness_m, 0.0, 20.0)?;
+        if raggedness >= 0.5 * thickness {
+            return Err(check.error(
+                &field("raggedness_m"),
+                &format!("must be below half of thickness_m = {thickness}, got {raggedness}"),
+            ));
+        }
+        let spacing =
+            check.open_range(&field("vertex_spacing_m"), h.vertex_spacing_m, 0.0, 100.0)?;
+        let mut gaps = Vec::with_capacity(h.gaps_m.len());
+        for (k, g) in h.gaps_m.iter().enumerate() {
+            let from = check.range(&field(&format!("gaps_m[{k}][0]")), g[0], 0.0, length)?;
+            let to = check.range(&field(&format!("gaps_m[{k}][1]")), g[1], 0.0, length)?;
+            if to <= from {
+                return Err(check.error(
+                    &field(&format!("gaps_m[{k}]")),
+                    &format!("must be [from_m, to_m] with from_m < to_m, got [{from}, {to}]"),
+                ));
+            }
+            gaps.push([from, to]);
+        }
+        let spec = HedgeSpec {
+            start: [
+                check.range(&field("start.x_m"), h.start.x_m, -1e6, 1e6)?,
+                check.range(&field("start.y_m"), h.start.y_m, -1e6, 1e6)?,
+            ],
+            heading: check
+                .range(
+                    &field("start.heading_deg"),
+                    h.start.heading_deg,
+                    -360.0,
+                    360.0,
+                )?
+                .to_radians(),
+            length,
+            thickness,
+            raggedness,
+            vertex_spacing: spacing,
+            gaps,
+        };
+        obstacles
+            .add_hedge(&spec, rng)
+            .map_err(|e| check.error(&field(e.field), e.reason))?;
+        hedges.push(Hedge {
+            name: h.name.clone(),
+            spec,
+        });
+    }
+    Ok((hedges, obstacles))
+}
+
+/// The horizontal LiDAR of `[horizontal_lidar]`; its scan period must be a
+/// whole number of control periods `period_s`.
+fn horizontal_lidar(
+    l: &HorizontalLidarSection,
+    period_s: f64,
+    check: &Checker<'_>,
+) -> Result<HorizontalLidarSetup, ScenarioError> {
+    let fov = check.range(
+        "horizontal_lidar.field_of_view_deg",
+        l.field_of_view_deg,
+        0.0,
+        360.0,
+    )?;
+    if fov <= 0.0 {
+        return Err(check.error(
+            "horizontal_lidar.field_of_view_deg",
+            &format!("must be within (0, 360], got {fov}"),
+        ));
+    }
+    if !(2..=10_000).contains(&l.rays) {
+        return Err(check.error(
+            "horizontal_lidar.rays",
+            &format!("must be within [2, 10000], got {}", l.rays),
+        ));
+    }
+    let range_min = check.range("horizontal_lidar.range_min_m", l.range_min_m, 0.0, 1000.0)?;
+    let range_max = check.range("horizontal_lidar.range_max_m", l.range_max_m, 0.0, 1000.0)?;
+    if range_max <= range_min {
+        return Err(check.error(
+            "horizontal_lidar.range_max_m",
+            &format!("must be above horizontal_lidar.range_min_m = {range_min}, got {range_max}"),
+        ));
+    }
+    let spec = HorizontalLidarSpec {
+        mount_xy: [
+            check.range("horizontal_lidar.mount_x_m", l.mount_x_m, -20.0, 20.0)?,
+            check.range("horizontal_lidar.mount_y_m", l.mount_y_m, -20.0, 20.0)?,
+        ],
+        mount_heading: check
+            .range(
+                "horizontal_lidar.mount_heading_deg",
+                l.mount_heading_deg,
+                -180.0,
+                180.0,
+            )?
+            .to_radians(),
+        field_of_view: fov.to_radians(),
+        rays: usize::try_from(l.rays).unwrap_or(2),
+        range_min,
+        range_max,
+        noise_sigma: check.range("horizontal_lidar.range_noise_m", l.range_noise_m, 0.0, 1.0)?,
+    };
+    let lidar = HorizontalLidar::new(spec)
+        .map_err(|e| check.error(&format!("horizontal_lidar.{}", e.field), e.reason))?;
+    Ok(HorizontalLidarSetup {
+        lidar,
+        scan_every: scan_every(check, "horizontal_lidar.rate_hz", l.rate_hz, period_s)?,
+    })
+}
+
+/// The edge detector and law of `[edge]`, the mount taken from `[horizontal_lidar]`.
+fn edge(
+    e: &EdgeSection,
+    lidar: &HorizontalLidarSetup,
+    vehicle: VehicleParams,
+    inversion: Inversion,
+    check: &Checker<'_>,
+) -> Result<EdgeSetup, ScenarioError> {
+    let rays = lidar.lidar.spec().rays;
+    if rays > EDGE_RAYS {
+        return Err(check.error(
+            "horizontal_lidar.rays",
+            &format!("edge following takes at most {EDGE_RAYS} rays, got {rays}"),
+        ));
+    }
+    let speed = check.open_range("edge.speed_m_s", e.speed_m_s, 0.0, 20.0)?;
+    let g_y = check.positive("edge.lateral_gain", e.lateral_gain)?;
+    let g_theta = check.positive("edge.heading_gain", e.heading_gain)?;
+    let ratio = check.range("edge.min_gain_ratio", e.min_gain_ratio, 1.0, 1e6)?;
+    // Same convention as [control]: table gains g are positive, k = −g.
+    let gains = Gains::new(-g_y, -g_theta, ratio).map_err(|err| {
+        check.error(
+            "edge.heading_gain",
+            &format!(
+                "heading_gain / lateral_gain = {} is below edge.min_gain_ratio = {ratio} ({err})",
+                g_theta / g_y
+            ),
+        )
+    })?;
+    let radius = check.open_range("edge.circle_radius_m", e.circle_radius_m, 0.0, 100.0)?;
+    let rotation = check.open_range("edge.max_rotation_deg", e.max_rotation_deg, 0.0, 360.0)?;
+    let l_max = check.open_range("edge.max_chain_length_m", e.max_chain_length_m, 0.0, 1000.0)?;
+    let l_min = check.range("edge.min_chain_length_m", e.min_chain_length_m, 0.0, l_max)?;
+    if l_min >= l_max {
+        return Err(check.error(
+            "edge.min_chain_length_m",
+            &format!("must be below edge.max_chain_length_m = {l_max}, got {l_min}"),
+        ));
+    }
+    let min_points = usize::try_from(e.min_points).unwrap_or(usize::MAX);
+    if !(4..=EDGE_CHAIN).contains(&min_points) {
+        return Err(check.error(
+            "edge.min_points",
+            &format!("must be within [4, {EDGE_CHAIN}], got {}", e.min_points),
+        ));
+    }
+    let enter = check.open_range("edge.enter_residual_m", e.enter_residual_m, 0.0, 100.0)?;
+    let exit = check.open_range("edge.exit_residual_m", e.exit_residual_m, 0.0, 100.0)?;
+    if exit <= enter {
+        return Err(check.error(
+            "edge.exit_residual_m",
+            &format!("must be above edge.enter_residual_m = {enter}, got {exit}"),
+        ));
+    }
+    let params = EdgeParameters {
+        radius,
+        max_rotation: rotation.to_radians(),
+        max_chain_length: l_max,
+        search_distance: check.open_range(
+            "edge.search_distance_m",
+            e.search_distance_m,
+            0.0,
+            1000.0,
+        )?,
+        offset: check.range("edge.desired_distance_m", e.desired_distance_m, 0.0, 1000.0)?,
+        min_chain_length: l_min,
+        max_link: check.open_range("edge.max_link_m", e.max_link_m, 0.0, 1000.0)?,
+        max_turn: check
+            .range("edge.max_turn_deg", e.max_turn_deg, 0.0, 180.0)
+            .and_then(|v| {
+                if v > 0.0 {
+                    Ok(v)
+                } else {
+                    Err(check.error("edge.max_turn_deg", "must be within (0, 180], got 0"))
+                }
+            })?
+            .to_radians(),
+        max_width: check.open_range("edge.max_width_m", e.max_width_m, 0.0, 1000.0)?,
+        min_points,
+        sigma_enter: enter,
+        sigma_exit: exit,
+    };
+    // Every value was range-checked above; what the core still refuses is
+    // reported against the section, with the requirement it names.
+    let detector = EdgeConfig::new(&params).map_err(|err| {
+        check.error(
+            "edge",
+            &format!("the core refuses the configuration: {err}"),
+        )
+    })?;
+    Ok(EdgeSetup {
+        detector,
+        side: match e.side {
+            SideName::Left => Side::Left,
+            SideName::Right => Side::Right,
+        },
+        backstepping: BacksteppingConfig {
+            gains,
+            wheelbase: vehicle.wheelbase,
+            max_steering: vehicle.actuator.limit,
+            inversion,
+        },
+        speed: MetersPerSecond::new(speed)
+            .map_err(|err| check.error("edge.speed_m_s", &err.to_string()))?,
     })
 }
 

@@ -213,6 +213,83 @@ impl HedgeSpec {
     }
 }
 
+/// Where a pose lies relative to the line an edge follower keeps at a
+/// desired distance from a hedge's nominal face (ground truth of edge
+/// following; [`HedgeSpec::offset_line_position`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OffsetLinePosition {
+    /// Along-hedge distance of the pose's projection on the centre line, metres.
+    pub along: f64,
+    /// Signed distance of the pose to the offset line, metres, positive to
+    /// the left of the direction of travel (the library's lateral error).
+    pub lateral: f64,
+    /// Heading of the pose minus the offset line's heading in the direction
+    /// of travel, radians, in (−π, π].
+    pub angular: f64,
+}
+
+impl HedgeSpec {
+    /// Whether the along-hedge distance `along` lies on the hedge: within
+    /// `[0, length]` and strictly inside no gap.
+    #[must_use]
+    pub fn is_present(&self, along: f64) -> bool {
+        (0.0..=self.length).contains(&along)
+            && !self.gaps.iter().any(|g| along > g[0] && along < g[1])
+    }
+
+    /// The ground truth of edge following for a robot at world pose
+    /// `(x, y, heading)` keeping `offset` metres from this hedge: its
+    /// position relative to the nominal face on its side
+    /// ([`HedgeSpec::nominal_face`]) moved `offset` metres away from the
+    /// hedge, measured in the direction of travel (the along-hedge direction
+    /// that makes less than 90° with `heading`). `None` where the hedge is
+    /// absent (before its start, past its end, in a gap).
+    #[must_use]
+    pub fn offset_line_position(
+        &self,
+        x: f64,
+        y: f64,
+        heading: f64,
+        offset: f64,
+    ) -> Option<OffsetLinePosition> {
+        let (c, s) = (self.heading.cos(), self.heading.sin());
+        let (dx, dy) = (x - self.start[0], y - self.start[1]);
+        let along = dx * c + dy * s;
+        let across = -dx * s + dy * c;
+        if !self.is_present(along) {
+            return None;
+        }
+        // The face on the robot's side, and the offset line beyond it.
+        let (face, away) = if across >= 0.0 {
+            (Face::Left, 1.0)
+        } else {
+            (Face::Right, -1.0)
+        };
+        let f = self.nominal_face(face);
+        let (ux, uy) = (f.b[0] - f.a[0], f.b[1] - f.a[1]);
+        let norm = ux.hypot(uy);
+        // Signed distance to the face line, positive left of the hedge's heading.
+        let to_face = (-(x - f.a[0]) * uy + (y - f.a[1]) * ux) / norm;
+        let lateral = to_face - away * offset;
+        let relative = wrap(heading - self.heading);
+        let (lateral, angular) = if relative.abs() <= core::f64::consts::FRAC_PI_2 {
+            (lateral, relative)
+        } else {
+            (-lateral, wrap(relative - core::f64::consts::PI))
+        };
+        (lateral.is_finite() && angular.is_finite()).then_some(OffsetLinePosition {
+            along,
+            lateral,
+            angular,
+        })
+    }
+}
+
+/// `angle` wrapped to (−π, π].
+fn wrap(angle: f64) -> f64 {
+    fieldguide::geometry::units::wrap_angle(angle)
+}
+
 /// A row of posts: `count` circles of `radius` along a line from `start`
 /// heading `heading`, `spacing` metres apart, each moved along the row by a
 /// uniform draw in ±`spacing_noise`, and each missing with probability
@@ -448,6 +525,26 @@ mod tests {
                 .field,
             "missing"
         );
+    }
+
+    #[test]
+    fn the_offset_line_is_the_nominal_face_moved_away_from_the_hedge() {
+        // Near (right) face at y = 1.5, the offset line 1.4 m south at y = 0.1.
+        let h = hedge();
+        let p = h.offset_line_position(5.0, 0.0, 0.1, 1.4).unwrap();
+        assert!((p.along - 5.0).abs() < 1e-12);
+        assert!((p.lateral + 0.1).abs() < 1e-12, "{p:?}");
+        assert!((p.angular - 0.1).abs() < 1e-12);
+        // Driving west on the north side (face y = 2.5, line y = 3.9): 0.2 m
+        // north of the line is 0.2 m to the right of the travel direction.
+        let q = h.offset_line_position(4.0, 4.1, 3.0, 1.4).unwrap();
+        assert!((q.lateral + 0.2).abs() < 1e-12, "{q:?}");
+        assert!((q.angular - (3.0 - core::f64::consts::PI)).abs() < 1e-12);
+        // Nothing in the gap, before the start or past the end.
+        assert!(h.offset_line_position(9.0, 0.0, 0.0, 1.4).is_none());
+        assert!(h.offset_line_position(-0.1, 0.0, 0.0, 1.4).is_none());
+        assert!(h.offset_line_position(20.1, 0.0, 0.0, 1.4).is_none());
+        assert!(h.is_present(8.0) && !h.is_present(8.01) && h.is_present(10.01));
     }
 
     #[test]

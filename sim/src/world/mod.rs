@@ -2,7 +2,8 @@
 //!
 //! A [`World`] is everything around the vehicle that the simulator measures
 //! against: the ground's sideslip, the plants the LiDAR sees and a wheel may
-//! run over, and the plots whose true centre lines score furrow pursuing.
+//! run over, the plots whose true centre lines score furrow pursuing, and the
+//! hedges whose nominal faces score edge following.
 
 pub mod crops;
 pub mod grid;
@@ -12,6 +13,7 @@ pub mod terrain;
 use fieldguide::{Point2, World as WorldFrame};
 
 use crops::{PlotPosition, PlotSpec};
+use hedge::{HedgeSpec, Obstacles, OffsetLinePosition};
 use terrain::Terrain;
 
 /// What a plant is: a crop plant (must not be run over) or a grass tuft.
@@ -49,6 +51,20 @@ pub struct World {
     /// The crop plots the plants were drawn from (their true centre lines are
     /// the ground truth of furrow pursuing), in the order the robot meets them.
     pub plots: Vec<Plot>,
+    /// The hedges (their nominal faces are the ground truth of edge
+    /// following), in the order the robot meets them.
+    pub hedges: Vec<Hedge>,
+    /// What a horizontal LiDAR can hit: the hedges' generated outlines.
+    pub obstacles: Obstacles,
+}
+
+/// A named hedge.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hedge {
+    /// Name, for the summary.
+    pub name: String,
+    /// Layout and nominal faces.
+    pub spec: HedgeSpec,
 }
 
 /// A named crop plot.
@@ -70,6 +86,25 @@ impl World {
         self.plots.iter().enumerate().find_map(|(i, p)| {
             p.spec
                 .project(x, y)
+                .filter(|q| q.lateral.abs() <= reach)
+                .map(|q| (i, q))
+        })
+    }
+
+    /// The hedge beside which a robot at world pose `(x, y, heading)`
+    /// keeping `offset` metres from it lies, with its position relative to
+    /// that hedge's offset line ([`HedgeSpec::offset_line_position`]): the
+    /// first hedge present abeam of it within `reach` m of the offset line.
+    #[must_use]
+    pub fn hedge_at(
+        &self,
+        (x, y, heading): (f64, f64, f64),
+        offset: f64,
+        reach: f64,
+    ) -> Option<(usize, OffsetLinePosition)> {
+        self.hedges.iter().enumerate().find_map(|(i, h)| {
+            h.spec
+                .offset_line_position(x, y, heading, offset)
                 .filter(|q| q.lateral.abs() <= reach)
                 .map(|q| (i, q))
         })

@@ -2,7 +2,8 @@
 //! a circle of radius r is translated sideways from the robot's rear point
 //! until its front semicircle touches a point (EDGE-CHAIN-TRANSLATE), then
 //! rotated about the last pivot until another point touches it
-//! (EDGE-CHAIN-ROTATE), until θ_max or l_max stops it (EDGE-CHAIN-STOP).
+//! (EDGE-CHAIN-ROTATE), until θ_max or l_max stops it (EDGE-CHAIN-STOP), or
+//! a gap (EDGE-GAP) or a corner (EDGE-CORNER) in the edge.
 //!
 //! Contacts are solved in closed form instead of by small steps, so a chain
 //! does not depend on a step size and every circle position where the chain
@@ -29,6 +30,12 @@ pub enum ChainEnd {
     LengthLimit,
     /// The next contact is a point already in the chain (the circle went round a cluster).
     Closed,
+    /// The next contact is farther from the pivot than the longest link
+    /// l_link: a gap in the edge (EDGE-GAP).
+    Gap,
+    /// The next link turns from the chain's direction by more than φ_turn:
+    /// a corner or the end of the edge (EDGE-CORNER).
+    Corner,
     /// The chain buffer is full.
     Capacity,
 }
@@ -207,7 +214,9 @@ fn contact_center(p: Point2<Robot>, q: Point2<Robot>, s: f64, r: f64) -> Option<
 /// distance. Each next pivot is the point with the smallest rotation contact
 /// (ties: the nearest to the pivot, then the lowest index), accepted when
 /// that angle is below θ_max; the chain stops when its length reaches l_max,
-/// when the next contact is already a chain point, or when `M` points are held.
+/// when the next contact is already a chain point, when it is farther than
+/// l_link from the pivot (EDGE-GAP), when its link turns more than φ_turn
+/// from the chain's direction (EDGE-CORNER), or when `M` points are held.
 /// Never panics; points are assumed within `MAX_COORDINATE` (checked by the callers).
 #[must_use]
 pub fn build_chain<const M: usize>(
@@ -234,6 +243,10 @@ pub fn build_chain<const M: usize>(
 //# The chain MUST stop when no point has a contact angle below θ_max, when
 //# its polyline length reaches l_max, when the next contact is a point
 //# already in the chain, or when its buffer is full.
+//= spec/pierre2022.md#edge-gap-the-chain-stops-at-a-gap-in-the-edge
+//# The chain MUST stop, before taking it, at a next contact farther than
+//# l_link from the pivot: a link longer than l_link is a gap, and the two
+//# sides of a gap are two edges.
 pub fn build_chain_into<const M: usize>(
     points: &[Point2<Robot>],
     side: Side,
@@ -308,6 +321,7 @@ pub fn build_chain_into<const M: usize>(
         half: Half::of(theta_max),
         cos: cos_below_pi(theta_max),
     };
+    let max_link2 = config.max_link().get() * config.max_link().get();
     let (mut pivot, mut pivot_index, mut center) = (p0, i0, c0);
     loop {
         if chain.length >= config.max_chain_length().get() {
@@ -371,6 +385,14 @@ pub fn build_chain_into<const M: usize>(
             chain.end = ChainEnd::RotationLimit;
             return;
         };
+        if next.d2 > max_link2 {
+            chain.end = ChainEnd::Gap;
+            return;
+        }
+        if turns_too_much(p0, pivot, q, config.cos_max_turn()) {
+            chain.end = ChainEnd::Corner;
+            return;
+        }
         let Some(c) = contact_center(pivot, q, s, r) else {
             chain.end = ChainEnd::RotationLimit;
             return;
@@ -382,6 +404,28 @@ pub fn build_chain_into<const M: usize>(
         chain.length += libm::sqrt(next.d2);
         (pivot, pivot_index, center) = (q, next.index, c);
     }
+}
+
+/// Whether the link from `pivot` to `next` turns from the chain's direction,
+/// from its `first` point to `pivot`, by more than the angle whose cosine is
+/// `cos_max` (EDGE-CORNER). The first link (pivot = first point) has no
+/// direction to turn from.
+//= spec/pierre2022.md#edge-corner-the-chain-stops-at-a-corner-or-the-end-of-the-edge
+//# The chain MUST stop, before taking it, at a next contact q whose link
+//# from the pivot p_k turns from the chain's direction, the vector from its
+//# first point p_0 to p_k, by more than φ_turn: (q − p_k) · (p_k − p_0) <
+//# cos φ_turn · |q − p_k| |p_k − p_0|.
+fn turns_too_much(
+    first: Point2<Robot>,
+    pivot: Point2<Robot>,
+    next: Point2<Robot>,
+    cos_max: f64,
+) -> bool {
+    let (cx, cy) = (pivot.x() - first.x(), pivot.y() - first.y());
+    let (lx, ly) = (next.x() - pivot.x(), next.y() - pivot.y());
+    let norms = libm::sqrt((cx * cx + cy * cy) * (lx * lx + ly * ly));
+    // cos(turn) = (c · l) / (|c| |l|) < cos φ_turn, without a division.
+    norms > 0.0 && cx * lx + cy * ly < cos_max * norms
 }
 
 fn push<const M: usize>(

@@ -1,7 +1,7 @@
 //! The edge detector's configuration, validated once (requirement EDGE-CONFIG),
 //! and the side of the robot on which an edge is searched.
 
-use core::f64::consts::{FRAC_PI_2, TAU};
+use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
 use crate::error::Precondition;
 use crate::geometry::units::{Meters, Radians};
@@ -55,6 +55,16 @@ pub struct EdgeParameters {
     pub offset: f64,
     /// Chain length l_min the chain must exceed to be followed, metres (eq. 21; not in Table 1).
     pub min_chain_length: f64,
+    /// Longest link l_link between consecutive chain points, metres, > 0: a
+    /// contact farther from the pivot is a gap in the edge and the chain stops
+    /// before it (EDGE-GAP; not in the paper). Contacts are always closer
+    /// than 2r, so a value of 2r or more never stops a chain.
+    pub max_link: f64,
+    /// Largest turn φ_turn, radians, in (0, π], of a link from the chain's
+    /// direction so far (its first point to the pivot): a sharper turn is a
+    /// corner or the end of the edge and the chain stops before it
+    /// (EDGE-CORNER; not in the paper). π never stops a chain.
+    pub max_turn: f64,
     /// Spread w_max of the chain along the robot's y axis that it must stay
     /// below, metres (eq. 21; not in Table 1).
     pub max_width: f64,
@@ -74,7 +84,8 @@ impl EdgeParameters {
     /// Table 1 of Pierre 2022 for edge following, completed with the library's
     /// choices for the values the paper does not give: θ_max = π/2,
     /// l_min = 1.5 m, w_max = 1 m, 5 points at least (`spec/pierre2022.md`,
-    /// EDGE-CONFIG).
+    /// EDGE-CONFIG), and the rules beyond the paper: l_link = 1 m (EDGE-GAP)
+    /// and φ_turn = π/4 (EDGE-CORNER).
     pub const PIERRE2022: Self = Self {
         radius: 1.0,
         max_rotation: FRAC_PI_2,
@@ -82,6 +93,8 @@ impl EdgeParameters {
         search_distance: 3.0,
         offset: 1.4,
         min_chain_length: 1.5,
+        max_link: 1.0,
+        max_turn: FRAC_PI_4,
         max_width: 1.0,
         min_points: 5,
         sigma_enter: 0.15,
@@ -98,6 +111,9 @@ pub struct EdgeConfig {
     search_distance: f64,
     offset: f64,
     min_chain_length: f64,
+    max_link: f64,
+    cos_max_turn: f64,
+    max_turn: f64,
     max_width: f64,
     min_points: usize,
     thresholds: QualityThresholds,
@@ -116,15 +132,15 @@ impl EdgeConfig {
     ///
     /// Errors with `EDGE-CONFIG` naming the failed condition (every value
     /// finite; `r > 0`; `0 < θ_max < 2π`; `l_max > 0`; search distance > 0;
-    /// `D ≥ 0`; `0 ≤ l_min < l_max`; `w_max > 0`; at least 4 points;
-    /// `σ_edge > 0`), and with
+    /// `D ≥ 0`; `0 ≤ l_min < l_max`; `l_link > 0`; `0 < φ_turn ≤ π`;
+    /// `w_max > 0`; at least 4 points; `σ_edge > 0`), and with
     /// `SW-THRESHOLDS` when `σ_edge < σ_path` does not hold.
     //= spec/pierre2022.md#edge-config-detector-configuration
     //# A configuration MUST be refused at construction, with an error naming
     //# the requirement, unless r > 0, 0 < θ_max < 2π, l_max > 0, the search
-    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0, the fewest
-    //# chain points is at least 4 and 0 < σ_edge < σ_path, every value being
-    //# finite.
+    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, l_link > 0,
+    //# 0 < φ_turn ≤ π, w_max > 0, the fewest chain points is at least 4 and
+    //# 0 < σ_edge < σ_path, every value being finite.
     pub fn new(p: &EdgeParameters) -> Result<Self, Precondition> {
         let values = [
             p.radius,
@@ -133,6 +149,8 @@ impl EdgeConfig {
             p.search_distance,
             p.offset,
             p.min_chain_length,
+            p.max_link,
+            p.max_turn,
             p.max_width,
             p.sigma_enter,
             p.sigma_exit,
@@ -153,6 +171,11 @@ impl EdgeConfig {
             p.min_chain_length >= 0.0 && p.min_chain_length < p.max_chain_length,
             "l_min must be in [0, l_max)",
         )?;
+        require(p.max_link > 0.0, "the longest link l_link must be > 0")?;
+        require(
+            p.max_turn > 0.0 && p.max_turn <= PI,
+            "the largest turn phi_turn must be in (0, pi]",
+        )?;
         require(p.max_width > 0.0, "w_max must be > 0")?;
         require(p.min_points >= 4, "the fewest chain points must be >= 4")?;
         require(p.sigma_enter > 0.0, "sigma_edge must be > 0")?;
@@ -164,6 +187,14 @@ impl EdgeConfig {
             search_distance: p.search_distance,
             offset: p.offset,
             min_chain_length: p.min_chain_length,
+            max_link: p.max_link,
+            // A turn of π or more never stops a chain, rounding included.
+            cos_max_turn: if p.max_turn >= PI {
+                -2.0
+            } else {
+                libm::cos(p.max_turn)
+            },
+            max_turn: p.max_turn,
             max_width: p.max_width,
             min_points: p.min_points,
             thresholds,
@@ -211,6 +242,23 @@ impl EdgeConfig {
         Meters(self.min_chain_length)
     }
 
+    /// Longest link l_link between consecutive chain points (EDGE-GAP).
+    #[must_use]
+    pub const fn max_link(&self) -> Meters {
+        Meters(self.max_link)
+    }
+
+    /// Largest turn φ_turn of a link from the chain's direction (EDGE-CORNER).
+    #[must_use]
+    pub const fn max_turn(&self) -> Radians {
+        Radians(self.max_turn)
+    }
+
+    /// cos φ_turn, computed once.
+    pub(super) const fn cos_max_turn(&self) -> f64 {
+        self.cos_max_turn
+    }
+
     /// Chain spread w_max along y to stay below.
     #[must_use]
     pub const fn max_width(&self) -> Meters {
@@ -238,14 +286,42 @@ mod tests {
     //= type=test
     //# A configuration MUST be refused at construction, with an error naming
     //# the requirement, unless r > 0, 0 < θ_max < 2π, l_max > 0, the search
-    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, w_max > 0, the fewest
-    //# chain points is at least 4 and 0 < σ_edge < σ_path, every value being
-    //# finite.
+    //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, l_link > 0,
+    //# 0 < φ_turn ≤ π, w_max > 0, the fewest chain points is at least 4 and
+    //# 0 < σ_edge < σ_path, every value being finite.
     #[test]
     fn each_bad_parameter_is_refused_with_its_requirement() {
         let good = EdgeParameters::PIERRE2022;
         assert!(EdgeConfig::new(&good).is_ok());
-        let bad: [(EdgeParameters, &str); 13] = [
+        let bad: [(EdgeParameters, &str); 17] = [
+            (
+                EdgeParameters {
+                    max_turn: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_turn: 3.2,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_link: 0.0,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
+            (
+                EdgeParameters {
+                    max_link: f64::NAN,
+                    ..good
+                },
+                "EDGE-CONFIG",
+            ),
             (
                 EdgeParameters {
                     min_points: 3,

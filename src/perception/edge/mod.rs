@@ -4,7 +4,8 @@
 //!
 //! One tick: [`scan_to_points`] turns a scan into robot-frame points
 //! (EDGE-SCAN); [`build_chain`] rolls a circle along the edge on the requested
-//! side with exact contacts (EDGE-CHAIN-*); a least-squares parabola is fitted
+//! side with exact contacts (EDGE-CHAIN-*), stopping where the edge breaks at
+//! a gap or a corner (EDGE-GAP, EDGE-CORNER); a least-squares parabola is fitted
 //! to the chain (EDGE-PARABOLA); [`tracking_error`] gives the
 //! robot's errors to the line at the desired lateral distance (EDGE-ERRORS,
 //! EDGE-OFFSET); [`EdgeQuality`] grades the detection (EDGE-QUALITY).
