@@ -465,9 +465,9 @@ fn bad_input_gives_absent() {
 #[test]
 fn rejected_detections_offer_no_error() {
     let config = config();
-    // A short stub of hedge (0.6 m): fitted but shorter than l_min → Exit.
-    let stub = wall(Side::Left, 1.4, 0.0, 0.05, -0.3, 0.3);
-    let det = detect_points::<M>(&stub, Side::Left, &config).unwrap();
+    // A short piece of hedge (0.6 m): fitted but shorter than l_min → Exit.
+    let short = wall(Side::Left, 1.4, 0.0, 0.05, -0.3, 0.3);
+    let det = detect_points::<M>(&short, Side::Left, &config).unwrap();
     assert!(det.fit.is_some());
     assert_eq!(det.verdict, Verdict::Exit);
     assert!(det.usable_error().is_none());
