@@ -5,9 +5,7 @@
 //! selector fed by LiDAR detectors) plug in as new implementations and new
 //! [`Mode`] labels without touching the runner.
 
-pub mod edge;
-pub mod furrow;
-pub mod specialised;
+pub mod pipeline;
 
 use fieldguide::control::backstepping::{steering_command, BacksteppingConfig};
 use fieldguide::model::bicycle::Sideslip;
@@ -28,6 +26,8 @@ pub enum Mode {
     FurrowPursuing,
     /// Following a hedge or a wall seen by the horizontal LiDAR (Pierre 2022, section 2.2).
     EdgeFollowing,
+    /// Standstill: no valid command source for the Stop delay (SW-STOP, GD-STOP).
+    Stop,
 }
 
 impl Mode {
@@ -38,6 +38,7 @@ impl Mode {
             Self::PathTracking => "path_tracking",
             Self::FurrowPursuing => "furrow_pursuing",
             Self::EdgeFollowing => "edge_following",
+            Self::Stop => "stop",
         }
     }
 
@@ -50,6 +51,7 @@ impl Mode {
             Self::PathTracking => "#d62728",
             Self::FurrowPursuing => "#1f3fd0",
             Self::EdgeFollowing => "#1f8fd0",
+            Self::Stop => "#222222",
         }
     }
 }
@@ -76,8 +78,12 @@ pub struct Command {
     pub steering: f64,
     /// Forward speed, m/s.
     pub speed: MetersPerSecond,
-    /// The behaviour in charge.
+    /// The behaviour whose law made the command (the plots' colour), or
+    /// Stop.
     pub mode: Mode,
+    /// The switching machine's mode (differs from `mode` while an exit delay
+    /// runs without a valid estimate: path tracking steers, SW-COMMAND).
+    pub switching_mode: Mode,
     /// Whether the law saturated the steering.
     pub saturated: bool,
     /// The tracking error the law used (from the estimated pose).
@@ -176,6 +182,7 @@ impl Guidance for PathTracking<'_> {
             steering: cmd.steering.get(),
             speed: self.speed,
             mode: Mode::PathTracking,
+            switching_mode: Mode::PathTracking,
             saturated: cmd.saturated,
             estimated_error: Some(error),
             sideslip_used: sideslip,

@@ -17,9 +17,8 @@ use fieldguide::geometry::path::PathPosition;
 use fieldguide::{Meters, Pose2, Precondition, World};
 
 use crate::error::ScenarioError;
-use crate::guidance::edge::EdgeFollowing;
-use crate::guidance::furrow::FurrowPursuing;
-use crate::guidance::{Command, Guidance, Mode, PathTracking, TickInput, SEARCH_WINDOW_M};
+use crate::guidance::pipeline::Pipeline;
+use crate::guidance::{Command, Guidance, Mode, TickInput, SEARCH_WINDOW_M};
 use crate::lidar::inclined::{InclinedLidar, InclinedScan};
 use crate::plant::{self, VehicleState};
 use crate::rng::SimRng;
@@ -130,36 +129,19 @@ pub fn prepare(source: &Source) -> Result<(Setup, SimRng), ScenarioError> {
     Ok((setup, rng))
 }
 
-/// Runs `setup` with its own guidance: furrow pursuing or edge following
-/// (with path tracking standing in while the detector has no usable line)
-/// when the scenario has a `[furrow]` or an `[edge]` section, else path tracking.
+/// Runs `setup` with its own guidance: the core pipeline
+/// (`fieldguide::guidance::Guidance`: path tracking, and edge following or
+/// furrow pursuing when the scenario has an `[edge]` or a `[furrow]` section,
+/// switched by the core's machine with the `[switching]` delays).
 #[must_use]
 pub fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
-    let c = &setup.control;
-    let tracking = PathTracking::new(
-        &setup.path,
-        c.backstepping,
-        c.speed,
-        c.lookahead,
-        c.sideslip_compensation,
-    );
-    match (&setup.furrow, &setup.edge, &setup.horizontal_lidar) {
-        (Some(f), _, _) => match FurrowPursuing::new(f, tracking) {
-            Ok(mut guidance) => run_with(setup, &mut guidance, rng),
-            Err(e) => RunOutput {
-                trace: Vec::new(),
-                end: RunEnd::Aborted(format!("furrow detector: {e}")),
-                plants_crushed: 0,
-            },
+    match Pipeline::new(setup) {
+        Ok(mut guidance) => run_with(setup, &mut guidance, rng),
+        Err(e) => RunOutput {
+            trace: Vec::new(),
+            end: RunEnd::Aborted(format!("guidance pipeline: {e}")),
+            plants_crushed: 0,
         },
-        (None, Some(e), Some(l)) => {
-            let mut guidance = EdgeFollowing::new(e, l.lidar.mount(), tracking);
-            run_with(setup, &mut guidance, rng)
-        }
-        _ => {
-            let mut guidance = tracking;
-            run_with(setup, &mut guidance, rng)
-        }
     }
 }
 

@@ -95,9 +95,9 @@ fn the_scenario_is_table_2_through_maize_then_beans() {
     };
     assert!((min_spacing.get() - 0.66).abs() < 1e-12 && (max_spacing.get() - 0.9).abs() < 1e-12);
     assert!((p.enter - 0.4).abs() < 1e-12 && (p.exit - 0.2).abs() < 1e-12);
-    // The LiDAR scans at 10 Hz, every 5 control ticks of 0.02 s.
-    assert_eq!(setup.lidar.unwrap().scan_every, 5);
-    assert!((setup.control.period_s - 0.02).abs() < 1e-12);
+    // The LiDAR scans at 10 Hz, every 10 control ticks of 0.01 s.
+    assert_eq!(setup.lidar.unwrap().scan_every, 10);
+    assert!((setup.control.period_s - 0.01).abs() < 1e-12);
     // Maize (2 rows 0.75 m apart) then beans (3 rows 0.375 m apart), bent rows,
     // missing plants, a 1.5 m bare stretch in the beans, grass in the headlands.
     let plots = &setup.world.plots;
@@ -314,6 +314,7 @@ fn no_command_comes_from_a_stale_or_invalid_estimate() {
     let first = out.trace[0].command.detector.unwrap();
     assert!(first.scanned && first.verdict == Verdict::Absent);
     let mut verdicts = [0_usize; 4];
+    let mut enters = 0_usize;
     for r in &out.trace {
         let d = r.command.detector.unwrap();
         // Every tick carries the latest scan's verdict, never an older one.
@@ -325,6 +326,9 @@ fn no_command_comes_from_a_stale_or_invalid_estimate() {
         );
         if d.scanned {
             verdicts[Verdict::ALL.iter().position(|v| *v == d.verdict).unwrap()] += 1;
+        }
+        if r.mode() != Mode::PathTracking {
+            enters = 0;
         }
         match r.mode() {
             Mode::FurrowPursuing => {
@@ -346,14 +350,17 @@ fn no_command_comes_from_a_stale_or_invalid_estimate() {
                 assert!(used.curvature.get().abs() < 1e-15, "a straight line");
             }
             Mode::PathTracking => {
-                assert!(
-                    !d.verdict.estimate_is_valid(),
-                    "t = {}: {:?}",
-                    r.t_s,
-                    d.verdict
-                );
+                // Path tracking steers while the switching machine counts
+                // Enter verdicts: at most the transit delay's ticks in a row
+                // (SW-DELAYS, 50 ticks at 100 Hz).
+                enters = if d.verdict == Verdict::Enter {
+                    enters + 1
+                } else {
+                    0
+                };
+                assert!(enters <= 50, "t = {}: {enters} Enter ticks", r.t_s);
             }
-            Mode::EdgeFollowing => panic!("t = {}: no edge here", r.t_s),
+            Mode::Stop | Mode::EdgeFollowing => panic!("t = {}: no edge here", r.t_s),
         }
     }
     eprintln!("verdicts [enter, hold, exit, absent]: {verdicts:?}");
@@ -370,6 +377,7 @@ impl Guidance for Straight {
             steering: 0.0,
             speed: MetersPerSecond::new(0.7)?,
             mode: Mode::PathTracking,
+            switching_mode: Mode::PathTracking,
             saturated: false,
             estimated_error: None,
             sideslip_used: fieldguide::model::bicycle::Sideslip::ZERO,

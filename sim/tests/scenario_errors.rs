@@ -63,12 +63,12 @@ fn optional_fields_take_their_documented_defaults() {
     let source = Source {
         origin: "edited.toml".into(),
         text: builtin_text()
-            .replace("period_s = 0.02\n", "")
+            .replace("period_s = 0.01\n", "")
             .replace("band_m = 0.05\n", ""),
         base_dir: None,
     };
     let setup = source.setup(&mut SimRng::from_seed(1)).unwrap();
-    assert!((setup.control.period_s - 0.02).abs() < 1e-15);
+    assert!((setup.control.period_s - 0.01).abs() < 1e-15);
     assert!((setup.metrics.band_m - 0.05).abs() < 1e-15);
 }
 
@@ -854,4 +854,41 @@ fn the_program_writes_the_hedge_figures_and_summary() {
     let svg = std::fs::read_to_string(out.join("lateral_error.svg")).unwrap();
     assert!(svg.contains("beside a hedge: to the true offset line"));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn switching_fields_are_checked_and_named() {
+    let with = |section: &'static str| move |t: String| format!("{t}\n[switching]\n{section}\n");
+    let e = error_of(with("plan_max_heading_deg = 5.0"));
+    assert_field(&e, "switching.plan_max_offset_m", "needs its offset");
+    let e = error_of(with("furrow_enter_s = -0.5"));
+    assert_field(&e, "switching.furrow_enter_s", "");
+    let e = error_of(with(
+        "plan_max_offset_m = 0.2\nplan_max_heading_deg = 200.0",
+    ));
+    assert_field(&e, "switching.plan_max_heading_deg", "");
+    // Defaults: Tables 1-2 and no plan check.
+    let source = Source {
+        origin: "edited.toml".into(),
+        text: builtin_text(),
+        base_dir: None,
+    };
+    let s = source.setup(&mut SimRng::from_seed(1)).unwrap().switching;
+    assert!((s.edge_enter_s - 0.4).abs() < 1e-15 && (s.edge_exit_s - 0.26).abs() < 1e-15);
+    assert!((s.furrow_enter_s - 0.5).abs() < 1e-15 && (s.furrow_exit_s - 0.3).abs() < 1e-15);
+    assert!(s.plan.is_none());
+}
+
+#[test]
+fn a_segment_along_a_missing_plot_is_named() {
+    let e = error_of(|t| {
+        let start = t.find("segments = [").unwrap();
+        let end = start + t[start..].find("\n]").unwrap() + 2;
+        format!(
+            "{}segments = [{{ along_plot = 0 }}]{}",
+            &t[..start],
+            &t[end..]
+        )
+    });
+    assert_field(&e, "path.segments[0].along_plot", "no plot 0");
 }

@@ -135,11 +135,11 @@ pub struct GuidanceParams {
 }
 
 /// The backstepping law of a table's positive "proportional gain" `g`:
-/// k_y = −g, k_θ = 4 k_y (ratio at least 2), wheelbase 2 m, steering limit
-/// 30°, exact inversion (GD-CONFIG, Presets).
-fn table_law(g: f64) -> Result<BacksteppingConfig, Precondition> {
+/// k_y = −g, k_θ = `ratio` k_y (ratio at least 2), wheelbase 2 m, steering
+/// limit 30°, exact inversion (GD-CONFIG, Presets).
+fn table_law(g: f64, ratio: f64) -> Result<BacksteppingConfig, Precondition> {
     Ok(BacksteppingConfig {
-        gains: Gains::new(-g, -4.0 * g, 2.0)?,
+        gains: Gains::new(-g, -ratio * g, 2.0)?,
         wheelbase: Wheelbase::new(2.0)?,
         max_steering: SteeringLimit::new(FRAC_PI_6)?,
         inversion: Inversion::Exact,
@@ -154,7 +154,7 @@ impl PathTrackingParams {
     /// None in practice: the values satisfy every precondition.
     pub fn pierre2022() -> Result<Self, Precondition> {
         Ok(Self {
-            law: table_law(0.7)?,
+            law: table_law(0.7, 4.0)?,
             speed: MetersPerSecond::new(0.8)?,
             horizon: Seconds::new(1.0)?,
             sideslip_compensation: true,
@@ -166,8 +166,10 @@ impl PathTrackingParams {
 impl EdgeFollowingParams {
     /// Table 1: 0.4 m/s, the detector of [`EdgeConfig::pierre2022`]
     /// (D = 1.4 m, r = 1 m, chain 3 m, search 3 m, σ 0.15 / 0.5 m), gain 0.75
-    /// (k_y = −0.75, k_θ = −3; the table's derivative gain has no counterpart
-    /// in eqs. 2-7), 0.4 s to enter, 0.26 s to leave; the edge on `side`, seen
+    /// (k_y = −0.75, k_θ = 2 k_y = −1.5: the detected heading is noisier than
+    /// GNSS's, so the heading gain is the smallest ratio accepted, as the
+    /// simulator measured in `sim/scenarios/README.md`, "Edge following"; the
+    /// table's derivative gain has no counterpart in eqs. 2-7), 0.4 s to enter, 0.26 s to leave; the edge on `side`, seen
     /// by a LiDAR mounted at `mount`.
     ///
     /// # Errors
@@ -177,7 +179,7 @@ impl EdgeFollowingParams {
             detector: EdgeConfig::pierre2022()?,
             mount,
             side,
-            law: table_law(0.75)?,
+            law: table_law(0.75, 2.0)?,
             speed: MetersPerSecond::new(0.4)?,
             enter_delay: Seconds::new(0.4)?,
             exit_delay: Seconds::new(0.26)?,
@@ -194,7 +196,7 @@ impl FurrowPursuingParams {
     pub fn pierre2022() -> Result<Self, Precondition> {
         Ok(Self {
             detector: FurrowConfig::new(&FurrowParams::table2())?,
-            law: table_law(0.8)?,
+            law: table_law(0.8, 4.0)?,
             speed: MetersPerSecond::new(0.7)?,
             enter_delay: Seconds::new(0.5)?,
             exit_delay: Seconds::new(0.3)?,

@@ -23,7 +23,7 @@ distance_m,s_m,lateral_error_true_m,angular_error_true_rad,curvature_1_m,\
 lateral_error_est_m,angular_error_est_rad,\
 steering_cmd_rad,steering_rad,saturated,\
 beta_front_true_rad,beta_rear_true_rad,beta_front_used_rad,beta_rear_used_rad,\
-slip_patch,mode,\
+slip_patch,mode,switching_mode,\
 verdict,scanned,scan_age_s,scan_quality,plot,plot_s_m,plot_lateral_error_true_m,\
 hedge,hedge_s_m,hedge_lateral_error_true_m,hedge_angular_error_true_rad";
 
@@ -84,7 +84,7 @@ pub fn trace_csv(
         // Writing into a String cannot fail.
         let _ = writeln!(
             out,
-            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{}",
+            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{},{}",
             r.t_s,
             r.truth.position.x(),
             r.truth.position.y(),
@@ -111,6 +111,7 @@ pub fn trace_csv(
             r.command.sideslip_used.rear.get(),
             patch,
             r.mode().label(),
+            r.command.switching_mode.label(),
             detector,
             plot,
             hedge,

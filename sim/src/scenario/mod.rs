@@ -35,6 +35,19 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "hedge-following",
         include_str!("../../scenarios/hedge-following.toml"),
     ),
+    (
+        "exp1-hedge",
+        include_str!("../../scenarios/exp1-hedge.toml"),
+    ),
+    ("exp2-acre", include_str!("../../scenarios/exp2-acre.toml")),
+    (
+        "exp2-acre-no-plan",
+        include_str!("../../scenarios/exp2-acre-no-plan.toml"),
+    ),
+    (
+        "exp3-acre-curved",
+        include_str!("../../scenarios/exp3-acre-curved.toml"),
+    ),
 ];
 
 /// The names of the built-in scenarios.

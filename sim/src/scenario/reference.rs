@@ -79,7 +79,7 @@ pub fn waypoints(
             let Some(start) = section.start else {
                 return Err(check.error("path.start", "required with `path.segments`"));
             };
-            sample_segments(start, segments, step, capacity, check)?
+            sample_segments(start, segments, plots, step, capacity, check)?
         }
         (None, Some(csv), None) => {
             if section.start.is_some() {
@@ -228,6 +228,7 @@ fn sample_along_plots(
 fn sample_segments(
     start: StartPose,
     segments: &[Segment],
+    plots: &[PlotSpec],
     step: f64,
     capacity: usize,
     check: &Checker<'_>,
@@ -245,6 +246,68 @@ fn sample_segments(
     let mut s = 0.0;
     for (i, seg) in segments.iter().enumerate() {
         let field = |name: &str| format!("path.segments[{i}].{name}");
+        if let Some(index) = seg.along_plot {
+            if seg.straight_m.is_some() || seg.arc_radius_m.is_some() || seg.arc_angle_deg.is_some()
+            {
+                return Err(check.error(
+                    &format!("path.segments[{i}]"),
+                    "`along_plot` takes no other field",
+                ));
+            }
+            let Some(plot) = plots.get(index) else {
+                return Err(check.error(
+                    &field("along_plot"),
+                    &format!("no plot {index} in `[[world.plots]]`"),
+                ));
+            };
+            let (x0, y0, _) = plot.centre_line(0.0);
+            let join = (x0 - x).hypot(y0 - y);
+            let n = samples_for(plot.length, step).saturating_add(samples_for(join, step));
+            if points.len().saturating_add(n as usize) > capacity {
+                return Err(check.error(
+                    "path.sample_step_m",
+                    &format!(
+                        "the segments need more than {capacity} waypoints at this spacing; use a larger step"
+                    ),
+                ));
+            }
+            if join > 0.0 {
+                let m = samples_for(join, step);
+                for k in 1..=m {
+                    let t = f64::from(k) / f64::from(m);
+                    points.push([x + t * (x0 - x), y + t * (y0 - y)]);
+                }
+                pieces.push(Piece {
+                    kind: PieceKind::Straight,
+                    s_start: s,
+                    s_end: s + join,
+                    start: [x, y],
+                    end: [x0, y0],
+                });
+                s += join;
+            }
+            let m = samples_for(plot.length, step);
+            let s_start = s;
+            let mut previous = [x0, y0];
+            for k in 1..=m {
+                let (px, py, _) = plot.centre_line(plot.length * f64::from(k) / f64::from(m));
+                s += (px - previous[0]).hypot(py - previous[1]);
+                previous = [px, py];
+                points.push(previous);
+            }
+            pieces.push(Piece {
+                kind: PieceKind::Straight,
+                s_start,
+                s_end: s,
+                start: [x0, y0],
+                end: previous,
+            });
+            let (_, _, h) = plot.centre_line(plot.length);
+            x = previous[0];
+            y = previous[1];
+            heading = h;
+            continue;
+        }
         let (length, curvature) = match (seg.straight_m, seg.arc_radius_m, seg.arc_angle_deg) {
             (Some(l), None, None) => (check.positive(&field("straight_m"), l)?, 0.0),
             (None, Some(r), Some(a)) => {
@@ -408,14 +471,16 @@ mod tests {
                 straight_m: Some(3.0),
                 arc_radius_m: None,
                 arc_angle_deg: None,
+                along_plot: None,
             },
             Segment {
                 straight_m: None,
                 arc_radius_m: Some(2.0),
                 arc_angle_deg: Some(-90.0),
+                along_plot: None,
             },
         ];
-        let w = sample_segments(start, &segs, 0.1, 4096, &checker()).unwrap();
+        let w = sample_segments(start, &segs, &[], 0.1, 4096, &checker()).unwrap();
         assert_eq!(w.points.len(), 1 + 30 + 32);
         for pair in w.points.windows(2) {
             let d = (pair[1][0] - pair[0][0]).hypot(pair[1][1] - pair[0][1]);
@@ -440,15 +505,17 @@ mod tests {
             straight_m: None,
             arc_radius_m: Some(2.0),
             arc_angle_deg: None,
+            along_plot: None,
         };
-        let e = sample_segments(start, &[half], 0.1, 4096, &checker()).unwrap_err();
+        let e = sample_segments(start, &[half], &[], 0.1, 4096, &checker()).unwrap_err();
         assert_eq!(e.field(), Some("path.segments[0]"));
         let neg = Segment {
             straight_m: Some(-1.0),
             arc_radius_m: None,
             arc_angle_deg: None,
+            along_plot: None,
         };
-        let e = sample_segments(start, &[neg], 0.1, 4096, &checker()).unwrap_err();
+        let e = sample_segments(start, &[neg], &[], 0.1, 4096, &checker()).unwrap_err();
         assert_eq!(e.field(), Some("path.segments[0].straight_m"));
     }
 

@@ -44,6 +44,36 @@ pub struct ScenarioFile {
     pub horizontal_lidar: Option<HorizontalLidarSection>,
     /// Edge following (`[edge]`, optional; needs `[horizontal_lidar]`).
     pub edge: Option<EdgeSection>,
+    /// The switching machine's delays and the plan check (`[switching]`,
+    /// optional: Tables 1-2 and the library's defaults without it).
+    pub switching: Option<SwitchingSection>,
+}
+
+/// `[switching]`: transit delays (Pierre 2022, Tables 1-2), Stop delay,
+/// held-scan age and plan consistency (SW-PLAN-CONSISTENCY, beyond the paper).
+/// Every field is optional; a missing one takes the value in brackets.
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SwitchingSection {
+    /// Time to transit to edge following, s [0.4, Table 1].
+    pub edge_enter_s: Option<f64>,
+    /// Time to transit back to path tracking from edge following, s [0.26, Table 1].
+    pub edge_exit_s: Option<f64>,
+    /// Time to transit to furrow pursuing, s [0.5, Table 2].
+    pub furrow_enter_s: Option<f64>,
+    /// Time to transit back to path tracking from furrow pursuing, s [0.3, Table 2].
+    pub furrow_exit_s: Option<f64>,
+    /// Stop after this long without a command source, s [0.5].
+    pub stop_delay_s: Option<f64>,
+    /// How long a detection is carried by odometry between scans, s [0.1].
+    pub max_scan_age_s: Option<f64>,
+    /// Plan consistency on: a line further than this from the path leaves
+    /// its behaviour, m [off when absent].
+    pub plan_max_offset_m: Option<f64>,
+    /// Plan consistency: largest heading difference to the path, degrees [20].
+    pub plan_max_heading_deg: Option<f64>,
+    /// Plan consistency: how long a line may disagree, s [0.3].
+    pub plan_delay_s: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.
@@ -101,6 +131,10 @@ pub struct Segment {
     pub arc_radius_m: Option<f64>,
     /// Signed turning angle of an arc, degrees, positive to the left.
     pub arc_angle_deg: Option<f64>,
+    /// Down the true centre line of `[[world.plots]]` number this (from 0),
+    /// joined to the previous point by a straight: a path recorded by
+    /// driving down a (curved) plot.
+    pub along_plot: Option<usize>,
 }
 
 /// `[initial]`: the robot's start pose, in the Frénet frame of the path's first point.
@@ -149,7 +183,7 @@ pub enum InversionName {
 pub struct ControlSection {
     /// Forward speed v, m/s (held constant by the plant).
     pub speed_m_s: f64,
-    /// Control period, seconds (default 0.02 s, 50 Hz).
+    /// Control period, seconds (default 0.01 s, 100 Hz: the core pipeline's).
     #[serde(default = "default_period_s")]
     pub period_s: f64,
     /// Lateral gain g_y as the papers' tables give it (positive); the law uses k_y = −g_y, 1/m.
@@ -319,6 +353,10 @@ pub struct PlotSection {
     /// Stretches `[from_m, to_m]` along the plot where no plant grew.
     #[serde(default)]
     pub bare_m: Vec<[f64; 2]>,
+    /// The rows continue past the plot's end for this many metres as
+    /// volunteer plants (weeds: seen by the LiDAR, not crop, not part of the
+    /// plot): the cause of the excursion of Pierre 2022, Exp. 2 (default 0).
+    pub volunteers_m: Option<f64>,
 }
 
 /// `[[world.grass]]`: grass tufts scattered uniformly over a rectangle.
@@ -488,7 +526,7 @@ pub struct EdgeSection {
 }
 
 fn default_period_s() -> f64 {
-    0.02
+    0.01
 }
 
 fn default_band_m() -> f64 {

@@ -9,7 +9,8 @@ use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::model::bicycle::{Sideslip, Wheelbase};
 use fieldguide::perception::edge::{EdgeConfig, EdgeParameters, Side};
 use fieldguide::perception::furrow::{FurrowConfig, FurrowParams, Rows};
-use fieldguide::{Meters, MetersPerSecond, Point2, Pose2, Radians, World};
+use fieldguide::supervisor::switching::PlanTolerance;
+use fieldguide::{Meters, MetersPerSecond, Point2, Pose2, Radians, Seconds, World};
 
 use super::check::Checker;
 use super::reference::{self, Piece};
@@ -18,8 +19,7 @@ use super::schema::{
     ScenarioFile, SideName, WorldSection,
 };
 use crate::error::ScenarioError;
-use crate::guidance::edge::{EDGE_CHAIN, EDGE_RAYS};
-use crate::guidance::furrow::{FURROW_RAYS, FURROW_SCANS};
+use crate::guidance::pipeline::{EDGE_CHAIN, EDGE_RAYS, FURROW_RAYS, FURROW_SCANS};
 use crate::lidar::horizontal::{HorizontalLidar, HorizontalLidarSpec};
 use crate::lidar::inclined::InclinedLidar;
 use crate::plant::{SteeringActuator, VehicleParams};
@@ -162,14 +162,92 @@ pub struct Setup {
     pub lidar: Option<LidarSetup>,
     /// Furrow pursuing, if configured (then the run's guidance pursues the
     /// furrow while the detector's verdict allows it, see
-    /// [`crate::guidance::furrow`]).
+    /// [`crate::guidance::pipeline`]).
     pub furrow: Option<FurrowSetup>,
     /// The horizontal LiDAR, if any.
     pub horizontal_lidar: Option<HorizontalLidarSetup>,
     /// Edge following, if configured (then the run's guidance follows the
     /// edge while the detector's verdict allows it, see
-    /// [`crate::guidance::edge`]).
+    /// [`crate::guidance::pipeline`]).
     pub edge: Option<EdgeSetup>,
+    /// The switching machine's delays and plan check.
+    pub switching: SwitchingSetup,
+}
+
+/// Plan consistency (SW-PLAN-CONSISTENCY) as configured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanSetup {
+    /// Largest offset and heading difference of a consistent line.
+    pub tolerance: PlanTolerance,
+    /// How long a line may disagree before its behaviour is left.
+    pub delay: Seconds,
+}
+
+/// `[switching]`, typed (defaults: Tables 1-2 and the library's GD-CONFIG).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SwitchingSetup {
+    /// Time to transit to edge following, s.
+    pub edge_enter_s: f64,
+    /// Time to transit back from edge following, s.
+    pub edge_exit_s: f64,
+    /// Time to transit to furrow pursuing, s.
+    pub furrow_enter_s: f64,
+    /// Time to transit back from furrow pursuing, s.
+    pub furrow_exit_s: f64,
+    /// Stop after this long without a source, s.
+    pub stop_delay_s: f64,
+    /// Largest age of a held detection, s.
+    pub max_scan_age_s: f64,
+    /// Plan consistency, when on.
+    pub plan: Option<PlanSetup>,
+}
+
+fn switching(file: &ScenarioFile, check: &Checker) -> Result<SwitchingSetup, ScenarioError> {
+    let s = file.switching.unwrap_or_default();
+    let pos = |field: &str, v: Option<f64>, default: f64| -> Result<f64, ScenarioError> {
+        check.positive(&format!("switching.{field}"), v.unwrap_or(default))
+    };
+    let plan = match s.plan_max_offset_m {
+        None => {
+            if s.plan_max_heading_deg.is_some() || s.plan_delay_s.is_some() {
+                return Err(check.error(
+                    "switching.plan_max_offset_m",
+                    "plan consistency needs its offset when its heading or delay is set",
+                ));
+            }
+            None
+        }
+        Some(offset) => {
+            let offset = check.positive("switching.plan_max_offset_m", offset)?;
+            let heading = check.range(
+                "switching.plan_max_heading_deg",
+                s.plan_max_heading_deg.unwrap_or(20.0),
+                0.0,
+                180.0,
+            )?;
+            let delay = pos("plan_delay_s", s.plan_delay_s, 0.3)?;
+            let err =
+                |f: &'static str| move |e: fieldguide::Precondition| check.error(f, &e.to_string());
+            Some(PlanSetup {
+                tolerance: PlanTolerance::new(
+                    Meters::new(offset).map_err(err("switching.plan_max_offset_m"))?,
+                    Radians::new(heading.to_radians())
+                        .map_err(err("switching.plan_max_heading_deg"))?,
+                )
+                .map_err(err("switching.plan_max_offset_m"))?,
+                delay: Seconds::new(delay).map_err(err("switching.plan_delay_s"))?,
+            })
+        }
+    };
+    Ok(SwitchingSetup {
+        edge_enter_s: pos("edge_enter_s", s.edge_enter_s, 0.4)?,
+        edge_exit_s: pos("edge_exit_s", s.edge_exit_s, 0.26)?,
+        furrow_enter_s: pos("furrow_enter_s", s.furrow_enter_s, 0.5)?,
+        furrow_exit_s: pos("furrow_exit_s", s.furrow_exit_s, 0.3)?,
+        stop_delay_s: pos("stop_delay_s", s.stop_delay_s, 0.5)?,
+        max_scan_age_s: pos("max_scan_age_s", s.max_scan_age_s, 0.1)?,
+        plan,
+    })
 }
 
 /// Builds the setup of `file` (called `origin` in messages; `base_dir` resolves
@@ -266,6 +344,7 @@ pub fn build(
             Some(edge(e, l, vehicle, control.backstepping.inversion, &check)?)
         }
     };
+    let switching = switching(file, &check)?;
     let run = RunLimits {
         duration_s: check.open_range("run.duration_s", file.run.duration_s, 0.0, 1e6)?,
         stop_at_path_end: file.run.stop_at_path_end,
@@ -323,6 +402,7 @@ pub fn build(
         furrow,
         horizontal_lidar,
         edge,
+        switching,
     })
 }
 
@@ -593,6 +673,37 @@ fn plants(
     let mut plants = Vec::new();
     for p in plots {
         plants.extend(p.spec.generate(rng));
+    }
+    // Volunteer plants continuing the rows past a plot's end (drawn after
+    // every plot, so a scenario without them draws as before).
+    let sections = world.map_or(&[][..], |w| &w.plots[..]);
+    for (i, (p, section)) in plots.iter().zip(sections).enumerate() {
+        let Some(length) = section.volunteers_m else {
+            continue;
+        };
+        let length = check.range(
+            &format!("world.plots[{i}].volunteers_m"),
+            length,
+            0.0,
+            100.0,
+        )?;
+        let (x, y, heading) = p.spec.centre_line(p.spec.length);
+        let Ok(start) = Point2::new(x, y) else {
+            continue;
+        };
+        let tail = PlotSpec {
+            start,
+            heading,
+            length,
+            missing: 0.0,
+            bare: Vec::new(),
+            bend_amplitude: 0.0,
+            ..p.spec.clone()
+        };
+        plants.extend(tail.generate(rng).into_iter().map(|mut v| {
+            v.kind = crate::world::PlantKind::Grass;
+            v
+        }));
     }
     for (i, g) in world.map_or(&[][..], |w| &w.grass[..]).iter().enumerate() {
         let field = |name: &str| format!("world.grass[{i}].{name}");
