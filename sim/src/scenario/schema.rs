@@ -63,16 +63,16 @@ pub struct SwitchingSection {
     pub furrow_enter_s: Option<f64>,
     /// Time to transit back to path tracking from furrow pursuing, s [0.3, Table 2].
     pub furrow_exit_s: Option<f64>,
-    /// Stop after this long without a command source, s [0.5].
+    /// Stop after this long without a command source, s (default 0.5).
     pub stop_delay_s: Option<f64>,
-    /// How long a detection is carried by odometry between scans, s [0.1].
+    /// How long a detection is carried by odometry between scans, s (default 0.1).
     pub max_scan_age_s: Option<f64>,
     /// Plan consistency on: a line further than this from the path leaves
     /// its behaviour, m [off when absent].
     pub plan_max_offset_m: Option<f64>,
-    /// Plan consistency: largest heading difference to the path, degrees [20].
+    /// Plan consistency: largest heading difference to the path, degrees (default 20).
     pub plan_max_heading_deg: Option<f64>,
-    /// Plan consistency: how long a line may disagree, s [0.3].
+    /// Plan consistency: how long a line may disagree, s (default 0.3).
     pub plan_delay_s: Option<f64>,
 }
 
