@@ -78,11 +78,80 @@ impl<'a> Checker<'a> {
             ))
         }
     }
+
+    /// `Ok` if `value` (of `field`) is strictly above `other` (of `other_field`):
+    /// the check of an ordered pair such as a minimum and a maximum.
+    pub fn above(
+        &self,
+        field: &str,
+        value: f64,
+        other_field: &str,
+        other: f64,
+    ) -> Result<(), ScenarioError> {
+        if value > other {
+            Ok(())
+        } else {
+            Err(self.error(
+                field,
+                &format!("must be above {other_field} = {other}, got {value}"),
+            ))
+        }
+    }
+
+    /// `Ok` if `value` (of `field`) is strictly below `other` (of `other_field`).
+    pub fn below(
+        &self,
+        field: &str,
+        value: f64,
+        other_field: &str,
+        other: f64,
+    ) -> Result<(), ScenarioError> {
+        if value < other {
+            Ok(())
+        } else {
+            Err(self.error(
+                field,
+                &format!("must be below {other_field} = {other}, got {value}"),
+            ))
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ordered_pairs_name_both_fields() {
+        let c = Checker::new("demo.toml");
+        assert!(c
+            .above("lidar.range_max_m", 30.0, "lidar.range_min_m", 0.1)
+            .is_ok());
+        assert!(c
+            .below(
+                "edge.min_chain_length_m",
+                1.5,
+                "edge.max_chain_length_m",
+                3.0
+            )
+            .is_ok());
+        for bad in [
+            c.above("lidar.range_max_m", 0.1, "lidar.range_min_m", 0.1),
+            c.below(
+                "edge.min_chain_length_m",
+                3.0,
+                "edge.max_chain_length_m",
+                3.0,
+            ),
+        ] {
+            let text = bad.unwrap_err().to_string();
+            assert!(text.contains("lidar.range_max_m") || text.contains("edge.min_chain_length_m"));
+            assert!(
+                text.contains("lidar.range_min_m = 0.1")
+                    || text.contains("edge.max_chain_length_m = 3")
+            );
+        }
+    }
 
     #[test]
     fn each_check_names_the_field_and_the_value() {

@@ -757,12 +757,12 @@ fn lidar(
     }
     let range_min = check.range("lidar.range_min_m", l.range_min_m, 0.0, 1000.0)?;
     let range_max = check.range("lidar.range_max_m", l.range_max_m, 0.0, 1000.0)?;
-    if range_max <= range_min {
-        return Err(check.error(
-            "lidar.range_max_m",
-            &format!("must be above lidar.range_min_m = {range_min}, got {range_max}"),
-        ));
-    }
+    check.above(
+        "lidar.range_max_m",
+        range_max,
+        "lidar.range_min_m",
+        range_min,
+    )?;
     let scan_every = scan_every(check, "lidar.rate_hz", l.rate_hz, period_s)?;
     Ok(LidarSetup {
         lidar: InclinedLidar {
@@ -896,12 +896,12 @@ fn horizontal_lidar(
     }
     let range_min = check.range("horizontal_lidar.range_min_m", l.range_min_m, 0.0, 1000.0)?;
     let range_max = check.range("horizontal_lidar.range_max_m", l.range_max_m, 0.0, 1000.0)?;
-    if range_max <= range_min {
-        return Err(check.error(
-            "horizontal_lidar.range_max_m",
-            &format!("must be above horizontal_lidar.range_min_m = {range_min}, got {range_max}"),
-        ));
-    }
+    check.above(
+        "horizontal_lidar.range_max_m",
+        range_max,
+        "horizontal_lidar.range_min_m",
+        range_min,
+    )?;
     let spec = HorizontalLidarSpec {
         mount_xy: [
             check.range("horizontal_lidar.mount_x_m", l.mount_x_m, -20.0, 20.0)?,
@@ -962,12 +962,12 @@ fn edge(
     let rotation = check.open_range("edge.max_rotation_deg", e.max_rotation_deg, 0.0, 360.0)?;
     let l_max = check.open_range("edge.max_chain_length_m", e.max_chain_length_m, 0.0, 1000.0)?;
     let l_min = check.range("edge.min_chain_length_m", e.min_chain_length_m, 0.0, l_max)?;
-    if l_min >= l_max {
-        return Err(check.error(
-            "edge.min_chain_length_m",
-            &format!("must be below edge.max_chain_length_m = {l_max}, got {l_min}"),
-        ));
-    }
+    check.below(
+        "edge.min_chain_length_m",
+        l_min,
+        "edge.max_chain_length_m",
+        l_max,
+    )?;
     let min_points = usize::try_from(e.min_points).unwrap_or(usize::MAX);
     if !(4..=EDGE_CHAIN).contains(&min_points) {
         return Err(check.error(
@@ -977,12 +977,7 @@ fn edge(
     }
     let enter = check.open_range("edge.enter_residual_m", e.enter_residual_m, 0.0, 100.0)?;
     let exit = check.open_range("edge.exit_residual_m", e.exit_residual_m, 0.0, 100.0)?;
-    if exit <= enter {
-        return Err(check.error(
-            "edge.exit_residual_m",
-            &format!("must be above edge.enter_residual_m = {enter}, got {exit}"),
-        ));
-    }
+    check.above("edge.exit_residual_m", exit, "edge.enter_residual_m", enter)?;
     let params = EdgeParameters {
         radius,
         max_rotation: rotation.to_radians(),
@@ -1099,12 +1094,12 @@ fn furrow(
     }
     let h_ref = check.open_range("furrow.template_height_m", f.template_height_m, 0.0, 10.0)?;
     let floor = check.range("furrow.height_floor_m", f.height_floor_m, 0.0, h_ref)?;
-    if floor >= h_ref {
-        return Err(check.error(
-            "furrow.height_floor_m",
-            &format!("must be below furrow.template_height_m = {h_ref}, got {floor}"),
-        ));
-    }
+    check.below(
+        "furrow.height_floor_m",
+        floor,
+        "furrow.template_height_m",
+        h_ref,
+    )?;
     let c_t = check.open_range("furrow.peak_threshold", f.peak_threshold, 0.0, 1.0)?;
     let rows = match (f.rows, f.min_row_spacing_m, f.max_row_spacing_m) {
         (1, None, None) => Rows::One,
@@ -1117,12 +1112,12 @@ fn furrow(
         (2, Some(lo), Some(hi)) => {
             let lo = check.open_range("furrow.min_row_spacing_m", lo, 0.0, 100.0)?;
             let hi = check.open_range("furrow.max_row_spacing_m", hi, 0.0, 100.0)?;
-            if hi <= lo {
-                return Err(check.error(
-                    "furrow.max_row_spacing_m",
-                    &format!("must be above furrow.min_row_spacing_m = {lo}, got {hi}"),
-                ));
-            }
+            check.above(
+                "furrow.max_row_spacing_m",
+                hi,
+                "furrow.min_row_spacing_m",
+                lo,
+            )?;
             Rows::Two {
                 min_spacing: meters(check, "furrow.min_row_spacing_m", lo)?,
                 max_spacing: meters(check, "furrow.max_row_spacing_m", hi)?,
@@ -1154,12 +1149,12 @@ fn furrow(
     }
     let enter = check.range("furrow.enter_correlation", f.enter_correlation, 0.0, 1.0)?;
     let exit = check.range("furrow.exit_correlation", f.exit_correlation, 0.0, 1.0)?;
-    if enter <= exit {
-        return Err(check.error(
-            "furrow.enter_correlation",
-            &format!("must be above furrow.exit_correlation = {exit}, got {enter}"),
-        ));
-    }
+    check.above(
+        "furrow.enter_correlation",
+        enter,
+        "furrow.exit_correlation",
+        exit,
+    )?;
     let l = &lidar.lidar;
     let keep = check.open_range("furrow.keep_distance_m", f.keep_distance_m, 0.0, 1000.0)?;
     let extent = check.range("furrow.min_extent_m", f.min_extent_m, 0.0, 100.0)?;
