@@ -15,15 +15,15 @@
     clippy::panic
 )]
 
+mod common;
+
 use fieldguide::control::Gains;
-use fieldguide::geometry::path::PathConfig;
 use fieldguide::perception::furrow::Rows;
-use fieldguide::{Meters, MetersPerSecond, Point2, Precondition, Verdict, World};
+use fieldguide::{MetersPerSecond, Precondition, Verdict};
 use fieldguide_sim::guidance::{Command, Guidance, Mode, TickInput};
 use fieldguide_sim::metrics::{error_stats, in_plot_errors, summarize, ErrorStats};
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
-use fieldguide_sim::scenario::setup::Reference;
 use fieldguide_sim::scenario::{Setup, Source};
 use fieldguide_sim::world::PlantKind;
 
@@ -171,29 +171,12 @@ fn the_rows_steer_not_the_recorded_path() {
     // where furrow pursuing is in charge, the robot stays on the rows; where
     // path tracking stands in, it drifts towards the wrong path.
     let (mut setup, mut rng) = prepare();
-    let shifted: Vec<Point2<World>> = setup
-        .path
-        .vertices()
-        .iter()
-        .map(|v| Point2::new(v.position.x(), v.position.y() + 0.2).unwrap())
-        .collect();
-    *setup.path = Reference::from_waypoints(
-        &shifted,
-        PathConfig::new(Meters::new(1.0).unwrap()).unwrap(),
-    )
-    .unwrap();
+    common::shift_recorded_path(&mut setup, 0.2);
     let out = run(&setup, &mut rng);
     // Furrow-pursuing ticks well inside the plots, 3 m after taking over.
-    let mut since_switch = 0.0;
     let mut checked = 0;
-    for w in out.trace.windows(2) {
-        let (a, b) = (&w[0], &w[1]);
-        since_switch = if a.mode() == Mode::FurrowPursuing {
-            since_switch + (b.distance_m - a.distance_m)
-        } else {
-            0.0
-        };
-        if let (Some(p), true) = (a.plot, since_switch > 3.0) {
+    for tick in common::settled_in(&out.trace, Mode::FurrowPursuing, 3.0) {
+        if let Some(p) = tick.plot {
             assert!(p.lateral_error_m.abs() < MAX_BOUND_M / 2.0, "{p:?}");
             checked += 1;
         }

@@ -16,15 +16,15 @@
     clippy::panic
 )]
 
+mod common;
+
 use fieldguide::control::Gains;
-use fieldguide::geometry::path::PathConfig;
 use fieldguide::perception::edge::Side;
-use fieldguide::{Meters, Point2, Verdict, World};
+use fieldguide::Verdict;
 use fieldguide_sim::guidance::Mode;
 use fieldguide_sim::metrics::summarize;
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
-use fieldguide_sim::scenario::setup::Reference;
 use fieldguide_sim::scenario::{Setup, Source};
 use fieldguide_sim::world::hedge::{HedgeSpec, OffsetLinePosition};
 
@@ -407,28 +407,11 @@ fn the_hedge_steers_not_the_recorded_path() {
     // offset): where edge following is in charge the robot keeps 1.4 m from
     // the hedge; where path tracking stands in, it goes towards the wrong path.
     let (mut setup, mut rng) = prepare_seed(2022);
-    let shifted: Vec<Point2<World>> = setup
-        .path
-        .vertices()
-        .iter()
-        .map(|v| Point2::new(v.position.x(), v.position.y() + 0.2).unwrap())
-        .collect();
-    *setup.path = Reference::from_waypoints(
-        &shifted,
-        PathConfig::new(Meters::new(1.0).unwrap()).unwrap(),
-    )
-    .unwrap();
+    common::shift_recorded_path(&mut setup, 0.2);
     let out = run(&setup, &mut rng);
-    let mut since_switch = 0.0;
     let mut checked = 0;
-    for w in out.trace.windows(2) {
-        let (a, b) = (&w[0], &w[1]);
-        since_switch = if a.mode() == Mode::EdgeFollowing {
-            since_switch + (b.distance_m - a.distance_m)
-        } else {
-            0.0
-        };
-        if let (Some(h), true) = (a.hedge, since_switch > 4.0) {
+    for tick in common::settled_in(&out.trace, Mode::EdgeFollowing, 4.0) {
+        if let Some(h) = tick.hedge {
             assert!(h.lateral_error_m.abs() < MAX_BOUND_M / 2.0, "{h:?}");
             checked += 1;
         }
