@@ -74,8 +74,8 @@ use crate::perception::edge::{self, EdgeDetector, EdgeOutcome};
 use crate::perception::furrow::{self, FurrowDetection, FurrowDetector};
 use crate::perception::Verdict;
 use crate::supervisor::switching::{
-    line_relative_to_path, CommandSource, Input, LineRelativeToPath, Mode, Output, Report,
-    Switching,
+    line_relative_to_path, CommandSource, Input, LineRelativeToPath, Mode, Output, PathAhead,
+    PlanTolerance, Report, Switching,
 };
 
 /// What the sensors and estimators give in one tick.
@@ -542,12 +542,13 @@ impl<
             localisation_valid,
             sideslip_used,
         };
+        let plan = self.plan_reference(frenet.as_ref());
         let edge = match &params.edge {
-            Some(e) => behaviour_status(&edge, path_error.as_ref(), &params, &e.law, e.speed),
+            Some(e) => behaviour_status(&edge, plan.as_ref(), &e.law, e.speed),
             None => BehaviourStatus::UNCONFIGURED,
         };
         let furrow = match &params.furrow {
-            Some(f) => behaviour_status(&furrow, path_error.as_ref(), &params, &f.law, f.speed),
+            Some(f) => behaviour_status(&furrow, plan.as_ref(), &f.law, f.speed),
             None => BehaviourStatus::UNCONFIGURED,
         };
 
@@ -756,6 +757,26 @@ impl<
         )
     }
 
+    /// The path's error of the tick and, with plan consistency configured, the
+    /// path at its look-ahead (GD-PLAN); `None` without a projection.
+    //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
+    //# The path ahead MUST be taken at the tolerance's look-ahead from the
+    //# projection's abscissa.
+    fn plan_reference(&self, frenet: Option<&FrenetError>) -> Option<PlanReference> {
+        let frenet = frenet?;
+        let path = frenet.tracking_error();
+        let check = self.config.params().plan.map(|p| {
+            let tolerance = p.tolerance;
+            let ahead = if tolerance.lookahead().get() > 0.0 {
+                PathAhead::on_path(self.path, frenet.s, tolerance.lookahead()).ok()
+            } else {
+                Some(PathAhead::HERE)
+            };
+            (tolerance, ahead)
+        });
+        Some(PlanReference { path, check })
+    }
+
     /// The Frénet error of the GNSS pose, searched near the last abscissa
     /// (GD-LOCALISATION), and why it was refused if it was.
     //= spec/guidance.md#gd-localisation-localisation-for-path-tracking
@@ -790,17 +811,24 @@ impl<
     }
 }
 
+/// What a tick's lines are compared with: the path's error and, when plan
+/// consistency is configured, its tolerance and the path at its look-ahead
+/// (`None` when that overflowed).
+struct PlanReference {
+    path: TrackingError,
+    check: Option<(PlanTolerance, Option<PathAhead>)>,
+}
+
 /// Plan consistency and the law of one configured behaviour (GD-PLAN,
 /// GD-PREDICTION, GD-COMMAND).
 fn behaviour_status(
     estimate: &Estimate,
-    path_error: Option<&TrackingError>,
-    params: &GuidanceParams,
+    plan_reference: Option<&PlanReference>,
     law: &BacksteppingConfig,
     speed: MetersPerSecond,
 ) -> BehaviourStatus {
-    let plan = match (&estimate.error, path_error) {
-        (Some(line), Some(path)) => line_relative_to_path(line, path).ok(),
+    let plan = match (&estimate.error, plan_reference) {
+        (Some(line), Some(r)) => line_relative_to_path(line, &r.path).ok(),
         _ => None,
     };
     //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
@@ -808,8 +836,12 @@ fn behaviour_status(
     //# consistency is not configured or when the path has no projection in the tick;
     //# otherwise it MUST be reported as `PlanTolerance::is_consistent` judges its
     //# tracking error against the path's.
-    let plan_consistent = match (&params.plan, &estimate.error, path_error) {
-        (Some(check), Some(line), Some(path)) => check.tolerance.is_consistent(line, path),
+    let plan_consistent = match (&estimate.error, plan_reference) {
+        (Some(line), Some(r)) => match &r.check {
+            Some((tolerance, Some(ahead))) => tolerance.is_consistent(line, &r.path, ahead),
+            Some((_, None)) => false,
+            None => true,
+        },
         _ => true,
     };
     let law = match &estimate.error {

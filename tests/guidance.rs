@@ -37,7 +37,7 @@ use fieldguide::perception::furrow::lines::{self, RowLine};
 use fieldguide::perception::furrow::scan::Scan as FurrowScan;
 use fieldguide::perception::furrow::selection::Pair;
 use fieldguide::perception::furrow::{FurrowDetector, FurrowParams, RowLines};
-use fieldguide::supervisor::switching::PlanTolerance;
+use fieldguide::supervisor::switching::{PathAhead, PlanTolerance};
 use fieldguide::{
     Meters, MetersPerSecond, Odom, Point2, Pose2, Radians, Robot, Seconds, Sensor, TrackingError,
     Transform2, Verdict, World,
@@ -765,7 +765,7 @@ fn a_line_far_from_the_plan_is_not_entered() {
         assert!((plan.offset.get() - 1.1).abs() < 1e-9, "{plan:?}");
         let line = out.edge.error.unwrap();
         let path_error = out.path.frenet.unwrap().tracking_error();
-        assert!(!tolerance.is_consistent(&line, &path_error));
+        assert!(!tolerance.is_consistent(&line, &path_error, &PathAhead::HERE));
         assert!(!out.edge.plan_consistent);
         assert_eq!(out.mode, ActiveMode::PathTracking);
     }
@@ -807,6 +807,71 @@ fn a_line_far_from_the_plan_is_not_entered() {
         assert!(out.edge.plan_consistent);
     }
     assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+}
+
+//= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
+//= type=test
+//# The path ahead MUST be taken at the tolerance's look-ahead from the
+//# projection's abscissa.
+#[test]
+fn a_line_going_straight_on_where_the_path_turns_is_not_entered() {
+    // The path runs along x and turns left (radius 6 m) at x = 0; the robot
+    // is at the turn's start with a straight wall 1.5 m to its left: the line
+    // to follow is 0.1 m left of the path here, but 2 m ahead the path has
+    // turned ≈ 0.23 m away from it (R (1 − cos φ) − d sin φ + 0.1 cos φ).
+    let mut points: Vec<Point2<World>> = (0..=40)
+        .map(|i| Point2::new(-20.0 + 0.5 * f64::from(i), 0.0).unwrap())
+        .collect();
+    points.extend((1..=40).map(|i| {
+        let a = f64::from(i) * 0.05;
+        Point2::new(6.0 * a.sin(), 6.0 * (1.0 - a.cos())).unwrap()
+    }));
+    let path: ReferencePath<PATH_N> =
+        ReferencePath::from_waypoints(&points, PathConfig::new(m(0.2)).unwrap()).unwrap();
+    let pose = (0.0, 0.0, 0.0);
+    let wall = wall_ranges(pose, long_wall(1.5));
+    let check = |lookahead: f64| {
+        let tolerance = PlanTolerance::new(m(0.2), Radians::new(0.2).unwrap())
+            .unwrap()
+            .with_lookahead(m(lookahead))
+            .unwrap();
+        let params = GuidanceParams {
+            plan: Some(PlanCheck {
+                tolerance,
+                delay: Seconds::new(0.5).unwrap(),
+            }),
+            ..edge_params()
+        };
+        let mut g = pipeline(&params, &path);
+        let mut last = None;
+        for _ in 0..60 {
+            last = Some(
+                g.step(&TickInput {
+                    horizontal: Some(edge_scan(&wall)),
+                    ..bare(pose, true)
+                })
+                .unwrap(),
+            );
+        }
+        let out = last.unwrap();
+        // The offset reported is the one at the robot, whatever the look-ahead.
+        let plan = out.edge.plan.unwrap();
+        assert!((plan.offset.get() - 0.1).abs() < 1e-3, "{plan:?}");
+        // The pipeline's flag is the tolerance's judgement with the path 2 m
+        // ahead of the projection's abscissa.
+        let frenet = out.path.frenet.unwrap();
+        let ahead = PathAhead::on_path(&path, frenet.s, m(lookahead)).unwrap();
+        let line = out.edge.error.unwrap();
+        assert_eq!(
+            out.edge.plan_consistent,
+            tolerance.is_consistent(&line, &frenet.tracking_error(), &ahead)
+        );
+        (out.edge.plan_consistent, out.mode)
+    };
+    // Checked at the robot only: consistent, edge following entered.
+    assert_eq!(check(0.0), (true, ActiveMode::EdgeFollowing));
+    // Checked 2 m ahead too: inconsistent, never entered.
+    assert_eq!(check(2.0), (false, ActiveMode::PathTracking));
 }
 
 //= spec/guidance.md#gd-command-the-command-of-the-selected-source

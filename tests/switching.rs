@@ -11,15 +11,19 @@
 )]
 
 use approx::assert_abs_diff_eq;
+use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::supervisor::switching::{
-    delay_ticks, line_relative_to_path, BehaviourConfig, PlanTolerance, MAX_DELAY_TICKS,
+    delay_ticks, line_relative_to_path, line_relative_to_path_ahead, BehaviourConfig, PathAhead,
+    PlanTolerance, MAX_DELAY_TICKS,
 };
-use fieldguide::{Curvature, Meters, Radians, Seconds, TrackingError};
+use fieldguide::{Curvature, Meters, Point2, Radians, Seconds, TrackingError, World};
 use proptest::prelude::*;
 
 fn s(v: f64) -> Seconds {
     Seconds::new(v).unwrap()
 }
+
+const HERE: &PathAhead = &PathAhead::HERE;
 
 fn error(y: f64, angular_deviation: f64) -> TrackingError {
     TrackingError {
@@ -129,15 +133,15 @@ fn plan_consistency_by_hand() {
     let parallel = line_relative_to_path(&error(0.1, 0.05), &error(0.3, 0.05)).unwrap();
     assert_abs_diff_eq!(parallel.offset.get(), 0.2, epsilon = 1e-12);
     assert_abs_diff_eq!(parallel.heading.get(), 0.0, epsilon = 1e-12);
-    assert!(tolerance.is_consistent(&error(0.1, 0.05), &error(0.3, 0.05)));
-    assert!(!tolerance.is_consistent(&error(0.0, 0.05), &error(0.3, 0.05)));
+    assert!(tolerance.is_consistent(&error(0.1, 0.05), &error(0.3, 0.05), HERE));
+    assert!(!tolerance.is_consistent(&error(0.0, 0.05), &error(0.3, 0.05), HERE));
 
     // A line turned 0.3 rad left of the path (robot heading along the path):
     // offset 1 − cos 0.3 = 0.044 663 511 m, heading 0.3 rad > 0.2 rad.
     let turned = line_relative_to_path(&error(1.0, -0.3), &error(1.0, 0.0)).unwrap();
     assert_abs_diff_eq!(turned.offset.get(), 0.044_663_511, epsilon = 1e-9);
     assert_abs_diff_eq!(turned.heading.get(), 0.3, epsilon = 1e-12);
-    assert!(!tolerance.is_consistent(&error(1.0, -0.3), &error(1.0, 0.0)));
+    assert!(!tolerance.is_consistent(&error(1.0, -0.3), &error(1.0, 0.0), HERE));
 
     // Headings wrap: 3.0 − (−3.0) = 6.0 rad is −0.283 rad.
     let wrapped = line_relative_to_path(&error(0.0, -3.0), &error(0.0, 3.0)).unwrap();
@@ -149,10 +153,90 @@ fn plan_consistency_by_hand() {
 
     // Exp. 2, end of the third plot: the false rows run straight on while the
     // path turns left: 0.8 m off and 0.4 rad apart is inconsistent.
-    assert!(!tolerance.is_consistent(&error(0.0, 0.0), &error(-0.8, -0.4)));
+    assert!(!tolerance.is_consistent(&error(0.0, 0.0), &error(-0.8, -0.4), HERE));
     // An offset that overflows is inconsistent, not a panic.
-    assert!(!tolerance.is_consistent(&error(-1e308, 0.0), &error(1e308, 0.0)));
+    assert!(!tolerance.is_consistent(&error(-1e308, 0.0), &error(1e308, 0.0), HERE));
     assert!(line_relative_to_path(&error(-1e308, 0.0), &error(1e308, 0.0)).is_err());
+}
+
+/// A path along the x axis for `straight` metres, then a left arc of radius
+/// `radius` over `arc` metres, sampled every 2 cm, with a 0.1 m smoothing
+/// window (so its headings are those of the arc within 1e-2 rad).
+fn straight_then_arc(straight: f64, radius: f64, arc: f64) -> ReferencePath<2048> {
+    let step = 0.02;
+    let mut points: Vec<Point2<World>> = (0..)
+        .map(|i| f64::from(i) * step)
+        .take_while(|x| *x < straight)
+        .map(|x| Point2::new(x, 0.0).unwrap())
+        .collect();
+    for a in (0..)
+        .map(|i| f64::from(i) * step)
+        .take_while(|l| *l <= arc + step)
+        .map(|l| l / radius)
+    {
+        points.push(Point2::new(straight + radius * a.sin(), radius * (1.0 - a.cos())).unwrap());
+    }
+    ReferencePath::from_waypoints(&points, PathConfig::new(Meters::new(0.1).unwrap()).unwrap())
+        .unwrap()
+}
+
+//= spec/pierre2022.md#sw-plan-ahead-the-line-against-the-path-ahead
+//= type=test
+//# When a look-ahead distance d > 0 is configured, a line consistent at the
+//# robot MUST still be inconsistent with the planned path when the offset of
+//# its point d ahead of its point closest to the robot, measured from the
+//# tangent of the path at s + d, exceeds the offset tolerance in absolute value.
+#[test]
+fn a_straight_line_where_the_path_turns_is_caught_ahead() {
+    // Exp. 2's U-turn: radius 6 m, starting 10 m along the path. The robot is
+    // on the path at its start, heading along it, and so is a line running
+    // straight on (the volunteer plants).
+    let path = straight_then_arc(10.0, 6.0, 8.0);
+    let on = error(0.0, 0.0);
+    let tolerance = PlanTolerance::new(Meters::new(0.25).unwrap(), Radians::new(0.05).unwrap())
+        .unwrap()
+        .with_lookahead(Meters::new(2.0).unwrap())
+        .unwrap();
+    let d = tolerance.lookahead();
+    // At the robot the line agrees with the path, whatever the look-ahead.
+    assert!(tolerance.is_consistent(&on, &on, HERE));
+    // By hand, 0.2 m before the arc (where the smoothed tangent is the x
+    // axis): the line's point 2 m on is (11.8, 0); the path 2 m on is 1.8 m
+    // into the arc, at φ = 0.3 rad, P = (10 + R sin φ, R (1 − cos φ)); the
+    // offset is (Q − P)·(−sin φ, cos φ) ≈ −0.274 m.
+    let at = |s: f64| PathAhead::on_path(&path, Meters::new(s).unwrap(), d).unwrap();
+    let phi: f64 = 1.8 / 6.0;
+    let (px, py) = (10.0 + 6.0 * phi.sin(), 6.0 * (1.0 - phi.cos()));
+    let expected = -(11.8 - px) * phi.sin() + (0.0 - py) * phi.cos();
+    let relative = line_relative_to_path_ahead(&on, &on, &at(9.8)).unwrap();
+    assert_abs_diff_eq!(relative.offset.get(), expected, epsilon = 1e-3);
+    assert_abs_diff_eq!(relative.heading.get(), -phi, epsilon = 1e-3);
+    assert!(!tolerance.is_consistent(&on, &on, &at(9.8)));
+    // Walking up to the turn: consistent until the path 2 m ahead is about
+    // sqrt(2 R 0.25) = 1.73 m into the arc, i.e. from 0.27 m before it.
+    let first_caught = (0..200)
+        .map(|i| 8.5 + f64::from(i) * 0.01)
+        .find(|s| !tolerance.is_consistent(&on, &on, &at(*s)))
+        .unwrap();
+    assert!((first_caught - 9.73).abs() < 0.03, "{first_caught}");
+    // A row curving gently (radius 400 m, Exp. 3) is followed by a line along
+    // its tangent: 5 mm off 2 m ahead, consistent.
+    let gentle = straight_then_arc(1.0, 400.0, 6.0);
+    let ahead = PathAhead::on_path(&gentle, Meters::new(1.0).unwrap(), d).unwrap();
+    let relative = line_relative_to_path_ahead(&on, &on, &ahead).unwrap();
+    assert_abs_diff_eq!(relative.offset.get(), -0.005, epsilon = 1e-3);
+    assert!(tolerance.is_consistent(&on, &on, &ahead));
+    // Past the path's end the straight extension is used: a line along it is
+    // consistent there.
+    let end = PathAhead::on_path(&gentle, gentle.length(), d).unwrap();
+    assert_abs_diff_eq!(end.distance().get(), 2.0);
+    let relative = line_relative_to_path_ahead(&on, &on, &end).unwrap();
+    assert_abs_diff_eq!(relative.offset.get(), 0.0, epsilon = 1e-9);
+    // Negative look-aheads are refused, by name.
+    let e = PathAhead::on_path(&path, Meters::new(1.0).unwrap(), Meters::new(-0.1).unwrap());
+    assert_eq!(e.unwrap_err().requirement, "SW-PLAN-AHEAD");
+    let e = tolerance.with_lookahead(Meters::new(-0.1).unwrap());
+    assert_eq!(e.unwrap_err().requirement, "SW-PLAN-AHEAD");
 }
 
 fn angle() -> impl Strategy<Value = f64> {
@@ -182,6 +266,34 @@ proptest! {
         prop_assert!((relative.heading.get() - phi).abs() < 1e-9);
     }
 
+    //= spec/pierre2022.md#sw-plan-ahead-the-line-against-the-path-ahead
+    //= type=test
+    //# With d = 0 the offset at the robot MUST equal that of SW-PLAN-CONSISTENCY.
+    /// The same geometry, looked at `ahead` metres further along the straight
+    /// path: the line's point that far along it from the closest one has
+    /// lateral coordinate closest.y + ahead sin φ (SW-PLAN-AHEAD); with
+    /// ahead = 0 this is [`line_relative_to_path`] exactly.
+    #[test]
+    fn ahead_on_a_straight_path_moves_along_the_line(
+        ry in -5.0..5.0f64, psi in angle(), y_line in -5.0..5.0f64,
+        phi in -1.5..1.5f64, s in -5.0..15.0f64, ahead in 0.0..5.0f64,
+    ) {
+        let path_geometry: ReferencePath<4> = ReferencePath::from_waypoints(
+            &[Point2::new(0.0, 0.0).unwrap(), Point2::new(10.0, 0.0).unwrap()],
+            PathConfig::default(),
+        ).unwrap();
+        let wrap = fieldguide::geometry::units::wrap_angle;
+        let path = error(ry, wrap(psi));
+        let line = error(y_line, wrap(psi - phi));
+        let here = line_relative_to_path(&line, &path).unwrap();
+        let at = |d: f64| PathAhead::on_path(&path_geometry, Meters::new(s).unwrap(),
+            Meters::new(d).unwrap()).unwrap();
+        let there = line_relative_to_path_ahead(&line, &path, &at(ahead)).unwrap();
+        prop_assert!((there.offset.get() - (here.offset.get() + ahead * phi.sin())).abs() < 1e-9);
+        prop_assert!((there.heading.get() - phi).abs() < 1e-9);
+        prop_assert_eq!(line_relative_to_path_ahead(&line, &path, &at(0.0)).unwrap(), here);
+    }
+
     /// Mirroring left and right keeps consistency; a line equal to the path
     /// is always consistent; any finite input gives an answer.
     #[test]
@@ -196,9 +308,9 @@ proptest! {
         let line = error(y_line, a_line);
         let path = error(y_path, a_path);
         prop_assert_eq!(
-            tolerance.is_consistent(&line, &path),
-            tolerance.is_consistent(&line.mirrored(), &path.mirrored())
+            tolerance.is_consistent(&line, &path, HERE),
+            tolerance.is_consistent(&line.mirrored(), &path.mirrored(), HERE)
         );
-        prop_assert!(tolerance.is_consistent(&path, &path));
+        prop_assert!(tolerance.is_consistent(&path, &path, HERE));
     }
 }

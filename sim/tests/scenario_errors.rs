@@ -867,6 +867,10 @@ fn switching_fields_are_checked_and_named() {
         "plan_max_offset_m = 0.2\nplan_max_heading_deg = 200.0",
     ));
     assert_field(&e, "switching.plan_max_heading_deg", "");
+    let e = error_of(with("plan_lookahead_m = 2.0"));
+    assert_field(&e, "switching.plan_max_offset_m", "look-ahead");
+    let e = error_of(with("plan_max_offset_m = 0.2\nplan_lookahead_m = -1.0"));
+    assert_field(&e, "switching.plan_lookahead_m", "");
     // Defaults: Tables 1-2 and no plan check.
     let source = Source {
         origin: "edited.toml".into(),

@@ -74,6 +74,9 @@ pub struct SwitchingSection {
     pub plan_max_heading_deg: Option<f64>,
     /// Plan consistency: how long a line may disagree, s (default 0.3).
     pub plan_delay_s: Option<f64>,
+    /// Plan consistency: how far ahead along the path the line's offset is
+    /// also checked, m (default 0: only at the robot; SW-PLAN-AHEAD).
+    pub plan_lookahead_m: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

@@ -209,10 +209,13 @@ fn switching(file: &ScenarioFile, check: &Checker) -> Result<SwitchingSetup, Sce
     };
     let plan = match s.plan_max_offset_m {
         None => {
-            if s.plan_max_heading_deg.is_some() || s.plan_delay_s.is_some() {
+            if s.plan_max_heading_deg.is_some()
+                || s.plan_delay_s.is_some()
+                || s.plan_lookahead_m.is_some()
+            {
                 return Err(check.error(
                     "switching.plan_max_offset_m",
-                    "plan consistency needs its offset when its heading or delay is set",
+                    "plan consistency needs its offset when its heading, delay or look-ahead is set",
                 ));
             }
             None
@@ -226,6 +229,10 @@ fn switching(file: &ScenarioFile, check: &Checker) -> Result<SwitchingSetup, Sce
                 180.0,
             )?;
             let delay = pos("plan_delay_s", s.plan_delay_s, 0.3)?;
+            let lookahead = check.non_negative(
+                "switching.plan_lookahead_m",
+                s.plan_lookahead_m.unwrap_or(0.0),
+            )?;
             let err =
                 |f: &'static str| move |e: fieldguide::Precondition| check.error(f, &e.to_string());
             Some(PlanSetup {
@@ -234,7 +241,9 @@ fn switching(file: &ScenarioFile, check: &Checker) -> Result<SwitchingSetup, Sce
                     Radians::new(heading.to_radians())
                         .map_err(err("switching.plan_max_heading_deg"))?,
                 )
-                .map_err(err("switching.plan_max_offset_m"))?,
+                .map_err(err("switching.plan_max_offset_m"))?
+                .with_lookahead(Meters::new(lookahead).map_err(err("switching.plan_lookahead_m"))?)
+                .map_err(err("switching.plan_lookahead_m"))?,
                 delay: Seconds::new(delay).map_err(err("switching.plan_delay_s"))?,
             })
         }

@@ -61,7 +61,10 @@ pub use config::{
     delay_ticks, BehaviourConfig, DelayTicks, SwitchingConfig, MAX_BEHAVIOURS, MAX_DELAY_TICKS,
 };
 pub use machine::{step, Switching, SwitchingState};
-pub use plan::{line_relative_to_path, LineRelativeToPath, PlanTolerance};
+pub use plan::{
+    line_relative_to_path, line_relative_to_path_ahead, LineRelativeToPath, PathAhead,
+    PlanTolerance,
+};
 
 use crate::perception::Verdict;
 
