@@ -162,7 +162,12 @@ impl<'p> PathTracking<'p> {
 
 impl Guidance for PathTracking<'_> {
     fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition> {
-        let pose = &input.readings.gnss;
+        let Some(pose) = &input.readings.gnss else {
+            return Err(Precondition::new(
+                "GD-LOCALISATION",
+                "path tracking alone cannot steer without a GNSS pose",
+            ));
+        };
         let frenet = match self.s_hint {
             None => self.path.project(pose, self.lookahead)?,
             Some(hint) => {

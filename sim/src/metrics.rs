@@ -31,6 +31,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use crate::guidance::Mode;
 use crate::runner::{LineTruth, RunEnd, RunOutput, TickRecord};
 use crate::scenario::Setup;
 
@@ -123,6 +124,10 @@ pub struct Summary {
     pub mode_distance_m: BTreeMap<&'static str, f64>,
     /// Number of mode changes.
     pub mode_switches: usize,
+    /// Simulated time without a GNSS fix, seconds.
+    pub gnss_lost_s: f64,
+    /// Simulated time the switching machine spent in Stop, seconds.
+    pub stop_s: f64,
     /// Crop plants run over by a wheel (grass never counts).
     pub plants_crushed: usize,
     /// Crop plants in the world.
@@ -363,6 +368,13 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
         first_within_band_m: first_m,
         mode_distance_m: mode_distance,
         mode_switches: switches,
+        gnss_lost_s: trace.iter().filter(|r| r.readings.gnss.is_none()).count() as f64
+            * setup.control.period_s,
+        stop_s: trace
+            .iter()
+            .filter(|r| r.command.switching_mode == Mode::Stop)
+            .count() as f64
+            * setup.control.period_s,
         plants_crushed: output.plants_crushed,
         crop_plants,
         in_plot_lateral_error_m: in_plot,

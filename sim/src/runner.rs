@@ -272,7 +272,8 @@ fn tick(
         )?,
     };
     *truth_hint = Some(truth.s);
-    let readings = sensors.read(state, setup.control.period_s, rng)?;
+    let fix = setup.gnss_outages.has_fix(t_s);
+    let readings = sensors.read(state, setup.control.period_s, fix, rng)?;
     let scan: Option<InclinedScan> = lidar.map(|(l, index)| l.scan(&state.pose, index, rng));
     let ranges: Option<&[f64]> = match horizontal {
         None => None,

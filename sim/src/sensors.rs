@@ -30,8 +30,9 @@ pub struct SensorNoise {
 /// What the robot's sensors report at one tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Readings {
-    /// Estimated pose of O from RTK-GNSS (and IMU), world frame.
-    pub gnss: Pose2<World>,
+    /// Estimated pose of O from RTK-GNSS (and IMU), world frame; `None`
+    /// without a fix.
+    pub gnss: Option<Pose2<World>>,
     /// Pose of O from wheel odometry, odometry frame (the robot's start pose is its origin).
     pub odometry: Pose2<Odom>,
     /// The sideslip observer's estimate of β_F and β_R.
@@ -63,15 +64,17 @@ impl Sensors {
     }
 
     /// The readings at the true state `truth`, `dt` seconds after the previous
-    /// reading. Draws 7 values from `rng`: GNSS x, y, heading; observer front,
-    /// rear; odometry heading noise; and one reserved for an odometry distance
-    /// noise (so adding it later keeps streams aligned).
+    /// reading, with a GNSS pose when `fix`. Draws 7 values from `rng`, with
+    /// or without a fix: GNSS x, y, heading; observer front, rear; odometry
+    /// heading noise; and one reserved for an odometry distance noise (so
+    /// adding it later keeps streams aligned).
     ///
     /// Errors only on non-finite values (`LIB-FINITE`).
     pub fn read(
         &mut self,
         truth: &VehicleState,
         dt: f64,
+        fix: bool,
         rng: &mut SimRng,
     ) -> Result<Readings, Precondition> {
         let n = self.noise;
@@ -115,7 +118,7 @@ impl Sensors {
         self.last_truth = Some(*truth);
         let (x, y, th) = self.odometry;
         Ok(Readings {
-            gnss,
+            gnss: fix.then_some(gnss),
             odometry: Pose2::new(x, y, th)?,
             sideslip,
         })
@@ -150,14 +153,33 @@ mod tests {
         let s0 = state(3.0, 4.0, 0.5, 0.0);
         let mut sensors = Sensors::new(quiet(), &s0);
         let mut rng = SimRng::from_seed(1);
-        let r = sensors.read(&s0, 0.02, &mut rng).unwrap();
-        assert_eq!(r.gnss, s0.pose);
+        let r = sensors.read(&s0, 0.02, true, &mut rng).unwrap();
+        assert_eq!(r.gnss, Some(s0.pose));
         assert_eq!(r.odometry, Pose2::new(0.0, 0.0, 0.0).unwrap());
         // Straight ahead 1 m: odometry moves 1 m along its own x axis.
         let s1 = state(3.0 + 0.5_f64.cos(), 4.0 + 0.5_f64.sin(), 0.5, 1.0);
-        let r = sensors.read(&s1, 0.02, &mut rng).unwrap();
+        let r = sensors.read(&s1, 0.02, true, &mut rng).unwrap();
         assert!((r.odometry.position.x() - 1.0).abs() < 1e-12);
         assert!(r.odometry.position.y().abs() < 1e-12);
+    }
+
+    #[test]
+    fn without_a_fix_there_is_no_pose_and_the_streams_stay_aligned() {
+        let s0 = state(3.0, 4.0, 0.5, 0.0);
+        let mut noise = quiet();
+        noise.gnss_position_m = 0.015;
+        noise.sideslip_rad = 0.01;
+        let (mut a, mut b) = (Sensors::new(noise, &s0), Sensors::new(noise, &s0));
+        let (mut ra, mut rb) = (SimRng::from_seed(3), SimRng::from_seed(3));
+        let lost = a.read(&s0, 0.02, false, &mut ra).unwrap();
+        let fixed = b.read(&s0, 0.02, true, &mut rb).unwrap();
+        assert_eq!(lost.gnss, None);
+        assert!(fixed.gnss.is_some());
+        assert_eq!(lost.sideslip, fixed.sideslip);
+        // The next draws are the same: the outage consumed the same values.
+        let next_a = a.read(&s0, 0.02, true, &mut ra).unwrap();
+        let next_b = b.read(&s0, 0.02, true, &mut rb).unwrap();
+        assert_eq!(next_a, next_b);
     }
 
     #[test]
@@ -171,9 +193,10 @@ mod tests {
         let sq: f64 = (0..n)
             .map(|_| {
                 sensors
-                    .read(&s0, 0.02, &mut rng)
+                    .read(&s0, 0.02, true, &mut rng)
                     .unwrap()
                     .gnss
+                    .unwrap()
                     .position
                     .x()
                     .powi(2)
@@ -193,7 +216,11 @@ mod tests {
         let mut last = None;
         for k in 0..=100 {
             let d = f64::from(k) * 0.1;
-            last = Some(sensors.read(&state(d, 0.0, 0.0, d), 0.1, &mut rng).unwrap());
+            last = Some(
+                sensors
+                    .read(&state(d, 0.0, 0.0, d), 0.1, true, &mut rng)
+                    .unwrap(),
+            );
         }
         let odo = last.unwrap().odometry;
         // 10 m driven, 10.2 m counted; 10 s of 0.01 rad/s bias: 0.1 rad of heading.
@@ -217,7 +244,7 @@ mod tests {
         let mut rng = SimRng::from_seed(3);
         let mut r = None;
         for _ in 0..50 {
-            r = Some(sensors.read(&slipping, 0.02, &mut rng).unwrap());
+            r = Some(sensors.read(&slipping, 0.02, true, &mut rng).unwrap());
         }
         let rear = r.unwrap().sideslip.rear.get();
         assert!((rear - (-0.05) * 0.95).abs() < 0.05 * 0.002, "{rear}");

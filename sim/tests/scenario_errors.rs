@@ -857,6 +857,32 @@ fn the_program_writes_the_hedge_figures_and_summary() {
 }
 
 #[test]
+fn gnss_outages_are_checked_and_named() {
+    let with = |spans: &'static str| move |t: String| format!("{t}\n[gnss]\noutages_s = {spans}\n");
+    let e = error_of(with("[[5.0, 4.0]]"));
+    assert_field(&e, "gnss.outages_s[0]", "end after it starts");
+    let e = error_of(with("[[-1.0, 4.0]]"));
+    assert_field(&e, "gnss.outages_s[0]", "");
+    let e = error_of(with("[[1.0, 4.0], [3.0, 6.0]]"));
+    assert_field(&e, "gnss.outages_s[1]", "after the previous outage");
+    let e = error_of(with("[[1.0, inf]]"));
+    assert_field(&e, "gnss.outages_s[0]", "finite");
+    // Accepted: the spans as given, and a fix outside them only.
+    let source = Source {
+        origin: "edited.toml".into(),
+        text: with("[[1.0, 2.0], [2.0, 3.5]]")(builtin_text()),
+        base_dir: None,
+    };
+    let outages = source
+        .setup(&mut SimRng::from_seed(1))
+        .unwrap()
+        .gnss_outages;
+    assert_eq!(outages.spans(), &[(1.0, 2.0), (2.0, 3.5)]);
+    assert!(outages.has_fix(0.99) && !outages.has_fix(1.0) && !outages.has_fix(3.49));
+    assert!(outages.has_fix(3.5));
+}
+
+#[test]
 fn switching_fields_are_checked_and_named() {
     let with = |section: &'static str| move |t: String| format!("{t}\n[switching]\n{section}\n");
     let e = error_of(with("plan_max_heading_deg = 5.0"));

@@ -148,7 +148,7 @@ impl Guidance for Pipeline<'_> {
         let out = self.core.step(&fieldguide::guidance::TickInput {
             horizontal: input.horizontal,
             inclined,
-            gnss: Some(r.gnss),
+            gnss: r.gnss,
             odometry: r.odometry,
             sideslip: r.sideslip,
         })?;

@@ -2,7 +2,8 @@
 //!
 //! One line per control tick. Angles in radians, distances in metres, world
 //! frame unless the column says `odom_`. `y_true_m` and the other `_true`
-//! columns are ground truth; `est_` columns are what the robot's sensors said.
+//! columns are ground truth; `est_` columns are what the robot's sensors said
+//! (`est_x_m`, `est_y_m`, `est_heading_rad` are empty without a GNSS fix).
 //! The last columns are empty without a row detector or outside the plots:
 //! the latest scan's verdict, whether it arrived at this tick, its age and
 //! quality (the weaker correlation of its selection, or the residual standard
@@ -39,7 +40,17 @@ pub fn trace_csv(
     out.push_str(HEADER);
     out.push('\n');
     for r in trace {
-        let g = &r.readings.gnss;
+        let est = r.readings.gnss.map_or_else(
+            || ",,".to_owned(),
+            |g| {
+                format!(
+                    "{:.4},{:.4},{:.5}",
+                    g.position.x(),
+                    g.position.y(),
+                    g.heading.get()
+                )
+            },
+        );
         let o = &r.readings.odometry;
         let (ey, eth) = r.command.estimated_error.map_or((f64::NAN, f64::NAN), |e| {
             (e.y.get(), e.angular_deviation.get())
@@ -84,14 +95,12 @@ pub fn trace_csv(
         // Writing into a String cannot fail.
         let _ = writeln!(
             out,
-            "{:.2},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{},{}",
+            "{:.2},{:.4},{:.4},{:.5},{},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{},{}",
             r.t_s,
             r.truth.position.x(),
             r.truth.position.y(),
             r.truth.heading.get(),
-            g.position.x(),
-            g.position.y(),
-            g.heading.get(),
+            est,
             o.position.x(),
             o.position.y(),
             o.heading.get(),

@@ -48,6 +48,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "exp3-acre-curved",
         include_str!("../../scenarios/exp3-acre-curved.toml"),
     ),
+    (
+        "gnss-outage",
+        include_str!("../../scenarios/gnss-outage.toml"),
+    ),
 ];
 
 /// The names of the built-in scenarios.

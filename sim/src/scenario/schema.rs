@@ -47,6 +47,18 @@ pub struct ScenarioFile {
     /// The switching machine's delays and the plan check (`[switching]`,
     /// optional: Tables 1-2 and the library's defaults without it).
     pub switching: Option<SwitchingSection>,
+    /// Localisation outages; absent: a fix in every tick.
+    pub gnss: Option<GnssSection>,
+}
+
+/// `[gnss]`: when the RTK-GNSS has no fix.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GnssSection {
+    /// Spans of simulated time `[from, to)` without a fix, seconds, each
+    /// `0 <= from < to`, in increasing order without overlap (default none).
+    #[serde(default)]
+    pub outages_s: Vec<[f64; 2]>,
 }
 
 /// `[switching]`: transit delays (Pierre 2022, Tables 1-2), Stop delay,

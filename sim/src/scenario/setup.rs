@@ -172,6 +172,27 @@ pub struct Setup {
     pub edge: Option<EdgeSetup>,
     /// The switching machine's delays and plan check.
     pub switching: SwitchingSetup,
+    /// When the RTK-GNSS has no fix.
+    pub gnss_outages: GnssOutages,
+}
+
+/// Spans of simulated time `[from, to)` without a GNSS fix, seconds, in
+/// increasing order without overlap.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GnssOutages(Vec<(f64, f64)>);
+
+impl GnssOutages {
+    /// Whether the GNSS has a fix at time `t_s`.
+    #[must_use]
+    pub fn has_fix(&self, t_s: f64) -> bool {
+        !self.0.iter().any(|(from, to)| t_s >= *from && t_s < *to)
+    }
+
+    /// The spans, seconds.
+    #[must_use]
+    pub fn spans(&self) -> &[(f64, f64)] {
+        &self.0
+    }
 }
 
 /// Plan consistency (SW-PLAN-CONSISTENCY) as configured.
@@ -309,6 +330,7 @@ pub fn build(
         obstacles,
     };
     let noise = noise(file, &check)?;
+    let gnss_outages = gnss_outages(file, &check)?;
     let lidar = match &file.lidar {
         Some(l) => Some(lidar(l, control.period_s, &check)?),
         None => None,
@@ -412,7 +434,33 @@ pub fn build(
         horizontal_lidar,
         edge,
         switching,
+        gnss_outages,
     })
+}
+
+fn gnss_outages(file: &ScenarioFile, check: &Checker<'_>) -> Result<GnssOutages, ScenarioError> {
+    let mut spans: Vec<(f64, f64)> = Vec::new();
+    for (i, [from, to]) in file
+        .gnss
+        .as_ref()
+        .map_or(&[][..], |g| g.outages_s.as_slice())
+        .iter()
+        .copied()
+        .enumerate()
+    {
+        let field = format!("gnss.outages_s[{i}]");
+        let earliest = spans.last().map_or(0.0, |(_, end)| *end);
+        let from = check.non_negative(&field, from)?;
+        let to = check.finite(&field, to)?;
+        if from < earliest {
+            return Err(check.error(&field, "must start after the previous outage ends"));
+        }
+        if to <= from {
+            return Err(check.error(&field, "must end after it starts"));
+        }
+        spans.push((from, to));
+    }
+    Ok(GnssOutages(spans))
 }
 
 /// `piece` with its abscissas those of its nominal end points projected on `path`

@@ -1,0 +1,152 @@
+//! Localisation lost in the middle of a plot, closed loop (issue 5, "Bad
+//! input"): the built-in scenario `gnss-outage` is the furrow-pursuing field
+//! with the GNSS fix lost twice, once mid-plot (the rows keep steering) and
+//! once over the bare stretch (no source is left: Stop until the fix
+//! returns). Every figure is ground truth.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+use fieldguide_sim::guidance::Mode;
+use fieldguide_sim::metrics::summarize;
+use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
+use fieldguide_sim::scenario::{Setup, Source};
+
+fn run(name: &str) -> (Setup, RunOutput) {
+    let (setup, mut rng) = runner::prepare(&Source::builtin(name).unwrap()).unwrap();
+    let out = runner::run(&setup, &mut rng);
+    assert_eq!(out.end, RunEnd::PathEnd, "{name}");
+    (setup, out)
+}
+
+/// Whether a source gave the command of this tick (the record carries the
+/// source's error exactly then).
+fn has_source(r: &TickRecord) -> bool {
+    r.command.estimated_error.is_some()
+}
+
+//= spec/pierre2022.md#sw-command-valid-command-only-from-a-valid-estimate
+//= type=test
+//# The command source MUST be the active behaviour when the mode is its
+//# specialised mode and its verdict is Enter or Hold; otherwise path tracking
+//# when the mode is not Stop and localisation is valid; otherwise there MUST be
+//# no command source.
+//= spec/pierre2022.md#sw-s4-stop-exactly-after-the-stop-delay-without-a-source
+//= type=test
+//# The mode MUST be Stop exactly when, in each of the last Stop-delay ticks,
+//# localisation was invalid and the mode was not a specialised mode whose
+//# behaviour gave a valid estimate.
+//= spec/guidance.md#gd-stop-the-stop-command
+//= type=test
+//# In Stop the command MUST be a speed of 0 m/s with the steering of the last
+//# command made, or 0 rad before any command, never saturated.
+#[test]
+fn the_rows_steer_through_a_lost_fix_and_the_robot_stops_when_nothing_is_left() {
+    let (setup, out) = run("gnss-outage");
+    let t = &out.trace;
+    let period = setup.control.period_s;
+    let spans = setup.gnss_outages.spans().to_vec();
+    assert_eq!(spans.len(), 2);
+    let during = |span: (f64, f64)| -> Vec<&TickRecord> {
+        t.iter()
+            .filter(|r| r.t_s >= span.0 - 1e-9 && r.t_s < span.1 - 1e-9)
+            .collect()
+    };
+    // The fix is missing exactly in the spans.
+    for r in t {
+        let lost = spans
+            .iter()
+            .any(|(a, b)| r.t_s >= *a - 1e-9 && r.t_s < *b - 1e-9);
+        assert_eq!(r.readings.gnss.is_none(), lost, "t = {}", r.t_s);
+    }
+
+    // 1. Mid-plot: furrow pursuing steers throughout, within 0.1 m of the rows.
+    let first = during(spans[0]);
+    assert!(first.len() > 1000);
+    for r in &first {
+        assert_eq!(
+            r.command.switching_mode,
+            Mode::FurrowPursuing,
+            "t = {}",
+            r.t_s
+        );
+        assert_eq!(r.mode(), Mode::FurrowPursuing, "t = {}", r.t_s);
+        let e = r.plot.expect("inside the maize plot").lateral_error_m;
+        assert!(e.abs() < 0.1, "t = {}: {e}", r.t_s);
+    }
+
+    // 2. Over the bare stretch: no source, then Stop after the Stop delay.
+    let second = during(spans[1]);
+    let stop_at = second
+        .iter()
+        .position(|r| r.command.switching_mode == Mode::Stop)
+        .expect("Stop while nothing can steer");
+    let last_source = second[..stop_at]
+        .iter()
+        .rposition(|r| has_source(r))
+        .expect("the rows steered before they vanished");
+    let stop_ticks = (setup.switching.stop_delay_s / period).round() as usize;
+    assert_eq!(
+        stop_at - last_source,
+        stop_ticks,
+        "Stop after exactly the Stop delay"
+    );
+    assert!(second[last_source..stop_at]
+        .iter()
+        .skip(1)
+        .all(|r| !has_source(r)));
+    // Stop until the fix returns, at 0 m/s, the robot standing still.
+    let stopped = &second[stop_at..];
+    for r in stopped {
+        assert_eq!(r.command.switching_mode, Mode::Stop, "t = {}", r.t_s);
+        assert_eq!(r.command.speed.get(), 0.0);
+        assert!(!r.command.saturated);
+    }
+    let moved = stopped.last().unwrap().distance_m - stopped[0].distance_m;
+    assert!(moved < 0.01, "moved {moved} m in Stop");
+    // Where it stopped: inside the bean plot, short of its bare stretch
+    // (the inclined LiDAR sees the rows end about 4 m ahead).
+    let beans = &setup.world.plots[1].spec;
+    let bare_x = beans.centre_line(beans.bare[0].0).0;
+    let stop_x = stopped[0].truth.position.x();
+    assert!(
+        stop_x > beans.centre_line(0.0).0 && stop_x < bare_x,
+        "{stop_x}"
+    );
+    eprintln!(
+        "gnss-outage: rows vanished at t = {:.2} s, Stop at t = {:.2} s, x = {stop_x:.2} m, \
+         held {:.1} s until the fix returned",
+        second[last_source].t_s,
+        stopped[0].t_s,
+        stopped.len() as f64 * period
+    );
+    // The first tick with the fix back: path tracking steers again.
+    let back = t.iter().find(|r| r.t_s >= spans[1].1 - 1e-9).unwrap();
+    assert_eq!(back.command.switching_mode, Mode::PathTracking);
+    assert!(has_source(back) && back.command.speed.get() > 0.0);
+    // ... and furrow pursuing takes the rows again after the bare stretch.
+    assert!(t
+        .iter()
+        .filter(|r| r.t_s > back.t_s)
+        .any(|r| r.mode() == Mode::FurrowPursuing));
+
+    // The whole run: rows followed within 0.1 m, no plant run over, and the
+    // summary's times measured.
+    let worst = t
+        .iter()
+        .filter_map(|r| r.plot.map(|p| p.lateral_error_m.abs()))
+        .fold(0.0, f64::max);
+    assert!(worst < 0.1, "{worst}");
+    assert_eq!(out.plants_crushed, 0);
+    let summary = summarize(&setup, &out);
+    let lost: f64 = spans.iter().map(|(a, b)| b - a).sum();
+    assert!((summary.gnss_lost_s - lost).abs() < 2.0 * period);
+    assert!((summary.stop_s - stopped.len() as f64 * period).abs() < 1e-9);
+    // The same field with a fix throughout never stops.
+    let (setup, out) = run("furrow-pursuing");
+    let summary = summarize(&setup, &out);
+    assert_eq!((summary.gnss_lost_s, summary.stop_s), (0.0, 0.0));
+}
