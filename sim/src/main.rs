@@ -166,7 +166,7 @@ fn run_sweep(scenario: &str, seeds: Seeds, out: &Path) -> Result<(), SimError> {
             "at seed",
             &mut worst.iter().map(|w| match w {
                 // No seed is to blame for a column where every run did well.
-                None | Some((_, Cell::Flag(true))) => "-".to_owned(),
+                None | Some((_, Cell::Flag(true) | Cell::Count(0))) => "-".to_owned(),
                 Some((seed, _)) => seed.to_string(),
             })
         )
