@@ -101,6 +101,14 @@ pub enum SimError {
         /// The core's precondition error.
         source: Precondition,
     },
+    /// The scenario is not usable with one seed of a sweep (its world or
+    /// path cannot be built from that seed).
+    AtSeed {
+        /// The seed.
+        seed: u64,
+        /// Why.
+        source: ScenarioError,
+    },
     /// Writing an output file failed.
     Write {
         /// The file.
@@ -115,6 +123,7 @@ impl fmt::Display for SimError {
         match self {
             Self::Scenario(e) => e.fmt(f),
             Self::Setup { what, source } => write!(f, "cannot set up {what}: {source}"),
+            Self::AtSeed { seed, source } => write!(f, "seed {seed}: {source}"),
             Self::Write { file, source } => {
                 write!(f, "cannot write `{}`: {source}", file.display())
             }
@@ -127,6 +136,7 @@ impl std::error::Error for SimError {
         match self {
             Self::Scenario(e) => Some(e),
             Self::Setup { source, .. } => Some(source),
+            Self::AtSeed { source, .. } => Some(source),
             Self::Write { source, .. } => Some(source),
         }
     }

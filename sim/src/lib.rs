@@ -8,6 +8,8 @@
 //! [`runner::prepare`] (validated [`scenario::Setup`] and the run's one seeded
 //! generator) → [`runner::run`] (the closed loop, one [`runner::TickRecord`]
 //! per control tick) → [`metrics::summarize`] → [`output::write_run`].
+//! [`sweep::sweep`] repeats a scenario over a range of seeds
+//! ([`runner::prepare_with_seed`]), one summary per seed.
 #![forbid(unsafe_code)]
 
 pub mod error;
@@ -21,6 +23,7 @@ pub mod rng;
 pub mod runner;
 pub mod scenario;
 pub mod sensors;
+pub mod sweep;
 pub mod world;
 
 pub use error::{ScenarioError, SimError};

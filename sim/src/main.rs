@@ -3,11 +3,22 @@
 //!
 //! - `fieldguide` runs every built-in scenario and prints a summary table;
 //! - `fieldguide list` lists the built-in scenarios;
-//! - `fieldguide run <name or file.toml> [--out DIR]` runs one scenario.
+//! - `fieldguide run <name or file.toml> [--out DIR]` runs one scenario;
+//! - `fieldguide sweep <name or file.toml> --seeds FIRST..=LAST [--out DIR]`
+//!   runs one scenario once per seed from FIRST to LAST, both included
+//!   (`--seeds 1..=20`: twenty runs; `--seeds 7..=7`: seed 7 alone), each
+//!   seed replacing the file's `seed` (another field, other noise).
 //!
 //! Each run writes `DIR/<scenario>/{trace.csv, summary.json, trajectory.svg,
-//! lateral_error.svg}` (`DIR` defaults to `out`). An unusable scenario stops
-//! the program with a message naming the file and the field, and exit code 2.
+//! lateral_error.svg}` (`DIR` defaults to `out`). A sweep prints one row of
+//! metrics per seed as it goes, then a "worst" row (the largest value of
+//! each metric over the seeds, with the seed it came from, on the line
+//! below) and the seeds whose run failed, and writes the rows to
+//! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot.
+//!
+//! An unusable scenario stops the program with a message naming the file and
+//! the field, and exit code 2; so do an unknown scenario and a malformed or
+//! empty seed range (`--seeds 5..=4`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -16,6 +27,7 @@ use clap::{Parser, Subcommand};
 
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
+use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
 use fieldguide_sim::{output, runner, SimError};
 
 #[derive(Debug, Parser)]
@@ -41,6 +53,15 @@ enum Command {
         /// Built-in scenario name or path to a scenario file.
         scenario: String,
     },
+    /// Run one scenario once per seed of a range; print and write
+    /// `<out>/<scenario>/sweep.csv`, one row of metrics per seed.
+    Sweep {
+        /// Built-in scenario name or path to a scenario file.
+        scenario: String,
+        /// The seeds, FIRST..=LAST with both included (`1..=20`).
+        #[arg(long, value_name = "FIRST..=LAST")]
+        seeds: Seeds,
+    },
 }
 
 fn main() -> ExitCode {
@@ -53,6 +74,7 @@ fn main() -> ExitCode {
         Some(Command::Run { scenario }) => run_one(&scenario, &cli.out).map(|s| {
             print_table(&[s]);
         }),
+        Some(Command::Sweep { scenario, seeds }) => run_sweep(&scenario, seeds, &cli.out),
         None => run_all(&cli.out),
     };
     match result {
@@ -97,6 +119,88 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     }
     print_table(&summaries);
     Ok(())
+}
+
+/// Runs `scenario` for each seed, printing a row per seed, then the worst
+/// row and the failures; writes `sweep.csv`.
+fn run_sweep(scenario: &str, seeds: Seeds, out: &Path) -> Result<(), SimError> {
+    let source = Source::resolve(scenario)?;
+    let widths: Vec<usize> = COLUMNS.iter().map(|c| c.name.len().max(8)).collect();
+    let line = |first: &str, cells: &mut dyn Iterator<Item = String>| {
+        let mut text = format!("{first:>10}");
+        for (cell, width) in cells.zip(&widths) {
+            text.push_str(&format!(" {cell:>width$}"));
+        }
+        text
+    };
+    println!(
+        "{}",
+        line("seed", &mut COLUMNS.iter().map(|c| c.name.to_owned()))
+    );
+    let result = sweep::sweep(&source, seeds, |s| {
+        let row = line(
+            &s.seed.to_string(),
+            &mut COLUMNS.iter().map(|c| show((c.cell)(s))),
+        );
+        println!("{row}");
+        if let Some(why) = &s.aborted {
+            eprintln!("seed {}: run stopped early: {why}", s.seed);
+        }
+    })?;
+    let worst: Vec<Option<(u64, Cell)>> = COLUMNS
+        .iter()
+        .map(|c| sweep::worst(&result.rows, c))
+        .collect();
+    println!(
+        "{}",
+        line(
+            "worst",
+            &mut worst
+                .iter()
+                .map(|w| w.map_or_else(|| "-".to_owned(), |(_, c)| show(c)))
+        )
+    );
+    println!(
+        "{}",
+        line(
+            "at seed",
+            &mut worst.iter().map(|w| match w {
+                // No seed is to blame for a column where every run did well.
+                None | Some((_, Cell::Flag(true) | Cell::Count(0))) => "-".to_owned(),
+                Some((seed, _)) => seed.to_string(),
+            })
+        )
+    );
+    let failed = sweep::failed_seeds(&result.rows);
+    let failures = if failed.is_empty() {
+        "none".to_owned()
+    } else {
+        failed
+            .iter()
+            .map(u64::to_string)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    println!(
+        "{}: {} seeds ({seeds}), failed: {failures}",
+        result.scenario,
+        result.rows.len()
+    );
+    let file = output::write_sweep(out, &result)?;
+    println!("{}: wrote {}", result.scenario, file.display());
+    Ok(())
+}
+
+/// A cell of the sweep table as printed.
+fn show(cell: Cell) -> String {
+    match cell {
+        Cell::Metres(None) => "-".to_owned(),
+        Cell::Metres(Some(v)) => format!("{v:.4}"),
+        Cell::Plain(v) => format!("{v:.2}"),
+        Cell::Count(n) => n.to_string(),
+        Cell::Flag(true) => "yes".to_owned(),
+        Cell::Flag(false) => "NO".to_owned(),
+    }
 }
 
 fn print_table(summaries: &[Summary]) {

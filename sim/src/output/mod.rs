@@ -11,6 +11,7 @@ use crate::error::SimError;
 use crate::metrics::Summary;
 use crate::runner::RunOutput;
 use crate::scenario::Setup;
+use crate::sweep::Sweep;
 
 /// The files of one run.
 pub const FILES: [&str; 4] = [
@@ -19,6 +20,9 @@ pub const FILES: [&str; 4] = [
     "trajectory.svg",
     "lateral_error.svg",
 ];
+
+/// The file of a seed sweep (`fieldguide sweep`).
+pub const SWEEP_FILE: &str = "sweep.csv";
 
 /// The extra figure of a world with plants.
 pub const ROWS_FILE: &str = "rows.svg";
@@ -66,4 +70,22 @@ pub fn write_run(
             .map_err(|source| SimError::Write { file, source })?;
     }
     Ok(dir)
+}
+
+/// Writes `sweep.csv` (one line per seed, [`crate::sweep::sweep_csv`]) into
+/// `out_root/<scenario>/`, creating it; returns the file.
+pub fn write_sweep(out_root: &Path, sweep: &Sweep) -> Result<PathBuf, SimError> {
+    let dir = out_root.join(&sweep.scenario);
+    std::fs::create_dir_all(&dir).map_err(|source| SimError::Write {
+        file: dir.clone(),
+        source,
+    })?;
+    let file = dir.join(SWEEP_FILE);
+    std::fs::write(&file, crate::sweep::sweep_csv(&sweep.rows)).map_err(|source| {
+        SimError::Write {
+            file: file.clone(),
+            source,
+        }
+    })?;
+    Ok(file)
 }

@@ -1,0 +1,391 @@
+//! Seed sweeps: one scenario run once per seed of an inclusive range, each
+//! seed replacing the scenario's own (the world's generation, the path's
+//! recording noise and the sensors' noise all follow from it, see
+//! [`runner::prepare_with_seed`]), and one row of metrics per seed.
+//!
+//! The `fieldguide sweep <scenario> --seeds FIRST..=LAST` command prints the
+//! rows, a final "worst" row (the largest value of each metric over the
+//! seeds, and the seed it came from), and writes them to
+//! `OUT/<scenario>/sweep.csv` ([`sweep_csv`], one line per seed); it writes no
+//! per-seed trace or plot. A claim about a scenario is a claim about its
+//! worst seed, not about one lucky run.
+
+use std::fmt;
+use std::ops::RangeInclusive;
+use std::str::FromStr;
+
+use crate::error::SimError;
+use crate::metrics::{summarize, ErrorStats, Summary};
+use crate::runner;
+use crate::scenario::Source;
+
+/// A non-empty inclusive range of seeds, written `FIRST..=LAST` (`1..=20`;
+/// `7..=7` is the one seed 7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Seeds {
+    first: u64,
+    last: u64,
+}
+
+impl Seeds {
+    /// The seeds `first` to `last`, both included; an error when `last < first`.
+    pub fn new(first: u64, last: u64) -> Result<Self, SeedsError> {
+        if last < first {
+            return Err(SeedsError {
+                input: format!("{first}..={last}"),
+                reason: "empty range: the last seed is smaller than the first",
+            });
+        }
+        Ok(Self { first, last })
+    }
+
+    /// The first seed.
+    #[must_use]
+    pub const fn first(&self) -> u64 {
+        self.first
+    }
+
+    /// The last seed (included).
+    #[must_use]
+    pub const fn last(&self) -> u64 {
+        self.last
+    }
+
+    /// The seeds in increasing order.
+    #[must_use]
+    pub const fn iter(&self) -> RangeInclusive<u64> {
+        self.first..=self.last
+    }
+}
+
+impl FromStr for Seeds {
+    type Err = SeedsError;
+
+    /// Parses `FIRST..=LAST` (decimal, spaces around the numbers allowed).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let err = |reason| SeedsError {
+            input: s.to_owned(),
+            reason,
+        };
+        let (first, last) = s
+            .split_once("..=")
+            .ok_or_else(|| err("expected FIRST..=LAST, for example 1..=20"))?;
+        let number = |t: &str| {
+            t.trim()
+                .parse::<u64>()
+                .map_err(|_| err("the seeds must be whole numbers from 0 to 2^64 - 1"))
+        };
+        let (first, last) = (number(first)?, number(last)?);
+        Self::new(first, last).map_err(|e| err(e.reason))
+    }
+}
+
+impl fmt::Display for Seeds {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}..={}", self.first, self.last)
+    }
+}
+
+/// Why a seed range was refused.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SeedsError {
+    /// The text given.
+    pub input: String,
+    /// What is wrong with it.
+    pub reason: &'static str,
+}
+
+impl fmt::Display for SeedsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "seeds `{}`: {}", self.input, self.reason)
+    }
+}
+
+impl std::error::Error for SeedsError {}
+
+/// The outcome of a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sweep {
+    /// The scenario's name (the folder the sweep is written to).
+    pub scenario: String,
+    /// One summary per seed, in increasing seed order.
+    pub rows: Vec<Summary>,
+}
+
+/// Runs `source` once per seed of `seeds` (the closed loop of
+/// [`runner::run`], summarised by [`summarize`]) and calls `each` with every
+/// summary as soon as it is measured. A run the core stops early is a row
+/// like any other (its `aborted` and `success` say so); a seed whose world
+/// or path cannot be built stops the sweep with [`SimError::AtSeed`].
+pub fn sweep(
+    source: &Source,
+    seeds: Seeds,
+    mut each: impl FnMut(&Summary),
+) -> Result<Sweep, SimError> {
+    let scenario = source.parse()?.name;
+    let mut rows = Vec::new();
+    for seed in seeds.iter() {
+        let (setup, mut rng) = runner::prepare_with_seed(source, seed)
+            .map_err(|source| SimError::AtSeed { seed, source })?;
+        let run = runner::run(&setup, &mut rng);
+        let summary = summarize(&setup, &run);
+        each(&summary);
+        rows.push(summary);
+    }
+    Ok(Sweep { scenario, rows })
+}
+
+/// One cell of a sweep row.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cell {
+    /// A distance or error in metres; `None` when the scenario has no such
+    /// figure (no plot, no hedge) or the run never reached it (never converged).
+    Metres(Option<f64>),
+    /// A figure with no better or worse side (the distance driven): it has
+    /// no worst.
+    Plain(f64),
+    /// A count.
+    Count(usize),
+    /// A yes/no outcome, `true` being good.
+    Flag(bool),
+}
+
+/// A column of the sweep table and of `sweep.csv`.
+#[derive(Debug, Clone, Copy)]
+pub struct Column {
+    /// Its name: the CSV header and the table's heading.
+    pub name: &'static str,
+    /// Its cell in the row of a summary.
+    pub cell: fn(&Summary) -> Cell,
+}
+
+fn mean(e: Option<ErrorStats>) -> Cell {
+    Cell::Metres(e.map(|e| e.mean_abs))
+}
+
+fn max(e: Option<ErrorStats>) -> Cell {
+    Cell::Metres(e.map(|e| e.max_abs))
+}
+
+/// The columns after `seed`, in order. Errors are against ground truth
+/// (`metrics`): |y| to the reference path over the whole run; in-plot, to the
+/// true centre line of the rows followed while O is inside a plot; along the
+/// hedge, to the hedge's true offset line from the first tick within
+/// `metrics.along_hedge_band_m` of it on.
+pub const COLUMNS: [Column; 14] = [
+    Column {
+        name: "success",
+        cell: |s| Cell::Flag(s.success),
+    },
+    Column {
+        name: "reached_end",
+        cell: |s| Cell::Flag(s.reached_end),
+    },
+    Column {
+        name: "distance_m",
+        cell: |s| Cell::Plain(s.distance_m),
+    },
+    Column {
+        name: "mean_abs_y_m",
+        cell: |s| Cell::Metres(Some(s.lateral_error_m.mean_abs)),
+    },
+    Column {
+        name: "max_abs_y_m",
+        cell: |s| Cell::Metres(Some(s.lateral_error_m.max_abs)),
+    },
+    Column {
+        name: "converged_after_m",
+        cell: |s| Cell::Metres(s.converged_after_m),
+    },
+    Column {
+        name: "in_plot_mean_abs_m",
+        cell: |s| mean(s.in_plot_lateral_error_m),
+    },
+    Column {
+        name: "in_plot_max_abs_m",
+        cell: |s| max(s.in_plot_lateral_error_m),
+    },
+    Column {
+        name: "hedge_converged_after_m",
+        cell: |s| Cell::Metres(s.along_hedge_converged_after_m),
+    },
+    Column {
+        name: "hedge_mean_abs_m",
+        cell: |s| mean(s.along_hedge_after_convergence_m),
+    },
+    Column {
+        name: "hedge_max_abs_m",
+        cell: |s| max(s.along_hedge_after_convergence_m),
+    },
+    Column {
+        name: "plants_crushed",
+        cell: |s| Cell::Count(s.plants_crushed),
+    },
+    Column {
+        name: "mode_switches",
+        cell: |s| Cell::Count(s.mode_switches),
+    },
+    Column {
+        name: "steering_saturated_fraction",
+        cell: |s| Cell::Metres(Some(s.steering_saturated_fraction)),
+    },
+];
+
+/// The header line of `sweep.csv`.
+#[must_use]
+pub fn csv_header() -> String {
+    std::iter::once("seed")
+        .chain(COLUMNS.iter().map(|c| c.name))
+        .chain(std::iter::once("aborted"))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// The CSV line of one summary (no line break): the seed, the [`COLUMNS`]
+/// (numbers in their shortest exact form, an empty cell for none, `1`/`0`
+/// for flags), and why the run stopped early (empty if it did not).
+#[must_use]
+pub fn csv_row(s: &Summary) -> String {
+    let aborted = s
+        .aborted
+        .as_deref()
+        .map_or_else(String::new, |why| why.replace([',', '\n'], ";"));
+    std::iter::once(s.seed.to_string())
+        .chain(COLUMNS.iter().map(|c| match (c.cell)(s) {
+            Cell::Metres(v) => v.map_or_else(String::new, |v| v.to_string()),
+            Cell::Plain(v) => v.to_string(),
+            Cell::Count(n) => n.to_string(),
+            Cell::Flag(b) => u8::from(b).to_string(),
+        }))
+        .chain(std::iter::once(aborted))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// `sweep.csv`: the header, then one line per row.
+#[must_use]
+pub fn sweep_csv(rows: &[Summary]) -> String {
+    let mut out = csv_header();
+    out.push('\n');
+    for r in rows {
+        out.push_str(&csv_row(r));
+        out.push('\n');
+    }
+    out
+}
+
+/// The worst cell of a column over the rows, with the seed it came from:
+/// the largest figure or count (the first seed on a tie), or the first
+/// `false` flag; `None` when no row has a figure in that column or the
+/// column has no worse side ([`Cell::Plain`]).
+#[must_use]
+pub fn worst(rows: &[Summary], column: &Column) -> Option<(u64, Cell)> {
+    let mut found: Option<(u64, Cell)> = None;
+    for r in rows {
+        let cell = (column.cell)(r);
+        let worse = match (found.map(|(_, c)| c), cell) {
+            (_, Cell::Metres(None) | Cell::Plain(_)) => false,
+            (None, _) => true,
+            (Some(Cell::Metres(Some(a))), Cell::Metres(Some(b))) => b > a,
+            (Some(Cell::Count(a)), Cell::Count(b)) => b > a,
+            (Some(Cell::Flag(a)), Cell::Flag(b)) => a && !b,
+            _ => false,
+        };
+        if worse {
+            found = Some((r.seed, cell));
+        }
+    }
+    found
+}
+
+/// The seeds whose run was not a success.
+#[must_use]
+pub fn failed_seeds(rows: &[Summary]) -> Vec<u64> {
+    rows.iter().filter(|r| !r.success).map(|r| r.seed).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seed_ranges_parse_inclusive_and_refuse_empty_or_malformed_ones() {
+        let s: Seeds = "1..=20".parse().unwrap();
+        assert_eq!((s.first(), s.last()), (1, 20));
+        assert_eq!(s.iter().count(), 20);
+        assert_eq!(s.to_string(), "1..=20");
+        let one: Seeds = " 7 ..= 7 ".parse().unwrap();
+        assert_eq!(one.iter().collect::<Vec<_>>(), vec![7]);
+        assert!("0..=18446744073709551615".parse::<Seeds>().is_ok());
+        for bad in [
+            "5..=4",
+            "20",
+            "1..20",
+            "1..=",
+            "..=3",
+            "a..=3",
+            "-1..=3",
+            "1..=18446744073709551616",
+            "",
+        ] {
+            let e = bad.parse::<Seeds>().unwrap_err();
+            assert_eq!(e.input, bad);
+            assert!(e.to_string().contains(bad), "{e}");
+        }
+        assert!("5..=4"
+            .parse::<Seeds>()
+            .unwrap_err()
+            .reason
+            .contains("empty"));
+        assert!(Seeds::new(3, 2).is_err());
+    }
+
+    #[test]
+    fn the_csv_has_one_column_per_heading_and_the_worst_cell_names_its_seed() {
+        let source = Source::builtin("path-tracking").unwrap();
+        let (mut setup, mut rng) = runner::prepare_with_seed(&source, 3).unwrap();
+        setup.run.duration_s = 3.0;
+        let base = summarize(&setup, &runner::run(&setup, &mut rng));
+        let row = |seed: u64, max_y: f64, crushed: usize, success: bool| {
+            let mut s = base.clone();
+            s.seed = seed;
+            s.lateral_error_m.max_abs = max_y;
+            s.plants_crushed = crushed;
+            s.success = success;
+            s.in_plot_lateral_error_m = None;
+            s.aborted = Some("t = 1, core, said no".to_owned());
+            s
+        };
+        let rows = [
+            row(4, 0.2, 0, true),
+            row(5, 0.7, 2, false),
+            row(6, 0.7, 1, false),
+        ];
+        let text = sweep_csv(&rows);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 4);
+        let width = COLUMNS.len() + 2;
+        assert!(
+            lines.iter().all(|l| l.split(',').count() == width),
+            "{text}"
+        );
+        assert!(lines[2].starts_with("5,0,"), "{}", lines[2]);
+        assert!(lines[2].ends_with("t = 1; core; said no"), "{}", lines[2]);
+        let column = |name| COLUMNS.iter().find(|c| c.name == name).unwrap();
+        assert_eq!(
+            worst(&rows, column("max_abs_y_m")),
+            Some((5, Cell::Metres(Some(0.7))))
+        );
+        assert_eq!(
+            worst(&rows, column("plants_crushed")),
+            Some((5, Cell::Count(2)))
+        );
+        assert_eq!(
+            worst(&rows, column("success")),
+            Some((5, Cell::Flag(false)))
+        );
+        assert_eq!(worst(&rows, column("in_plot_max_abs_m")), None);
+        assert_eq!(worst(&rows, column("distance_m")), None);
+        assert_eq!(failed_seeds(&rows), vec![5, 6]);
+    }
+}
