@@ -14,6 +14,8 @@
     clippy::panic
 )]
 
+mod common;
+
 use fieldguide::Verdict;
 use fieldguide_sim::guidance::Mode;
 use fieldguide_sim::rng::SimRng;
@@ -35,22 +37,18 @@ const SETTLED_M: f64 = 1.0;
 const SEEDS: [u64; 11] = [2022, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10];
 
 fn run(name: &str) -> (Setup, RunOutput) {
-    run_edited(name, |t| t)
+    run_seed(name, Source::builtin(name).unwrap().parse().unwrap().seed)
 }
 
 fn run_seed(name: &str, seed: u64) -> (Setup, RunOutput) {
-    run_edited(name, |t| {
-        t.replace("seed = 2022", &format!("seed = {seed}"))
-    })
+    run_edited(name, seed, |t| t)
 }
 
-/// A built-in scenario with its text edited by `edit` (another seed, another setting).
-fn run_edited(name: &str, edit: impl Fn(String) -> String) -> (Setup, RunOutput) {
-    let mut source = Source::builtin(name).unwrap();
-    source.text = edit(source.text);
-    let (setup, mut rng): (Setup, SimRng) = runner::prepare(&source).unwrap();
+/// A built-in scenario with another seed and its text edited by `edit`.
+fn run_edited(name: &str, seed: u64, edit: impl FnOnce(String) -> String) -> (Setup, RunOutput) {
+    let (setup, mut rng): (Setup, SimRng) = common::prepare_edited(name, seed, edit);
     let out = runner::run(&setup, &mut rng);
-    assert_eq!(out.end, RunEnd::PathEnd, "{name}");
+    assert_eq!(out.end, RunEnd::PathEnd, "{name}, seed {seed}");
     (setup, out)
 }
 
@@ -275,16 +273,11 @@ fn exp2_plan_consistency_avoids_the_excursion_after_the_third_plot() {
     // the robot only (the look-ahead set to 0).
     let (mut worst_on, mut worst_here, mut least_off) = (0.0f64, 0.0f64, f64::INFINITY);
     for seed in std::iter::once(2022).chain(1..=20) {
-        let edit = |text: String, lookahead: f64| {
-            text.replace("seed = 2022", &format!("seed = {seed}"))
-                .replace(
-                    "plan_lookahead_m = 2.0",
-                    &format!("plan_lookahead_m = {lookahead}"),
-                )
-        };
-        let (setup, on) = run_edited("exp2-acre", |t| edit(t, lookahead));
-        let (_, here) = run_edited("exp2-acre", |t| edit(t, 0.0));
-        let (_, off) = run_edited("exp2-acre-no-plan", |t| edit(t, lookahead));
+        let (setup, on) = run_seed("exp2-acre", seed);
+        let (_, here) = run_edited("exp2-acre", seed, |t| {
+            t.replace("plan_lookahead_m = 2.0", "plan_lookahead_m = 0.0")
+        });
+        let (_, off) = run_seed("exp2-acre-no-plan", seed);
         // The third plot (index 2) ends in volunteer plants; the path turns left there.
         let (exc_on, past_on) = excursion_after(&setup, &on, 2);
         let (exc_here, past_here) = excursion_after(&setup, &here, 2);
