@@ -70,9 +70,9 @@ use crate::geometry::path::{FrenetError, ReferencePath};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, MetersPerSecond, Radians};
 use crate::model::bicycle::Sideslip;
-use crate::perception::edge::{self, EdgeDetector, EdgeOutcome};
-use crate::perception::furrow::{self, FurrowDetection, FurrowDetector};
-use crate::perception::Verdict;
+use crate::perception::edge::{EdgeDetector, EdgeOutcome};
+use crate::perception::furrow::{FurrowDetection, FurrowDetector};
+use crate::perception::{Scan, Verdict};
 use crate::supervisor::switching::{
     line_relative_to_path, CommandSource, Input, LineRelativeToPath, Mode, Output, PathAhead,
     PlanTolerance, Report, Switching,
@@ -83,10 +83,10 @@ use crate::supervisor::switching::{
 pub struct TickInput<'a> {
     /// The horizontal LiDAR's scan, in the ticks where one arrived; only with
     /// edge following configured (GD-INPUT).
-    pub horizontal: Option<edge::Scan<'a>>,
+    pub horizontal: Option<Scan<'a>>,
     /// The inclined LiDAR's scan, in the ticks where one arrived; only with
     /// furrow pursuing configured (GD-INPUT).
-    pub inclined: Option<furrow::scan::Scan<'a>>,
+    pub inclined: Option<Scan<'a>>,
     /// The robot's pose from GNSS-RTK localisation, `World` frame; `None`
     /// when localisation has no valid pose (GD-LOCALISATION).
     pub gnss: Option<Pose2<World>>,

@@ -15,9 +15,9 @@ mod edge_support;
 
 use edge_support::{cast_line, hedge, pt, wall};
 use fieldguide::perception::edge::{
-    detect, detect_points, ChainEnd, EdgeConfig, EdgeDetection, EdgeDetector, EdgeParameters,
-    RangeLimits, Scan, Side,
+    detect, detect_points, ChainEnd, EdgeConfig, EdgeDetection, EdgeDetector, EdgeParameters, Side,
 };
+use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::{Meters, Point2, Pose2, Radians, Robot, Sensor, Transform2, Verdict, World};
 use proptest::prelude::*;
 

@@ -15,11 +15,10 @@
 mod furrow_common;
 
 use fieldguide::perception::furrow::quality::furrow_verdict;
-use fieldguide::perception::furrow::scan::Scan;
 use fieldguide::perception::furrow::{
     FurrowConfig, FurrowDetection, FurrowDetector, FurrowParams, RowLines, Rows,
 };
-use fieldguide::perception::{Better, QualityThresholds};
+use fieldguide::perception::{Better, QualityThresholds, RangeLimits, Scan};
 use fieldguide::{Meters, Odom, Pose2, Radians, Verdict};
 use furrow_common::{flat_scan, ridge_scan, Lidar, Ridge};
 use proptest::prelude::*;
@@ -37,11 +36,17 @@ fn lidar() -> Lidar {
     Lidar::centred(360, core::f64::consts::FRAC_PI_2)
 }
 
+/// The sensor's valid ranges, 0.1-20 m.
+fn limits() -> RangeLimits {
+    RangeLimits::new(m(0.1), m(20.0)).unwrap()
+}
+
 fn scan<'a>(ranges: &'a [f64], l: &Lidar) -> Scan<'a> {
     Scan {
+        start: Radians::new(l.angle_min).unwrap(),
+        increment: Radians::new(l.increment).unwrap(),
         ranges,
-        angle_min: Radians::new(l.angle_min).unwrap(),
-        angle_increment: Radians::new(l.increment).unwrap(),
+        limits: limits(),
     }
 }
 
@@ -224,8 +229,8 @@ fn bad_scans_are_absent() {
 
 //= spec/pierre2022.md#fur-scan-scan-to-robot-frame-points-in-an-angular-window
 //= type=test
-//# A ray whose range is not finite or lies outside [r_min, r_max) MUST be
-//# dropped while keeping its index, so that window ray i is scan ray
+//# A ray whose range is not finite or lies outside the sensor's [min, max)
+//# MUST be dropped while keeping its index, so that window ray i is scan ray
 //# first + i.
 #[test]
 fn scans_the_detector_cannot_read_are_errors_and_dropped_rays_keep_indices() {
@@ -245,9 +250,10 @@ fn scans_the_detector_cannot_read_are_errors_and_dropped_rays_keep_indices() {
     let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
     for inc in [0.0, -0.01] {
         let bad = Scan {
+            start: Radians::new(-0.5).unwrap(),
+            increment: Radians::new(inc).unwrap(),
             ranges: &ranges,
-            angle_min: Radians::new(-0.5).unwrap(),
-            angle_increment: Radians::new(inc).unwrap(),
+            limits: limits(),
         };
         assert_eq!(det.step(&bad, &odom).unwrap_err().requirement, "FUR-SCAN");
     }
@@ -257,7 +263,12 @@ fn scans_the_detector_cannot_read_are_errors_and_dropped_rays_keep_indices() {
     for j in (w.first..w.first + w.count).step_by(7) {
         let near_max = clean.iter().any(|mx| (w.first + mx.ray).abs_diff(j) <= 30);
         if !near_max {
-            holed[j] = if j % 2 == 0 { f64::NAN } else { 1e9 };
+            // Not a number, beyond the sensor's range, or its "no return" max.
+            holed[j] = match j % 3 {
+                0 => f64::NAN,
+                1 => 1e9,
+                _ => limits().max(),
+            };
         }
     }
     let (with_holes, w2) = det.maxima(&scan(&holed, &l)).unwrap();
@@ -286,9 +297,10 @@ fn prepending_rays_shifts_the_window_not_the_plants() {
         let mut longer = vec![f64::NAN; s];
         longer.extend_from_slice(&ranges);
         let shifted = Scan {
+            start: Radians::new(l.angle_min - s as f64 * l.increment).unwrap(),
+            increment: Radians::new(l.increment).unwrap(),
             ranges: &longer,
-            angle_min: Radians::new(l.angle_min - s as f64 * l.increment).unwrap(),
-            angle_increment: Radians::new(l.increment).unwrap(),
+            limits: limits(),
         };
         let (b, wb) = det.maxima(&shifted).unwrap();
         assert_eq!(wb.first, wa.first + s);
@@ -385,7 +397,6 @@ fn bad_configurations_name_their_requirement() {
             "FUR-SCAN",
             Box::new(|p| p.window_half_angle = Radians::new(2.0).unwrap()),
         ),
-        ("FUR-SCAN", Box::new(|p| p.range_max = m(0.05))),
         ("FUR-TEMPLATE", Box::new(|p| p.template_width = 14)),
         ("FUR-TEMPLATE", Box::new(|p| p.template_width = 0)),
         ("FUR-TEMPLATE", Box::new(|p| p.template_height = m(-0.3))),
@@ -463,9 +474,10 @@ proptest! {
         let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
         for ranges in &scans {
             let s = Scan {
+                start: Radians::new(angle_min).unwrap(),
+                increment: Radians::new(increment).unwrap(),
                 ranges,
-                angle_min: Radians::new(angle_min).unwrap(),
-                angle_increment: Radians::new(increment).unwrap(),
+                limits: limits(),
             };
             match det.step(&s, &odom) {
                 Ok(d) => {

@@ -30,13 +30,12 @@ use fieldguide::guidance::{
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::{
-    EdgeConfig, EdgeDetector, EdgeFit, EdgeQuality, ParabolaFit, RangeLimits, Scan as EdgeScan,
-    Side,
+    EdgeConfig, EdgeDetector, EdgeFit, EdgeQuality, ParabolaFit, Side,
 };
 use fieldguide::perception::furrow::lines::{self, RowLine};
-use fieldguide::perception::furrow::scan::Scan as FurrowScan;
 use fieldguide::perception::furrow::selection::Pair;
 use fieldguide::perception::furrow::{FurrowDetector, FurrowParams, RowLines};
+use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::supervisor::switching::{PathAhead, PlanTolerance};
 use fieldguide::{
     Meters, MetersPerSecond, Odom, Point2, Pose2, Radians, Robot, Seconds, Sensor, TrackingError,
@@ -60,12 +59,18 @@ fn mount() -> Transform2<Sensor, Robot> {
     Transform2::new(MOUNT_X, 0.0, 0.0).unwrap()
 }
 
+/// The horizontal LiDAR's valid ranges.
 fn limits() -> RangeLimits {
     RangeLimits::new(m(0.05), m(30.0)).unwrap()
 }
 
-fn edge_scan(ranges: &[f64]) -> EdgeScan<'_> {
-    EdgeScan {
+/// The inclined LiDAR's valid ranges.
+fn furrow_limits() -> RangeLimits {
+    RangeLimits::new(m(0.1), m(20.0)).unwrap()
+}
+
+fn edge_scan(ranges: &[f64]) -> Scan<'_> {
+    Scan {
         start: Radians::new(-PI).unwrap(),
         increment: Radians::new(TAU / RAYS as f64).unwrap(),
         ranges,
@@ -119,11 +124,12 @@ fn furrow_lidar() -> Lidar {
     Lidar::centred(360, FRAC_PI_2)
 }
 
-fn furrow_scan<'a>(ranges: &'a [f64], l: &Lidar) -> FurrowScan<'a> {
-    FurrowScan {
+fn furrow_scan<'a>(ranges: &'a [f64], l: &Lidar) -> Scan<'a> {
+    Scan {
+        start: Radians::new(l.angle_min).unwrap(),
+        increment: Radians::new(l.increment).unwrap(),
         ranges,
-        angle_min: Radians::new(l.angle_min).unwrap(),
-        angle_increment: Radians::new(l.increment).unwrap(),
+        limits: furrow_limits(),
     }
 }
 
@@ -1463,16 +1469,17 @@ proptest! {
         for _ in 0..ticks {
             let out = g
                 .step(&TickInput {
-                    horizontal: Some(EdgeScan {
+                    horizontal: Some(Scan {
                         start: Radians::new(start).unwrap(),
                         increment: Radians::new(increment).unwrap(),
                         ranges: &horizontal,
                         limits: limits(),
                     }),
-                    inclined: Some(FurrowScan {
+                    inclined: Some(Scan {
+                        start: Radians::new(angle_min).unwrap(),
+                        increment: Radians::new(angle_increment).unwrap(),
                         ranges: &inclined,
-                        angle_min: Radians::new(angle_min).unwrap(),
-                        angle_increment: Radians::new(angle_increment).unwrap(),
+                        limits: furrow_limits(),
                     }),
                     gnss: Some(world(pose)),
                     odometry: odom(pose),

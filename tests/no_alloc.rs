@@ -23,9 +23,9 @@ use fieldguide::guidance::{
     EdgeFollowingParams, Guidance, GuidanceConfig, GuidanceParams, Priority, TickInput,
 };
 use fieldguide::model::bicycle::{world_rates, Sideslip, Wheelbase};
-use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, RangeLimits, Scan as EdgeScan, Side};
-use fieldguide::perception::furrow::scan::Scan as FurrowScan;
+use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, Side};
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
+use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::supervisor::switching::{
     BehaviourConfig, Input, Report, Switching, SwitchingConfig,
 };
@@ -189,23 +189,26 @@ fn detectors_and_switching_do_not_allocate() {
         .unwrap(),
     );
     let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
+    let furrow_limits =
+        RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(20.0).unwrap()).unwrap();
 
     // A fixed array: a Vec made here could be allocated lazily inside the
     // watched section by the optimiser.
     let mut modes = [None; 100];
     let count = allocations_in(|| {
         for tick in 0..100u32 {
-            let horizontal = EdgeScan {
+            let horizontal = Scan {
                 start: Radians::new(-std::f64::consts::PI).unwrap(),
                 increment: Radians::new(step).unwrap(),
                 ranges: &wall,
                 limits,
             };
             let edge_outcome = edge.detect(&horizontal, Side::Left).unwrap();
-            let inclined = FurrowScan {
+            let inclined = Scan {
+                start: Radians::new(-0.6).unwrap(),
+                increment: Radians::new(furrow_step).unwrap(),
                 ranges: &ridges,
-                angle_min: Radians::new(-0.6).unwrap(),
-                angle_increment: Radians::new(furrow_step).unwrap(),
+                limits: furrow_limits,
             };
             let odom = Pose2::<Odom>::new(0.007 * f64::from(tick), 0.0, 0.0).unwrap();
             let furrow_outcome = furrow.step(&inclined, &odom).unwrap();
@@ -224,7 +227,7 @@ fn detectors_and_switching_do_not_allocate() {
     // The wall was seen: the edge detector's verdicts drove the machine.
     assert!(edge
         .detect(
-            &EdgeScan {
+            &Scan {
                 start: Radians::new(-std::f64::consts::PI).unwrap(),
                 increment: Radians::new(step).unwrap(),
                 ranges: &wall,
@@ -280,22 +283,25 @@ fn guidance_pipeline_does_not_allocate() {
     let config = GuidanceConfig::new(&params).unwrap();
     let mut guidance = Guidance::<256>::new(config, &path).unwrap();
     let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
+    let furrow_limits =
+        RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(20.0).unwrap()).unwrap();
 
     let mut outputs = Vec::with_capacity(100);
     let count = allocations_in(|| {
         for tick in 0..100u32 {
             let x = 0.007 * f64::from(tick);
             let input = TickInput {
-                horizontal: Some(EdgeScan {
+                horizontal: Some(Scan {
                     start: Radians::new(-std::f64::consts::PI).unwrap(),
                     increment: Radians::new(step).unwrap(),
                     ranges: &wall,
                     limits,
                 }),
-                inclined: (tick % 10 == 0).then(|| FurrowScan {
+                inclined: (tick % 10 == 0).then(|| Scan {
+                    start: Radians::new(-0.6).unwrap(),
+                    increment: Radians::new(furrow_step).unwrap(),
                     ranges: &ridges,
-                    angle_min: Radians::new(-0.6).unwrap(),
-                    angle_increment: Radians::new(furrow_step).unwrap(),
+                    limits: furrow_limits,
                 }),
                 gnss: (tick < 60).then(|| Pose2::<World>::new(x, 0.05, 0.0).unwrap()),
                 odometry: Pose2::<Odom>::new(x, 0.05, 0.0).unwrap(),

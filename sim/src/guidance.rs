@@ -9,7 +9,7 @@ pub mod pipeline;
 
 use fieldguide::control::backstepping::{steering_command, BacksteppingConfig};
 use fieldguide::model::bicycle::Sideslip;
-use fieldguide::perception::edge::Scan as HorizontalScan;
+use fieldguide::perception::Scan as HorizontalScan;
 use fieldguide::{Meters, MetersPerSecond, Precondition, TrackingError, Verdict};
 
 use crate::lidar::inclined::InclinedScan;

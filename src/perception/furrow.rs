@@ -5,8 +5,9 @@
 //!
 //! One tick of [`FurrowDetector::step`]:
 //!
-//! 1. [`scan`]: rays in an angular window become robot-frame 3D points
-//!    through the mount pose (FUR-SCAN);
+//! 1. [`scan`]: the rays of a [`Scan`] (the shared LiDAR message, LIB-SCAN)
+//!    in an angular window become robot-frame 3D points through the mount
+//!    pose (FUR-SCAN);
 //! 2. [`correlation`]: their heights above a noise floor (FUR-SIGNAL) are
 //!    correlated with a rectangular plant model framed by zeros (FUR-TEMPLATE)
 //!    by running sums (FUR-CORRELATION);
@@ -35,7 +36,7 @@ use self::accumulation::{Accumulator, Selected};
 use self::correlation::{correlate, height_signal, Template};
 use self::lines::{fit_row_line, mean_tracking_error, tracking_error, RowLine};
 use self::quality::furrow_verdict;
-use self::scan::{scan_to_points, MountPose, Scan, ScanPoint, ScanWindow, WindowRays};
+use self::scan::{scan_to_points, MountPose, ScanPoint, ScanWindow, WindowRays};
 use self::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing, MAX_MAXIMA,
 };
@@ -43,7 +44,7 @@ use crate::error::Precondition;
 use crate::geometry::frame::{Odom, Point2, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, Radians};
-use crate::perception::{Better, QualityThresholds, Verdict};
+use crate::perception::{Better, QualityThresholds, Scan, Verdict};
 
 /// How many rows the detector follows (Pierre 2022, sections 2.3.1 and 2.3.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,12 +73,9 @@ pub struct FurrowParams {
     pub mount_height: Meters,
     /// Sensor pitch, rad, positive nose down, in (0, π/2).
     pub mount_pitch: Radians,
-    /// Half width a_w of the angular window around the forward axis, rad, in (0, π/2).
+    /// Half width a_w of the angular window around the forward axis, rad, in
+    /// (0, π/2). The ranges trusted are the sensor's, carried by each [`Scan`].
     pub window_half_angle: Radians,
-    /// Shortest trusted range, m (≥ 0).
-    pub range_min: Meters,
-    /// Ranges at or beyond this are no return, m (> `range_min`).
-    pub range_max: Meters,
     /// w_ref: rectangle width in rays (odd, eq. 12).
     pub template_width: usize,
     /// Zero rays framing the rectangle on each side (FUR-TEMPLATE).
@@ -109,8 +107,8 @@ impl FurrowParams {
     /// 0.3 m, 25 averaged scans, transit at 0.4 / 0.2), with the library's
     /// choices where the paper is silent: sensor 1.5 m ahead of O, 1.0 m high,
     /// pitched 0.38 rad so that it looks at the ground about 4 m ahead of O
-    /// ("the Lidar observed about 4 m ahead"), window ±0.35 rad, ranges
-    /// 0.1-20 m, margins of 7 rays, noise floor 0.05 m, c_t = 0.5 (above the
+    /// ("the Lidar observed about 4 m ahead"), window ±0.35 rad, margins of
+    /// 7 rays, noise floor 0.05 m, c_t = 0.5 (above the
     /// score √(3/15) ≈ 0.45 of a grass tuft three rays wide), keep distance
     /// 6 m, lines from 5 points over at least 0.3 m.
     #[must_use]
@@ -121,8 +119,6 @@ impl FurrowParams {
             mount_height: Meters(1.0),
             mount_pitch: Radians(0.38),
             window_half_angle: Radians(0.35),
-            range_min: Meters(0.1),
-            range_max: Meters(20.0),
             template_width: 15,
             template_margin: 7,
             template_height: Meters(0.3),
@@ -164,8 +160,8 @@ impl FurrowConfig {
     /// Validates `params` once.
     ///
     /// Errors name the requirement whose precondition fails: `FUR-SCAN` (mount
-    /// height ≤ 0, pitch outside (0, π/2), window outside (0, π/2), ranges not
-    /// `0 ≤ min < max`), `FUR-TEMPLATE` (even width, height ≤ 0),
+    /// height ≤ 0, pitch outside (0, π/2), window outside (0, π/2)),
+    /// `FUR-TEMPLATE` (even width, height ≤ 0),
     /// `FUR-SIGNAL` (floor outside [0, h_ref)), `FUR-MAXIMA` (c_t outside
     /// (0, 1)), `FUR-SELECT-PAIR` (not `0 < d_min < d_max`), `FUR-ACCUMULATE`
     /// (n = 0, keep distance ≤ 0), `FUR-LINE` (fewer than 2 points, negative
@@ -182,7 +178,7 @@ impl FurrowConfig {
             params.mount_height,
             params.mount_pitch,
         )?;
-        let window = ScanWindow::new(params.window_half_angle, params.range_min, params.range_max)?;
+        let window = ScanWindow::new(params.window_half_angle)?;
         let template = Template::new(
             params.template_width,
             params.template_margin,
@@ -244,7 +240,7 @@ impl FurrowConfig {
         &self.mount
     }
 
-    /// The validated angular window and range limits.
+    /// The validated angular window.
     #[must_use]
     pub const fn window(&self) -> &ScanWindow {
         &self.window
@@ -334,7 +330,8 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
 
     /// The maxima of one scan (steps 1 to 3 of the module doc), without
     /// touching the detector's state. Errors with `FUR-SCAN` when the scan's
-    /// angles are unusable or its window holds more than `RAYS` rays.
+    /// angles do not grow with the ray index (increment ≤ 0) or its window
+    /// holds more than `RAYS` rays.
     pub fn maxima(
         &self,
         scan: &Scan<'_>,
@@ -374,9 +371,9 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     /// updates the accumulated selections, fits the row lines and grades the
     /// detection (steps 1 to 6 of the module doc).
     ///
-    /// Errors with `FUR-SCAN` when the scan's angles are unusable or its
-    /// window holds more than `RAYS` rays (the state is then left as it
-    /// was); `LIB-FINITE` only on overflow of a transformed point.
+    /// Errors with `FUR-SCAN` when the scan's angles do not grow with the ray
+    /// index (increment ≤ 0) or its window holds more than `RAYS` rays (the
+    /// state is then left as it was); `LIB-FINITE` only on overflow of a transformed point.
     pub fn step(
         &mut self,
         scan: &Scan<'_>,

@@ -1,8 +1,14 @@
 //! Detectors: one module per detector, each turning a LiDAR scan into a line or
 //! parabola in the robot frame and a quality verdict for the switching machine.
+//!
+//! Both detectors read the same message, [`Scan`] (LIB-SCAN): a horizontal
+//! LiDAR's for [`edge`], an inclined one's for [`furrow`].
 
 pub mod edge;
 pub mod furrow;
+pub mod scan;
+
+pub use scan::{RangeLimits, Scan, MAX_RANGE};
 
 /// A detector's judgement of its own estimate in one tick, as the switching
 /// machine consumes it (Pierre 2022, section 3; `spec/pierre2022.md`).

@@ -3,12 +3,12 @@
 //! robot, field of view, ray count, range limits and Gaussian range noise.
 //!
 //! Its scans are what `fieldguide::perception::edge` consumes: the ranges
-//! here, the geometry by [`HorizontalLidar::scan_view`], the mount by
-//! [`HorizontalLidar::mount`].
+//! here, the `fieldguide::perception::Scan` over them by
+//! [`HorizontalLidar::scan_view`], the mount by [`HorizontalLidar::mount`].
 
 use core::f64::consts::TAU;
 
-use fieldguide::perception::edge::{RangeLimits, Scan};
+use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::{Meters, Pose2, Precondition, Radians, Robot, Sensor, Transform2, World};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};

@@ -10,8 +10,8 @@
 //! of its ground footprint (the sensor and every ray's end), so a ray is only
 //! tested against the plants near the scan.
 
-use fieldguide::perception::furrow::scan::Scan;
-use fieldguide::{Pose2, Precondition, Radians, World};
+use fieldguide::perception::{RangeLimits, Scan};
+use fieldguide::{Meters, Pose2, Precondition, Radians, World};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 
@@ -169,6 +169,8 @@ impl InclinedLidar {
             ranges,
             angle_min: self.angle_min(),
             angle_increment: self.angle_increment(),
+            range_min: self.range_min,
+            range_max: self.range_max,
         }
     }
 
@@ -230,7 +232,7 @@ pub fn hit_cylinder(o: [f64; 3], d: [f64; 3], plant: &Plant) -> Option<f64> {
 }
 
 /// A simulated inclined scan: ranges in metres (infinity for no return),
-/// ray `j` at `angle_min + j · angle_increment`.
+/// ray `j` at `angle_min + j · angle_increment`, valid in `[range_min, range_max)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InclinedScan {
     /// Ranges, m.
@@ -239,15 +241,21 @@ pub struct InclinedScan {
     pub angle_min: f64,
     /// Angle between rays, rad.
     pub angle_increment: f64,
+    /// The LiDAR's shortest reported range, m.
+    pub range_min: f64,
+    /// The LiDAR's longest range, m; ranges at or beyond it are no return.
+    pub range_max: f64,
 }
 
 impl InclinedScan {
-    /// The scan as the core's furrow detector reads it. Errors only on non-finite angles.
+    /// The scan as the core's furrow detector reads it. Errors on non-finite
+    /// angles (`LIB-FINITE`) or range limits the core refuses (`LIB-SCAN`).
     pub fn as_scan(&self) -> Result<Scan<'_>, Precondition> {
         Ok(Scan {
+            start: Radians::new(self.angle_min)?,
+            increment: Radians::new(self.angle_increment)?,
             ranges: &self.ranges,
-            angle_min: Radians::new(self.angle_min)?,
-            angle_increment: Radians::new(self.angle_increment)?,
+            limits: RangeLimits::new(Meters::new(self.range_min)?, Meters::new(self.range_max)?)?,
         })
     }
 }
@@ -257,7 +265,7 @@ mod tests {
     use super::*;
     use crate::world::PlantKind;
     use fieldguide::perception::furrow::scan::{scan_to_points, MountPose, ScanWindow};
-    use fieldguide::{Meters, Point2};
+    use fieldguide::Point2;
     use rand::rngs::StdRng;
     use rand::SeedableRng;
 
@@ -321,12 +329,7 @@ mod tests {
             Radians::new(p).unwrap(),
         )
         .unwrap();
-        let window = ScanWindow::new(
-            Radians::new(0.7).unwrap(),
-            Meters::new(0.1).unwrap(),
-            Meters::new(20.0).unwrap(),
-        )
-        .unwrap();
+        let window = ScanWindow::new(Radians::new(0.7).unwrap()).unwrap();
         let mut points = vec![None; 400];
         let w = scan_to_points(&scan.as_scan().unwrap(), &mount, &window, &mut points).unwrap();
         let heights: Vec<f64> = points[..w.count]

@@ -1223,8 +1223,6 @@ fn furrow(
             .map_err(|e| check.error("lidar.pitch_deg", &e.to_string()))?,
         window_half_angle: Radians::new(half)
             .map_err(|e| check.error("furrow.window_half_angle_deg", &e.to_string()))?,
-        range_min: meters(check, "lidar.range_min_m", l.range_min)?,
-        range_max: meters(check, "lidar.range_max_m", l.range_max)?,
         template_width: usize::try_from(width).unwrap_or(1),
         template_margin: usize::try_from(f.template_margin_rays).unwrap_or(0),
         template_height: meters(check, "furrow.template_height_m", h_ref)?,

@@ -2,8 +2,8 @@
 //! section 2.2, Algorithm 1, eqs. 8-11, and eq. 21 with Table 1;
 //! `spec/pierre2022.md`, section "Edge following").
 //!
-//! One tick: [`scan_to_points`] turns a scan into robot-frame points
-//! (EDGE-SCAN); [`build_chain`] rolls a circle along the edge on the requested
+//! One tick: [`scan_to_points`] turns a [`Scan`] (the shared LiDAR message of
+//! [`crate::perception`], LIB-SCAN) into robot-frame points (EDGE-SCAN); [`build_chain`] rolls a circle along the edge on the requested
 //! side with exact contacts (EDGE-CHAIN-*), stopping where the edge breaks at
 //! a gap or a corner (EDGE-GAP, EDGE-CORNER); a least-squares parabola is fitted
 //! to the chain (EDGE-PARABOLA); [`tracking_error`] gives the
@@ -28,12 +28,12 @@ pub use chain::{
 pub use config::{EdgeConfig, EdgeParameters, Side};
 pub use parabola::tracking_error;
 pub use quality::EdgeQuality;
-pub use scan::{scan_into, scan_to_points, RangeLimits, Scan, ScanPoints, MAX_COORDINATE};
+pub use scan::{scan_into, scan_to_points, ScanPoints, MAX_COORDINATE};
 
 use crate::error::Precondition;
 use crate::geometry::frame::{Point2, Robot, Sensor, Transform2};
 use crate::geometry::tracking::TrackingError;
-use crate::perception::Verdict;
+use crate::perception::{Scan, Verdict};
 
 /// The robot's abscissa in its own frame, x_r of eq. 11: the controlled point
 /// O is the robot frame's origin.

@@ -6,7 +6,7 @@ use heapless::Vec;
 
 use crate::error::Precondition;
 use crate::geometry::frame::{Point2, Robot, Sensor, Transform2};
-use crate::geometry::units::{Meters, Radians};
+use crate::perception::scan::Scan;
 
 /// Largest coordinate magnitude, in metres, that the edge detector accepts
 /// for a point (EDGE-SCAN). It keeps every squared distance of the chain far
@@ -16,63 +16,6 @@ pub const MAX_COORDINATE: f64 = 1.0e6;
 /// How many rays are converted with the rotation recurrence before the ray
 /// direction is recomputed from `sin`/`cos` (bounds the rounding drift).
 const REANCHOR_EVERY: u32 = 32;
-
-/// The valid interval `[min, max]` of a LiDAR's ranges, in metres.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RangeLimits {
-    min: f64,
-    max: f64,
-}
-
-impl RangeLimits {
-    /// Ranges in `[min, max]` metres are valid.
-    ///
-    /// Errors with `EDGE-SCAN` unless `0 ≤ min < max ≤ MAX_COORDINATE`.
-    pub fn new(min: Meters, max: Meters) -> Result<Self, Precondition> {
-        let (min, max) = (min.get(), max.get());
-        if min >= 0.0 && min < max && max <= MAX_COORDINATE {
-            Ok(Self { min, max })
-        } else {
-            Err(Precondition::new(
-                "EDGE-SCAN",
-                "range limits must satisfy 0 <= min < max <= 1e6 m",
-            ))
-        }
-    }
-
-    /// The smallest valid range, metres.
-    #[must_use]
-    pub const fn min(&self) -> f64 {
-        self.min
-    }
-
-    /// The largest valid range, metres.
-    #[must_use]
-    pub const fn max(&self) -> f64 {
-        self.max
-    }
-
-    /// Whether `range` is a valid measurement: finite and within `[min, max]`.
-    #[must_use]
-    pub fn accepts(&self, range: f64) -> bool {
-        range.is_finite() && range >= self.min && range <= self.max
-    }
-}
-
-/// One horizontal scan as a LiDAR delivers it: ray `k` (from 0) points at
-/// `start + k · increment` radians in the sensor frame and measured
-/// `ranges[k]` metres.
-#[derive(Debug, Clone, Copy)]
-pub struct Scan<'a> {
-    /// Direction of the first ray in the sensor frame, counter-clockwise from its x axis.
-    pub start: Radians,
-    /// Signed angle between consecutive rays.
-    pub increment: Radians,
-    /// The measured ranges, metres; any value (NaN, infinities, out of limits) is allowed.
-    pub ranges: &'a [f64],
-    /// The valid interval of the ranges.
-    pub limits: RangeLimits,
-}
 
 /// The valid points of a scan in the robot frame, in ray order, with the
 /// number of rays that were dropped.
@@ -104,7 +47,8 @@ impl<const N: usize> ScanPoints<N> {
         self.points.as_slice()
     }
 
-    /// How many rays had an invalid range (NaN, infinite, or outside the limits).
+    /// How many rays had an invalid range (NaN, infinite, or outside the
+    /// scan's [`RangeLimits`](crate::perception::RangeLimits)).
     #[must_use]
     pub const fn dropped(&self) -> usize {
         self.dropped
@@ -139,7 +83,7 @@ pub fn scan_to_points<const N: usize>(
 //# of the sensor frame, with `φ_k = start + k · increment`, and then into
 //# the robot frame through the LiDAR's mount pose.
 //= spec/pierre2022.md#edge-scan-scan-to-robot-frame-points
-//# A range that is NaN, infinite, or outside the sensor's `[min, max]`
+//# A range that is NaN, infinite, or outside the sensor's `[min, max)`
 //# interval MUST be dropped.
 pub fn scan_into<const N: usize>(
     scan: &Scan<'_>,
@@ -207,6 +151,8 @@ pub(crate) fn check_bounded(points: &[Point2<Robot>]) -> Result<(), Precondition
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::units::{Meters, Radians};
+    use crate::perception::scan::RangeLimits;
     use core::f64::consts::FRAC_PI_2;
 
     fn limits() -> RangeLimits {
@@ -215,11 +161,12 @@ mod tests {
 
     //= spec/pierre2022.md#edge-scan-scan-to-robot-frame-points
     //= type=test
-    //# A range that is NaN, infinite, or outside the sensor's `[min, max]`
+    //# A range that is NaN, infinite, or outside the sensor's `[min, max)`
     //# interval MUST be dropped.
     #[test]
     fn invalid_ranges_are_dropped_and_points_are_mounted() {
-        let ranges = [2.0, f64::NAN, f64::INFINITY, 0.05, 31.0, 1.0];
+        // 30.0 is the limit itself: "no return" for many drivers.
+        let ranges = [2.0, f64::NAN, f64::INFINITY, 0.05, 31.0, 1.0, 30.0];
         let scan = Scan {
             start: Radians::new(0.0).unwrap(),
             increment: Radians::new(FRAC_PI_2).unwrap(),
@@ -229,7 +176,7 @@ mod tests {
         // LiDAR 1.5 m ahead of the rear axle, turned left by 90°.
         let mount = Transform2::<Sensor, Robot>::new(1.5, 0.0, FRAC_PI_2).unwrap();
         let pts = scan_to_points::<8>(&scan, &mount).unwrap();
-        assert_eq!(pts.dropped(), 4);
+        assert_eq!(pts.dropped(), 5);
         let p = pts.as_slice();
         assert_eq!(p.len(), 2);
         // Ray 0: 2 m along the sensor x axis = robot +y.
@@ -250,26 +197,34 @@ mod tests {
         let mount = Transform2::<Sensor, Robot>::new(0.0, 0.0, 0.0).unwrap();
         let err = scan_to_points::<4>(&scan, &mount).unwrap_err();
         assert_eq!(err.requirement, "EDGE-SCAN");
-        assert!(RangeLimits::new(Meters::new(1.0).unwrap(), Meters::new(1.0).unwrap()).is_err());
     }
 
+    //= spec/library.md#lib-scan-one-planar-lidar-scan
+    //= type=test
+    //# Ray k of a scan (k from 0) MUST be read at the angle start + k · increment
+    //# of the scan plane, counter-clockwise from the sensor's x axis, with the
+    //# increment signed as the sensor delivers it.
     #[test]
     fn recurrence_matches_direct_trigonometry() {
         let ranges = [3.0; 1000];
-        let scan = Scan {
-            start: Radians::new(-3.0).unwrap(),
-            increment: Radians::new(0.00614).unwrap(),
-            ranges: &ranges,
-            limits: limits(),
-        };
-        let mount = Transform2::<Sensor, Robot>::new(0.0, 0.0, 0.0).unwrap();
-        let pts = scan_to_points::<1000>(&scan, &mount).unwrap();
-        let mut k = 0.0;
-        for p in pts.as_slice() {
-            let a = -3.0 + k * 0.00614;
-            assert!((p.x() - 3.0 * libm::cos(a)).abs() < 1e-12);
-            assert!((p.y() - 3.0 * libm::sin(a)).abs() < 1e-12);
-            k += 1.0;
+        // Counter-clockwise and clockwise (a LiDAR mounted upside down).
+        for (start, increment) in [(-3.0, 0.00614), (3.0, -0.00614)] {
+            let scan = Scan {
+                start: Radians::new(start).unwrap(),
+                increment: Radians::new(increment).unwrap(),
+                ranges: &ranges,
+                limits: limits(),
+            };
+            let mount = Transform2::<Sensor, Robot>::new(0.0, 0.0, 0.0).unwrap();
+            let pts = scan_to_points::<1000>(&scan, &mount).unwrap();
+            assert_eq!(pts.as_slice().len(), 1000);
+            let mut k = 0.0;
+            for p in pts.as_slice() {
+                let a = start + k * increment;
+                assert!((p.x() - 3.0 * libm::cos(a)).abs() < 1e-12);
+                assert!((p.y() - 3.0 * libm::sin(a)).abs() < 1e-12);
+                k += 1.0;
+            }
         }
     }
 }

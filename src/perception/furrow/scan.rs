@@ -5,6 +5,7 @@
 use crate::error::Precondition;
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::{Meters, Radians};
+use crate::perception::scan::Scan;
 
 /// Where an inclined LiDAR sits on the robot (FUR-SCAN).
 ///
@@ -97,66 +98,34 @@ impl MountPose {
     }
 }
 
-/// One 2D LiDAR scan: ranges in metres, ray `j` at in-plane angle
-/// `angle_min + j · angle_increment` (counter-clockwise, so left is positive).
-#[derive(Debug, Clone, Copy)]
-pub struct Scan<'a> {
-    /// Measured ranges, m; any value may be NaN, infinite or out of range.
-    pub ranges: &'a [f64],
-    /// Angle of ray 0 in the scan plane, rad.
-    pub angle_min: Radians,
-    /// Angle between consecutive rays, rad; must be > 0.
-    pub angle_increment: Radians,
-}
-
-/// Which rays of a scan the furrow detector looks at, and which ranges it trusts (FUR-SCAN).
+/// Which rays of a scan the furrow detector looks at: those within a
+/// half-angle of the forward axis (FUR-SCAN). Which ranges are trusted is the
+/// sensor's business: the scan's [`RangeLimits`](crate::perception::RangeLimits).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScanWindow {
     half_angle: Radians,
-    range_min: Meters,
-    range_max: Meters,
 }
 
 impl ScanWindow {
-    /// Rays with `|angle| ≤ half_angle`, ranges in `[range_min, range_max)`.
+    /// Rays with `|angle| ≤ half_angle`.
     ///
-    /// Errors with `FUR-SCAN` unless `0 < half_angle < π/2` and
-    /// `0 ≤ range_min < range_max`.
-    pub fn new(
-        half_angle: Radians,
-        range_min: Meters,
-        range_max: Meters,
-    ) -> Result<Self, Precondition> {
+    /// Errors with `FUR-SCAN` unless `0 < half_angle < π/2`.
+    pub fn new(half_angle: Radians) -> Result<Self, Precondition> {
         let h = half_angle.get();
-        if !(h > 0.0 && h < core::f64::consts::FRAC_PI_2) {
-            return Err(Precondition::new(
+        if h > 0.0 && h < core::f64::consts::FRAC_PI_2 {
+            Ok(Self { half_angle })
+        } else {
+            Err(Precondition::new(
                 "FUR-SCAN",
                 "window half angle must lie in (0, pi/2)",
-            ));
+            ))
         }
-        if !(range_min.get() >= 0.0 && range_min.get() < range_max.get()) {
-            return Err(Precondition::new(
-                "FUR-SCAN",
-                "ranges must satisfy 0 <= range_min < range_max",
-            ));
-        }
-        Ok(Self {
-            half_angle,
-            range_min,
-            range_max,
-        })
     }
 
     /// Half the angular width of the window, rad.
     #[must_use]
     pub const fn half_angle(&self) -> Radians {
         self.half_angle
-    }
-
-    /// Whether a measured range is trusted: finite and in `[range_min, range_max)`.
-    #[must_use]
-    pub fn accepts(&self, range: f64) -> bool {
-        range.is_finite() && range >= self.range_min.get() && range < self.range_max.get()
     }
 }
 
@@ -184,11 +153,13 @@ pub struct WindowRays {
 /// `mount`, writing one entry per window ray to `out` in scan order (Pierre
 /// 2022, section 2.3, first step).
 ///
-/// A ray whose range is not trusted ([`ScanWindow::accepts`]) keeps its place
+/// A ray whose range the sensor's limits do not accept
+/// ([`RangeLimits::accepts`](crate::perception::RangeLimits::accepts)) keeps its place
 /// as `None`: window ray `i` is always scan ray `first + i`, so ray indices,
 /// and the correlation shifts built on them, stay those of the sensor.
 ///
-/// Errors with `FUR-SCAN` when the angles are not usable (`angle_increment ≤ 0`)
+/// Errors with `FUR-SCAN` when the angles do not grow with the ray index
+/// (`increment ≤ 0`)
 /// or when the window holds more rays than `out` can take.
 //= spec/pierre2022.md#fur-scan-scan-to-robot-frame-points-in-an-angular-window
 //# Each ray of the scan whose in-plane angle a satisfies |a| ≤ a_w MUST be
@@ -196,8 +167,8 @@ pub struct WindowRays {
 //# y = y_m + r sin a, z = h_m − r cos a sin p, where (x_m, y_m, h_m) is the
 //# mount position and p its pitch (positive down).
 //= spec/pierre2022.md#fur-scan-scan-to-robot-frame-points-in-an-angular-window
-//# A ray whose range is not finite or lies outside [r_min, r_max) MUST be
-//# dropped while keeping its index, so that window ray i is scan ray
+//# A ray whose range is not finite or lies outside the sensor's [min, max)
+//# MUST be dropped while keeping its index, so that window ray i is scan ray
 //# first + i.
 pub fn scan_to_points(
     scan: &Scan<'_>,
@@ -205,7 +176,7 @@ pub fn scan_to_points(
     window: &ScanWindow,
     out: &mut [Option<ScanPoint>],
 ) -> Result<WindowRays, Precondition> {
-    let increment = scan.angle_increment.get();
+    let increment = scan.increment.get();
     if increment <= 0.0 {
         return Err(Precondition::new(
             "FUR-SCAN",
@@ -222,7 +193,7 @@ pub fn scan_to_points(
     let (mut cos_a, mut sin_a) = (1.0, 0.0);
     let mut k = 0.0_f64;
     for (j, &range) in scan.ranges.iter().enumerate() {
-        let angle = scan.angle_min.get() + k * increment;
+        let angle = scan.start.get() + k * increment;
         k += 1.0;
         if angle > half {
             break;
@@ -243,7 +214,7 @@ pub fn scan_to_points(
             "FUR-SCAN",
             "the window holds more rays than the detector's capacity",
         ))?;
-        *slot = if window.accepts(range) {
+        *slot = if scan.limits.accepts(range) {
             mount.point(range, cos_a, sin_a)
         } else {
             None
@@ -259,6 +230,7 @@ pub fn scan_to_points(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::perception::scan::RangeLimits;
 
     fn m(v: f64) -> Meters {
         Meters::new(v).unwrap()
@@ -270,13 +242,14 @@ mod tests {
     #[test]
     fn ground_ray_lands_at_zero_height() {
         let mount = MountPose::new(m(1.5), m(0.2), m(1.0), rad(0.4)).unwrap();
-        let window = ScanWindow::new(rad(0.3), m(0.0), m(30.0)).unwrap();
+        let window = ScanWindow::new(rad(0.3)).unwrap();
         let r = mount.ground_range(rad(0.0)).unwrap();
         let ranges = [r];
         let scan = Scan {
+            start: rad(0.0),
+            increment: rad(0.01),
             ranges: &ranges,
-            angle_min: rad(0.0),
-            angle_increment: rad(0.01),
+            limits: RangeLimits::new(m(0.0), m(30.0)).unwrap(),
         };
         let mut out = [None; 4];
         let w = scan_to_points(&scan, &mount, &window, &mut out).unwrap();
@@ -292,7 +265,8 @@ mod tests {
         assert!(MountPose::new(m(0.0), m(0.0), m(0.0), rad(0.3)).is_err());
         assert!(MountPose::new(m(0.0), m(0.0), m(1.0), rad(0.0)).is_err());
         assert!(MountPose::new(m(0.0), m(0.0), m(1.0), rad(1.6)).is_err());
-        assert!(ScanWindow::new(rad(0.0), m(0.0), m(1.0)).is_err());
-        assert!(ScanWindow::new(rad(0.2), m(2.0), m(1.0)).is_err());
+        assert!(ScanWindow::new(rad(0.0)).is_err());
+        assert!(ScanWindow::new(rad(1.6)).is_err());
+        assert!(ScanWindow::new(rad(0.2)).is_ok());
     }
 }
