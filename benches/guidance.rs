@@ -42,7 +42,10 @@ fn guidance(c: &mut Criterion) {
     let params = GuidanceParams {
         edge: Some(EdgeFollowingParams::pierre2022(Side::Left, common::hedge_mount()).unwrap()),
         plan: Some(PlanCheck {
+            // Checked at the robot and 2 m ahead (SW-PLAN-AHEAD), as in exp2-acre.
             tolerance: PlanTolerance::new(Meters::new(0.5).unwrap(), Radians::new(0.3).unwrap())
+                .unwrap()
+                .with_lookahead(Meters::new(2.0).unwrap())
                 .unwrap(),
             delay: Seconds::new(1.0).unwrap(),
         }),
