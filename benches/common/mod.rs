@@ -17,6 +17,11 @@ use fieldguide::perception::furrow::FurrowParams;
 use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::{Meters, Radians, Robot, Sensor, Transform2};
 
+// The furrow tests' exact ray caster over straight rows of square plants.
+#[path = "../../tests/furrow_common/mod.rs"]
+mod furrow_common;
+use furrow_common::{ridge_scan, Lidar, Ridge, SPACING};
+
 /// The horizontal LiDAR's mount: 1.2 m ahead of the rear axle, facing forward.
 pub const HEDGE_MOUNT_X: f64 = 1.2;
 
@@ -28,7 +33,7 @@ pub const ROWS_FOV: f64 = FRAC_PI_2;
 
 /// Distance between consecutive plants of a row, m: the rows world repeats
 /// itself every `PLANT_SPACING` along x.
-pub const PLANT_SPACING: f64 = 0.2;
+pub const PLANT_SPACING: f64 = SPACING;
 
 /// The horizontal LiDAR's mount pose (sensor → robot).
 pub fn hedge_mount() -> Transform2<Sensor, Robot> {
@@ -90,63 +95,38 @@ pub fn hedge_scan(ranges: &[f64]) -> Scan<'_> {
     }
 }
 
-/// The interval of r where `lo ≤ a + b r ≤ hi`.
-fn slab(a: f64, b: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
-    if b.abs() < 1e-15 {
-        (a >= lo && a <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY))
-    } else {
-        let (u, v) = ((lo - a) / b, (hi - a) / b);
-        Some((u.min(v), u.max(v)))
-    }
-}
-
-/// Angle between the inclined scan's rays, rad: both edges of the view included.
-fn rows_increment() -> f64 {
-    ROWS_FOV / (RAYS as f64 - 1.0)
+/// The inclined LiDAR's rays: both edges of the view included.
+fn rows_lidar() -> Lidar {
+    Lidar::centred(RAYS, ROWS_FOV)
 }
 
 /// Inclined ranges from a robot at the origin, seen from the mount of
 /// `params`: flat ground and plants 0.16 m square, 0.3 m tall, every
-/// [`PLANT_SPACING`] in two rows at y = ±0.375 m, with a few millimetres of
-/// deterministic noise.
+/// [`PLANT_SPACING`] in two rows at y = ±0.375 m (the tests' exact ray
+/// caster), with a few millimetres of deterministic noise.
 pub fn rows_ranges(params: &FurrowParams) -> Vec<f64> {
-    let (xm, h, p) = (
-        params.mount_x.get(),
-        params.mount_height.get(),
-        params.mount_pitch.get(),
-    );
-    (0..RAYS)
-        .map(|j| {
-            let a = -ROWS_FOV / 2.0 + j as f64 * rows_increment();
-            let (dx, dy, c) = (a.cos() * p.cos(), a.sin(), a.cos() * p.sin());
-            let mut best = h / c;
-            for row in [-0.375, 0.375] {
-                let Some((y0, y1)) = slab(0.0, dy, row - 0.08, row + 0.08) else {
-                    continue;
-                };
-                let rz = (h - 0.3) / c;
-                let mut k = 0;
-                while (k as f64) * PLANT_SPACING <= xm + dx * best + 0.1 {
-                    let cx = k as f64 * PLANT_SPACING;
-                    if let Some((x0, x1)) = slab(xm, dx, cx - 0.08, cx + 0.08) {
-                        let entry = y0.max(x0).max(rz).max(0.0);
-                        if entry <= y1.min(x1) && entry < best {
-                            best = entry;
-                        }
-                    }
-                    k += 1;
-                }
-            }
-            best + 0.005 * ((j as f64) * 12.9898).sin()
-        })
-        .collect()
+    let row = |center_y| Ridge {
+        center_y,
+        half_width: 0.08,
+        height: 0.3,
+    };
+    ridge_scan(
+        params,
+        &rows_lidar(),
+        (0.0, 0.0, 0.0),
+        &[row(-0.375), row(0.375)],
+    )
+    .into_iter()
+    .enumerate()
+    .map(|(j, r)| r + 0.005 * ((j as f64) * 12.9898).sin())
+    .collect()
 }
 
 /// The inclined scan over `ranges` (from [`rows_ranges`]), 0.1-20 m.
 pub fn rows_scan(ranges: &[f64]) -> Scan<'_> {
     Scan {
         start: Radians::new(-ROWS_FOV / 2.0).unwrap(),
-        increment: Radians::new(rows_increment()).unwrap(),
+        increment: Radians::new(rows_lidar().increment).unwrap(),
         ranges,
         limits: RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(20.0).unwrap()).unwrap(),
     }
