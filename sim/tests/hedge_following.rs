@@ -304,61 +304,15 @@ fn no_command_comes_from_a_stale_chain_or_a_rejected_verdict() {
         let period = setup.control.period_s * setup.horizontal_lidar.unwrap().scan_every as f64;
         let out = run(&setup, &mut rng);
         // Before the LiDAR sees the hedge: no chain, Absent, path tracking.
-        let first = out.trace[0].command.detector.unwrap();
-        assert!(first.scanned && first.verdict == Verdict::Absent);
-        let mut verdicts = [0_usize; 4];
-        let mut enters = 0_usize;
-        for r in &out.trace {
-            let d = r.command.detector.unwrap();
-            // Every tick carries the latest scan's verdict, never an older one.
-            assert!(
-                d.age_s >= 0.0 && d.age_s < period - 1e-9,
-                "t = {}: age {}",
-                r.t_s,
-                d.age_s
-            );
-            if d.scanned {
-                verdicts[Verdict::ALL.iter().position(|v| *v == d.verdict).unwrap()] += 1;
-            }
-            if r.mode() != Mode::PathTracking {
-                enters = 0;
-            }
-            match r.mode() {
-                Mode::EdgeFollowing => {
-                    assert!(
-                        d.verdict.estimate_is_valid(),
-                        "t = {}: {:?}",
-                        r.t_s,
-                        d.verdict
-                    );
-                    // The law's error is the chain's, moved by odometry between scans.
-                    let used = r.command.estimated_error.unwrap();
-                    if d.scanned {
-                        let own = d.error.unwrap();
-                        assert!((used.y.get() - own.y.get()).abs() < 1e-9);
-                        assert!(
-                            (used.angular_deviation.get() - own.angular_deviation.get()).abs()
-                                < 1e-9
-                        );
-                    }
-                    assert!(used.curvature.get().abs() < 1e-15, "a straight line");
-                    assert!((r.command.speed.get() - 0.4).abs() < 1e-12);
-                }
-                Mode::PathTracking => {
-                    // Path tracking steers while the switching machine counts
-                    // Enter verdicts: at most the transit delay's ticks in a row
-                    // (SW-DELAYS, 40 ticks at 100 Hz).
-                    enters = if d.verdict == Verdict::Enter {
-                        enters + 1
-                    } else {
-                        0
-                    };
-                    assert!(enters <= 40, "t = {}: {enters} Enter ticks", r.t_s);
-                    assert!((r.command.speed.get() - 0.8).abs() < 1e-12);
-                }
-                Mode::Stop | Mode::FurrowPursuing => panic!("no furrow here"),
-            }
-        }
+        // Table 1: 0.4 s (40 ticks) to enter, 0.4 m/s, path tracking 0.8 m/s.
+        let edge = common::Behaviour {
+            mode: Mode::EdgeFollowing,
+            enter_ticks: 40,
+            speed: 0.4,
+            path_speed: 0.8,
+        };
+        let verdicts =
+            common::assert_commands_from_fresh_valid_estimates(&out.trace, period, &edge);
         eprintln!("seed {seed}: verdicts [enter, hold, exit, absent] {verdicts:?}");
         assert!(verdicts[0] > 700 && verdicts[2] > 20 && verdicts[3] > 20);
     }

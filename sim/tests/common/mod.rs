@@ -2,7 +2,7 @@
 #![allow(dead_code, clippy::unwrap_used, clippy::indexing_slicing)]
 
 use fieldguide::geometry::path::PathConfig;
-use fieldguide::{Meters, Point2, World};
+use fieldguide::{Meters, Point2, Verdict, World};
 use fieldguide_sim::guidance::Mode;
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, TickRecord};
@@ -68,4 +68,89 @@ pub fn settled_in(trace: &[TickRecord], mode: Mode, settled_m: f64) -> Vec<&Tick
         }
     }
     settled
+}
+
+/// How one specialised behaviour runs in a closed-loop scenario: its mode,
+/// how many consecutive Enter ticks its entry takes, and the desired speeds
+/// of it and of path tracking, m/s.
+pub struct Behaviour {
+    pub mode: Mode,
+    pub enter_ticks: usize,
+    pub speed: f64,
+    pub path_speed: f64,
+}
+
+/// Checks that no command of `trace` comes from a stale or invalid estimate,
+/// and returns the count of each verdict over the scans ([enter, hold, exit,
+/// absent]): every tick carries its latest scan's verdict (younger than
+/// `scan_period` seconds); the behaviour steers only with Enter or Hold, on
+/// the detector's own error in a scan tick, a straight line, at its speed;
+/// path tracking steers at its speed while at most `enter_ticks` Enter
+/// verdicts run; no other mode appears.
+pub fn assert_commands_from_fresh_valid_estimates(
+    trace: &[TickRecord],
+    scan_period: f64,
+    behaviour: &Behaviour,
+) -> [usize; 4] {
+    let first = trace[0].command.detector.unwrap();
+    assert!(first.scanned && first.verdict == Verdict::Absent);
+    let mut verdicts = [0_usize; 4];
+    let mut enters = 0_usize;
+    for r in trace {
+        let d = r.command.detector.unwrap();
+        assert!(
+            d.age_s >= 0.0 && d.age_s < scan_period - 1e-9,
+            "t = {}: age {}",
+            r.t_s,
+            d.age_s
+        );
+        if d.scanned {
+            verdicts[Verdict::ALL.iter().position(|v| *v == d.verdict).unwrap()] += 1;
+        }
+        let speed = r.command.speed.get();
+        if r.mode() == behaviour.mode {
+            enters = 0;
+            assert!(
+                d.verdict.estimate_is_valid(),
+                "t = {}: {:?}",
+                r.t_s,
+                d.verdict
+            );
+            // The law's error is the detector's, moved by odometry between scans.
+            let used = r.command.estimated_error.unwrap();
+            if d.scanned {
+                let own = d.error.unwrap();
+                assert!((used.y.get() - own.y.get()).abs() < 1e-9);
+                assert!((used.angular_deviation.get() - own.angular_deviation.get()).abs() < 1e-9);
+            }
+            assert!(used.curvature.get().abs() < 1e-15, "a straight line");
+            assert!((speed - behaviour.speed).abs() < 1e-12, "t = {}", r.t_s);
+        } else if r.mode() == Mode::PathTracking {
+            // Path tracking steers while the machine counts Enter verdicts:
+            // at most the transit delay's ticks in a row (SW-DELAYS).
+            enters = if d.verdict == Verdict::Enter {
+                enters + 1
+            } else {
+                0
+            };
+            assert!(
+                enters <= behaviour.enter_ticks,
+                "t = {}: {enters} Enter ticks",
+                r.t_s
+            );
+            assert!(
+                (speed - behaviour.path_speed).abs() < 1e-12,
+                "t = {}",
+                r.t_s
+            );
+        } else {
+            panic!(
+                "t = {}: {:?} in a run of {:?}",
+                r.t_s,
+                r.mode(),
+                behaviour.mode
+            );
+        }
+    }
+    verdicts
 }
