@@ -97,6 +97,32 @@ where
     })
 }
 
+/// The moments of `points`, checked for a fit of `needed` coefficients
+/// (`few`: the message when there are fewer points), and the points centred
+/// and scaled, (u, v) = ((x − x̄)/h, y − ȳ) with u ∈ [−1, 1], which keeps both
+/// fits well conditioned far from the origin.
+fn centred<F, I, P>(
+    points: I,
+    needed: f64,
+    few: &'static str,
+) -> Result<(Moments, impl Iterator<Item = (f64, f64)>), Precondition>
+where
+    F: Frame,
+    I: IntoIterator<Item = P>,
+    I::IntoIter: Clone,
+    P: Borrow<Point2<F>>,
+{
+    let points = points.into_iter();
+    let m = moments(points.clone())?;
+    check_spread(&m, needed, few)?;
+    let (mean_x, mean_y, h) = (m.mean_x, m.mean_y, m.half_spread);
+    let centred = points.map(move |p| {
+        let p = *p.borrow();
+        ((p.x() - mean_x) / h, p.y() - mean_y)
+    });
+    Ok((m, centred))
+}
+
 /// Checks the point count and the x spread shared by both fits.
 //= spec/geometry.md#fit-degenerate-degenerate-point-sets
 //# A fit MUST return the `FIT-DEGENERATE` error when it is given fewer points
@@ -132,16 +158,11 @@ where
     I::IntoIter: Clone,
     P: Borrow<Point2<F>>,
 {
-    let points = points.into_iter();
-    let m = moments(points.clone())?;
-    check_spread(&m, 2.0, "a line fit needs at least 2 points")?;
+    let (m, centred) = centred(points, 2.0, "a line fit needs at least 2 points")?;
     let h = m.half_spread;
-    // Centred and scaled: u = (x − x̄)/h ∈ [−1, 1], v = y − ȳ; v = α u.
+    // v = α u.
     let (mut suu, mut suv) = (0.0_f64, 0.0_f64);
-    for p in points {
-        let p = *p.borrow();
-        let u = (p.x() - m.mean_x) / h;
-        let v = p.y() - m.mean_y;
+    for (u, v) in centred {
         suu += u * u;
         suv += u * v;
     }
@@ -180,17 +201,12 @@ where
     I::IntoIter: Clone,
     P: Borrow<Point2<F>>,
 {
-    let points = points.into_iter();
-    let m = moments(points.clone())?;
-    check_spread(&m, 3.0, "a parabola fit needs at least 3 points")?;
+    let (m, centred) = centred(points, 3.0, "a parabola fit needs at least 3 points")?;
     let h = m.half_spread;
-    // Basis (u², u, 1) with u = (x − x̄)/h ∈ [−1, 1] and v = y − ȳ.
+    // Basis (u², u, 1).
     let mut normal = Matrix3::<f64>::zeros();
     let mut rhs = Vector3::<f64>::zeros();
-    for p in points {
-        let p = *p.borrow();
-        let u = (p.x() - m.mean_x) / h;
-        let v = p.y() - m.mean_y;
+    for (u, v) in centred {
         let row = Vector3::new(u * u, u, 1.0);
         normal.ger(1.0, &row, &row, 1.0);
         rhs.axpy(v, &row, 1.0);
