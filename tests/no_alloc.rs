@@ -144,17 +144,13 @@ fn path_tracking_tick_does_not_allocate() {
     );
 }
 
-/// The detectors and the switching machine, one tick after another, on a
-/// wall 1.5 m to the left (horizontal scan) and a ridged field (inclined scan).
-//= spec/library.md#lib-no-alloc-no-allocation
-//= type=test
-//# The core MUST be `no_std` and MUST NOT allocate on the heap: buffers have a
-//# fixed capacity, and a full buffer is a returned value, not a panic.
-#[test]
-fn detectors_and_switching_do_not_allocate() {
-    // Horizontal scan: 360 rays over a full turn, a wall along y = 1.5 m.
+/// The two synthetic scans of the allocation tests, built before counting:
+/// horizontal, 360 rays over a full turn with a wall along y = 1.5 m;
+/// inclined, 360 rays over ±0.6 rad with bumps every 40 rays. Returns
+/// (horizontal increment, horizontal ranges, inclined increment, inclined ranges).
+fn scans() -> (f64, Vec<f64>, f64, Vec<f64>) {
     let step = 2.0 * std::f64::consts::PI / 360.0;
-    let wall: Vec<f64> = (0..360)
+    let wall = (0..360)
         .map(|k| {
             let angle = -std::f64::consts::PI + step * f64::from(k);
             if angle.sin() > 0.05 {
@@ -164,11 +160,21 @@ fn detectors_and_switching_do_not_allocate() {
             }
         })
         .collect();
-    // Inclined scan: 360 rays over ±0.6 rad, bumps every 20 rays.
-    let furrow_step = 1.2 / 360.0;
-    let ridges: Vec<f64> = (0..360)
+    let ridges = (0..360)
         .map(|k| if (k / 8) % 5 == 0 { 2.4 } else { 2.7 })
         .collect();
+    (step, wall, 1.2 / 360.0, ridges)
+}
+
+/// The detectors and the switching machine, one tick after another, on a
+/// wall 1.5 m to the left (horizontal scan) and a ridged field (inclined scan).
+//= spec/library.md#lib-no-alloc-no-allocation
+//= type=test
+//# The core MUST be `no_std` and MUST NOT allocate on the heap: buffers have a
+//# fixed capacity, and a full buffer is a returned value, not a panic.
+#[test]
+fn detectors_and_switching_do_not_allocate() {
+    let (step, wall, furrow_step, ridges) = scans();
     let mut edge = EdgeDetector::<512, 128>::new(
         EdgeConfig::pierre2022().unwrap(),
         Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
@@ -250,21 +256,7 @@ fn detectors_and_switching_do_not_allocate() {
 //# ticks.
 #[test]
 fn guidance_pipeline_does_not_allocate() {
-    let step = 2.0 * std::f64::consts::PI / 360.0;
-    let wall: Vec<f64> = (0..360)
-        .map(|k| {
-            let angle = -std::f64::consts::PI + step * f64::from(k);
-            if angle.sin() > 0.05 {
-                1.5 / angle.sin()
-            } else {
-                f64::NAN
-            }
-        })
-        .collect();
-    let furrow_step = 1.2 / 360.0;
-    let ridges: Vec<f64> = (0..360)
-        .map(|k| if (k / 8) % 5 == 0 { 2.4 } else { 2.7 })
-        .collect();
+    let (step, wall, furrow_step, ridges) = scans();
     let waypoints: Vec<Point2<World>> = (0..200)
         .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
         .collect();
