@@ -20,9 +20,14 @@ fn builtin_text() -> String {
 
 /// The error of the built-in text changed by `edit`.
 fn error_of(edit: impl Fn(String) -> String) -> ScenarioError {
+    edited_error_of(builtin_text(), edit)
+}
+
+/// The error of `text` changed by `edit`, as the file `edited.toml`.
+fn edited_error_of(text: String, edit: impl Fn(String) -> String) -> ScenarioError {
     let source = Source {
         origin: "edited.toml".to_owned(),
-        text: edit(builtin_text()),
+        text: edit(text),
         base_dir: None,
     };
     source
@@ -297,15 +302,7 @@ fn the_program_lists_and_runs_a_scenario_file_with_a_csv_path() {
 
 /// The error of the built-in `furrow-pursuing` text changed by `edit`.
 fn furrow_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
-    let text = Source::builtin("furrow-pursuing").unwrap().text;
-    let source = Source {
-        origin: "edited.toml".to_owned(),
-        text: edit(text),
-        base_dir: None,
-    };
-    source
-        .setup(&mut SimRng::from_seed(1))
-        .expect_err("the edited scenario must be refused")
+    edited_error_of(Source::builtin("furrow-pursuing").unwrap().text, edit)
 }
 
 #[test]
@@ -580,15 +577,7 @@ fn the_program_writes_the_furrow_figures_and_summary() {
 
 /// The error of the built-in `hedge-following` text changed by `edit`.
 fn hedge_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
-    let text = Source::builtin("hedge-following").unwrap().text;
-    let source = Source {
-        origin: "edited.toml".to_owned(),
-        text: edit(text),
-        base_dir: None,
-    };
-    source
-        .setup(&mut SimRng::from_seed(1))
-        .expect_err("the edited scenario must be refused")
+    edited_error_of(Source::builtin("hedge-following").unwrap().text, edit)
 }
 
 #[test]
