@@ -806,20 +806,8 @@ fn lidar(
     let height = check.open_range("lidar.height_m", l.height_m, 0.0, 10.0)?;
     let pitch = check.open_range("lidar.pitch_deg", l.pitch_deg, 0.0, 90.0)?;
     let fov = check.open_range("lidar.field_of_view_deg", l.field_of_view_deg, 0.0, 360.0)?;
-    if !(2..=10_000).contains(&l.rays) {
-        return Err(check.error(
-            "lidar.rays",
-            &format!("must be within [2, 10000], got {}", l.rays),
-        ));
-    }
-    let range_min = check.range("lidar.range_min_m", l.range_min_m, 0.0, 1000.0)?;
-    let range_max = check.range("lidar.range_max_m", l.range_max_m, 0.0, 1000.0)?;
-    check.above(
-        "lidar.range_max_m",
-        range_max,
-        "lidar.range_min_m",
-        range_min,
-    )?;
+    let (rays, range_min, range_max) =
+        rays_and_ranges(check, "lidar", l.rays, l.range_min_m, l.range_max_m)?;
     let scan_every = scan_every(check, "lidar.rate_hz", l.rate_hz, period_s)?;
     Ok(LidarSetup {
         lidar: InclinedLidar {
@@ -828,7 +816,7 @@ fn lidar(
             height,
             pitch: pitch.to_radians(),
             field_of_view: fov.to_radians(),
-            rays: usize::try_from(l.rays).unwrap_or(2),
+            rays,
             range_min,
             range_max,
             range_noise: check.range("lidar.range_noise_m", l.range_noise_m, 0.0, 1.0)?,
@@ -945,19 +933,12 @@ fn horizontal_lidar(
             &format!("must be within (0, 360], got {fov}"),
         ));
     }
-    if !(2..=10_000).contains(&l.rays) {
-        return Err(check.error(
-            "horizontal_lidar.rays",
-            &format!("must be within [2, 10000], got {}", l.rays),
-        ));
-    }
-    let range_min = check.range("horizontal_lidar.range_min_m", l.range_min_m, 0.0, 1000.0)?;
-    let range_max = check.range("horizontal_lidar.range_max_m", l.range_max_m, 0.0, 1000.0)?;
-    check.above(
-        "horizontal_lidar.range_max_m",
-        range_max,
-        "horizontal_lidar.range_min_m",
-        range_min,
+    let (rays, range_min, range_max) = rays_and_ranges(
+        check,
+        "horizontal_lidar",
+        l.rays,
+        l.range_min_m,
+        l.range_max_m,
     )?;
     let spec = HorizontalLidarSpec {
         mount_xy: [
@@ -973,7 +954,7 @@ fn horizontal_lidar(
             )?
             .to_radians(),
         field_of_view: fov.to_radians(),
-        rays: usize::try_from(l.rays).unwrap_or(2),
+        rays,
         range_min,
         range_max,
         noise_sigma: check.range("horizontal_lidar.range_noise_m", l.range_noise_m, 0.0, 1.0)?,
@@ -1261,4 +1242,30 @@ fn furrow(
 /// value could fail), the error naming `field`.
 fn meters(check: &Checker<'_>, field: &str, value: f64) -> Result<Meters, ScenarioError> {
     Meters::new(value).map_err(|e| check.error(field, &e.to_string()))
+}
+
+/// The ray count and valid range interval shared by both LiDAR sections
+/// (`section` names them in errors): 2 to 10 000 rays, 0 ≤ min < max ≤ 1000 m.
+fn rays_and_ranges(
+    check: &Checker<'_>,
+    section: &str,
+    rays: u32,
+    range_min: f64,
+    range_max: f64,
+) -> Result<(usize, f64, f64), ScenarioError> {
+    let rays = usize::try_from(rays)
+        .ok()
+        .filter(|r| (2..=10_000).contains(r))
+        .ok_or_else(|| {
+            check.error(
+                &format!("{section}.rays"),
+                &format!("must be within [2, 10000], got {rays}"),
+            )
+        })?;
+    let min_field = format!("{section}.range_min_m");
+    let max_field = format!("{section}.range_max_m");
+    let range_min = check.range(&min_field, range_min, 0.0, 1000.0)?;
+    let range_max = check.range(&max_field, range_max, 0.0, 1000.0)?;
+    check.above(&max_field, range_max, &min_field, range_min)?;
+    Ok((rays, range_min, range_max))
 }
