@@ -6,7 +6,8 @@
 use core::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fieldguide::perception::edge::{detect, EdgeConfig, EdgeDetector, Side};
+use fieldguide::perception::edge::{detect, EdgeConfig, EdgeDetector, EdgeDetectorConfig, Side};
+use fieldguide::{Odom, Pose2};
 
 mod common;
 
@@ -28,9 +29,15 @@ fn edge(c: &mut Criterion) {
         fit.quality.residual_std.get()
     );
     // Per tick, as a vehicle stack calls it: buffers owned by the detector.
-    let mut detector = EdgeDetector::<512, 256>::new(config, mount);
+    let mut detector = EdgeDetector::<512, 256>::new(EdgeDetectorConfig {
+        edge: config,
+        mount,
+        side: Side::Left,
+    });
+    // The edge detector does not read the odometry pose.
+    let odom = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
     c.bench_function("edge/detector_360_rays_hedge", |b| {
-        b.iter(|| detector.detect(black_box(&scan), Side::Left))
+        b.iter(|| detector.detect(black_box(&scan), &odom))
     });
     // The same through the free function, which returns the chain by value.
     c.bench_function("edge/detect_fn_360_rays_hedge", |b| {

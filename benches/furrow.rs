@@ -32,12 +32,12 @@ fn furrow(c: &mut Criterion) {
     let mut x = 0.0;
     for _ in 0..30 {
         detector
-            .step(&scan, &Pose2::<Odom>::new(x, 0.0, 0.0).unwrap())
+            .detect(&scan, &Pose2::<Odom>::new(x, 0.0, 0.0).unwrap())
             .unwrap();
         x += SPACING;
     }
     let first = detector
-        .step(&scan, &Pose2::<Odom>::new(x, 0.0, 0.0).unwrap())
+        .detect(&scan, &Pose2::<Odom>::new(x, 0.0, 0.0).unwrap())
         .unwrap();
     assert!(first.verdict.estimate_is_valid(), "{first:?}");
 
@@ -45,7 +45,7 @@ fn furrow(c: &mut Criterion) {
         b.iter(|| {
             x += SPACING;
             let odom = Pose2::<Odom>::new(x, 0.0, 0.0).unwrap();
-            black_box(detector.step(black_box(&scan), &odom).unwrap())
+            black_box(detector.detect(black_box(&scan), &odom).unwrap())
         });
     });
     c.bench_function("furrow/maxima_360_rays", |b| {

@@ -19,12 +19,12 @@ use core::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
-use fieldguide::guidance::{
-    ActiveMode, EdgeFollowingParams, Guidance, GuidanceConfig, GuidanceParams, PlanCheck, TickInput,
-};
+use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, RoutedScan, TickInput};
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::Side;
 use fieldguide::perception::furrow::FurrowParams;
+use fieldguide::perception::AnyDetector;
+use fieldguide::presets::{pierre2022_both, Pierre2022, EDGE, FURROW};
 use fieldguide::supervisor::switching::PlanTolerance;
 use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Seconds, World};
 
@@ -39,29 +39,36 @@ fn guidance(c: &mut Criterion) {
         .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
         .collect();
     let path = ReferencePath::<512>::from_waypoints(&waypoints, PathConfig::default()).unwrap();
-    let params = GuidanceParams {
-        edge: Some(EdgeFollowingParams::pierre2022(Side::Left, common::hedge_mount()).unwrap()),
-        plan: Some(PlanCheck {
-            // Checked at the robot and 2 m ahead (SW-PLAN-AHEAD), as in exp2-acre.
-            tolerance: PlanTolerance::new(Meters::new(0.5).unwrap(), Radians::new(0.3).unwrap())
-                .unwrap()
-                .with_lookahead(Meters::new(2.0).unwrap())
-                .unwrap(),
-            delay: Seconds::new(1.0).unwrap(),
-        }),
-        ..GuidanceParams::pierre2022_furrow().unwrap()
-    };
-    let config = GuidanceConfig::new(&params).unwrap();
-    let mut pipeline = Guidance::<512>::new(config, &path).unwrap();
+    // Both behaviours, furrow pursuing first, the plan checked for both.
+    let mut params = pierre2022_both(Side::Left, common::hedge_mount()).unwrap();
+    // Checked at the robot and 2 m ahead (SW-PLAN-AHEAD), as in exp2-acre.
+    let tolerance = PlanTolerance::new(Meters::new(0.5).unwrap(), Radians::new(0.3).unwrap())
+        .unwrap()
+        .with_lookahead(Meters::new(2.0).unwrap())
+        .unwrap();
+    for behaviour in &mut params.behaviours {
+        behaviour.plan = Some(tolerance);
+    }
+    params.plan_delay = Some(Seconds::new(1.0).unwrap());
+    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    let mut pipeline: Pierre2022<'_, 512> = Guidance::new(config, &path).unwrap();
     let mut x = 0.0;
-    let tick = |pipeline: &mut Guidance<'_, 512>, x: f64| {
+    let tick = |pipeline: &mut Pierre2022<'_, 512>, x: f64| {
         pipeline
             .step(&TickInput {
-                horizontal: Some(common::hedge_scan(&horizontal)),
-                inclined: Some(common::rows_scan(&inclined)),
+                scans: &[
+                    RoutedScan {
+                        behaviour: EDGE,
+                        scan: common::hedge_scan(&horizontal),
+                    },
+                    RoutedScan {
+                        behaviour: FURROW,
+                        scan: common::rows_scan(&inclined),
+                    },
+                ],
                 gnss: Some(Pose2::<World>::new(x, 0.02, 0.01).unwrap()),
                 odometry: Pose2::<Odom>::new(x, 0.0, 0.0).unwrap(),
-                sideslip: Sideslip::new(0.01, -0.02).unwrap(),
+                extra: Sideslip::new(0.01, -0.02).unwrap(),
             })
             .unwrap()
     };
@@ -71,17 +78,21 @@ fn guidance(c: &mut Criterion) {
         x += SPACING;
     }
     let out = last.unwrap();
+    let edge = out.behaviour(EDGE).expect("edge following is configured");
+    let furrow = out
+        .behaviour(FURROW)
+        .expect("furrow pursuing is configured");
     eprintln!(
         "after warm-up: mode {:?}, edge {:?} (y {:?}), furrow {:?} (y {:?}), command {:?}",
         out.mode,
-        out.edge.detected,
-        out.edge.error.map(|e| e.y.get()),
-        out.furrow.detected,
-        out.furrow.error.map(|e| e.y.get()),
+        edge.detected,
+        edge.error.map(|e| e.y.get()),
+        furrow.detected,
+        furrow.error.map(|e| e.y.get()),
         out.command
     );
-    assert_eq!(out.mode, ActiveMode::FurrowPursuing);
-    assert!(out.edge.detected.estimate_is_valid());
+    assert_eq!(out.mode, Mode::Behaviour(FURROW));
+    assert!(edge.detected.estimate_is_valid());
     assert!(out.path.localisation_valid);
 
     c.bench_function("guidance/tick_360_horizontal_360_inclined", |b| {

@@ -9,12 +9,9 @@
 use core::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fieldguide::control::backstepping::{
-    steering_command, BacksteppingConfig, Inversion, SteeringLimit,
-};
-use fieldguide::control::Gains;
+use fieldguide::control::backstepping::{steering_command, BacksteppingConfig, Gains, Inversion};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
-use fieldguide::model::bicycle::{Sideslip, Wheelbase};
+use fieldguide::model::bicycle::{Bicycle, Sideslip, SteeringLimit, Wheelbase};
 use fieldguide::{
     Curvature, Meters, MetersPerSecond, Point2, Pose2, Radians, TrackingError, World,
 };
@@ -46,8 +43,12 @@ fn bench_frenet_projection(c: &mut Criterion) {
 fn bench_steering(c: &mut Criterion) {
     let config = BacksteppingConfig {
         gains: Gains::new(-0.7, -1.4, 2.0).unwrap(),
-        wheelbase: Wheelbase::new(2.0).unwrap(),
-        max_steering: SteeringLimit::new(0.6).unwrap(),
+        vehicle: Bicycle::new(
+            Wheelbase::new(2.0).unwrap(),
+            SteeringLimit::new(0.6).unwrap(),
+            None,
+        )
+        .unwrap(),
         inversion: Inversion::Exact,
     };
     let error = TrackingError {

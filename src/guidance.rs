@@ -1,169 +1,124 @@
 //! The per-tick pipeline a vehicle stack calls: sensors in, command out
-//! (DESIGN.md, "One tick"; `spec/guidance.md`, GD-*).
+//! (`spec/guidance.md`, GD-*), for any set of detectors, laws and vehicle.
 //!
-//! Once per control period, [`Guidance::step`] takes a [`TickInput`] (the
-//! scans that arrived in this tick, the GNSS pose if localisation has one,
-//! the odometry pose and the sideslip estimate) and, in this order
-//! (GD-ORDER):
+//! The pipeline holds path tracking, always present, and a list of behaviour
+//! slots ([`BehaviourParams`]): each a detector behind
+//! [`crate::perception::Detector`], a law behind
+//! [`crate::control::ControlLaw`], a desired speed, two transit delays and a
+//! plan tolerance, identified by a [`BehaviourId`] and a label. Once per
+//! control period, [`Guidance::step`] takes a [`TickInput`] (the scans that
+//! arrived in this tick, each routed to its behaviour, the GNSS pose if
+//! localisation has one, the odometry pose and the law's extra input, such as
+//! a sideslip estimate) and, in this order (GD-ORDER):
 //!
-//! 1. runs the edge detector on the horizontal scan and the furrow detector
-//!    on the inclined one; on ticks without a scan, carries the latest
-//!    detection to the current pose through odometry, for at most the maximal
-//!    scan age (GD-SCAN-AGE, GD-ODOMETRY);
+//! 1. runs each behaviour's detector on its scan; on ticks without a scan,
+//!    carries the latest detection to the current pose through odometry, for
+//!    at most the maximal scan age (GD-SCAN-AGE, GD-ODOMETRY);
 //! 2. projects the GNSS pose on the reference path near the last abscissa
 //!    (GD-LOCALISATION);
 //! 3. checks each detected line against the path (GD-PLAN);
-//! 4. runs the backstepping law of every source with a valid estimate: path
-//!    tracking with the sideslip estimate and the curvature c(s + vT), the
-//!    specialised behaviours on a straight line without sideslip
-//!    (GD-PREDICTION); a behaviour whose law refuses its error reports Exit
-//!    (GD-COMMAND);
-//! 5. steps the switching machine with two specialised behaviours in the
-//!    configured priority order (GD-BEHAVIOURS);
+//! 4. runs the law of every source with a valid estimate: path tracking with
+//!    the extra input and the curvature c(s + vT), the behaviours on a
+//!    straight line with the law's neutral input (GD-PREDICTION); a
+//!    behaviour whose law refuses its error reports Exit (GD-COMMAND);
+//! 5. steps the switching machine with the behaviours in priority order
+//!    (GD-BEHAVIOURS);
 //! 6. returns the command of the source the machine selects, at that
-//!    source's desired speed (GD-SPEED), a stop command in Stop (GD-STOP), or
-//!    no command when no source may command in this tick.
+//!    source's desired speed (GD-SPEED), the stop of the last command in Stop
+//!    (GD-STOP), or no command when no source may command in this tick.
 //!
 //! The [`TickOutput`] carries everything a log or a simulator needs: the
-//! command, the mode and the source, each detector's verdict and error, the
-//! path's Frénet error and each law's result. Nothing allocates and no clock
-//! is read (GD-NO-ALLOC); `step` refuses only malformed input (GD-INPUT).
+//! command, the mode and the source, each behaviour's verdict, quality and
+//! error, the path's Frénet error and each law's result. Nothing allocates
+//! and no clock is read (GD-NO-ALLOC); `step` refuses only malformed input
+//! (GD-INPUT). The reference path is borrowed and may be replaced between
+//! ticks ([`Guidance::set_path`], GD-PATH).
 //!
 //! ```
-//! use fieldguide::guidance::{ActiveMode, Guidance, GuidanceConfig, GuidanceParams, TickInput};
+//! use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, TickInput};
 //! use fieldguide::geometry::path::{PathConfig, ReferencePath};
 //! use fieldguide::model::bicycle::Sideslip;
+//! use fieldguide::presets::{pierre2022_furrow, Pierre2022};
 //! use fieldguide::{Odom, Point2, Pose2, World};
 //!
 //! # fn main() -> Result<(), fieldguide::Precondition> {
 //! let waypoints = [Point2::<World>::new(0.0, 0.0)?, Point2::new(50.0, 0.0)?];
 //! let path = ReferencePath::<16>::from_waypoints(&waypoints, PathConfig::default())?;
-//! let config = GuidanceConfig::new(&GuidanceParams::pierre2022_furrow()?)?;
-//! let mut guidance = Guidance::<16>::new(config, &path)?;
+//! let config = GuidanceConfig::new::<fieldguide::perception::AnyDetector>(&pierre2022_furrow()?)?;
+//! let mut guidance: Pierre2022<'_, 16> = Guidance::new(config, &path)?;
 //! let tick = guidance.step(&TickInput {
-//!     horizontal: None,
-//!     inclined: None, // no scan in this tick
+//!     scans: &[], // no scan in this tick
 //!     gnss: Some(Pose2::new(1.0, 0.3, 0.0)?),
 //!     odometry: Pose2::<Odom>::new(1.0, 0.3, 0.0)?,
-//!     sideslip: Sideslip::ZERO,
+//!     extra: Sideslip::ZERO,
 //! })?;
-//! assert_eq!(tick.mode, ActiveMode::PathTracking);
+//! assert_eq!(tick.mode, Mode::PathTracking);
 //! let command = tick.command.ok_or(fieldguide::Precondition::new("GD-COMMAND", "none"))?;
-//! assert!((command.speed.get() - 0.8).abs() < 1e-12); // Table 2: path tracking at 0.8 m/s
-//! assert!(command.steering.get() < 0.0);               // 0.3 m left of the path: steer right
+//! assert!((command.command.speed().get() - 0.8).abs() < 1e-12); // Table 2: 0.8 m/s
+//! let steering = command.command.steering().map_or(0.0, |s| s.get());
+//! assert!(steering < 0.0); // 0.3 m left of the path: steer right
 //! # Ok(())
 //! # }
 //! ```
 
 mod config;
-pub mod odometry;
 
 pub use config::{
-    Behaviour, EdgeFollowingParams, FurrowPursuingParams, GuidanceConfig, GuidanceParams,
-    PathTrackingParams, PlanCheck, Priority,
+    BehaviourId, BehaviourParams, GuidanceConfig, GuidanceParams, PathTrackingParams,
+    MAX_SCAN_AGE_TICKS,
 };
 
-use crate::control::backstepping::{steering_command, BacksteppingConfig, SteeringCommand};
+use heapless::Vec;
+
+use crate::control::ControlLaw;
 use crate::error::Precondition;
+use crate::geometry::carry::pose_in_scan_frame;
 use crate::geometry::frame::{Odom, Pose2, World};
 use crate::geometry::path::{FrenetError, ReferencePath};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{Meters, MetersPerSecond, Radians};
-use crate::model::bicycle::Sideslip;
-use crate::perception::edge::{EdgeDetector, EdgeOutcome};
-use crate::perception::furrow::{FurrowDetection, FurrowDetector};
-use crate::perception::{Scan, Verdict};
+use crate::geometry::units::{Meters, MetersPerSecond};
+use crate::model::{Command, Saturated, Vehicle};
+use crate::perception::{Detection, Detector, HeldLine, Scan, Verdict};
 use crate::supervisor::switching::{
-    line_relative_to_path, CommandSource, Input, LineRelativeToPath, Mode, Output, PathAhead,
-    PlanTolerance, Report, Switching,
+    line_relative_to_path, CommandSource, Input, LineRelativeToPath, Mode as MachineMode, Output,
+    PathAhead, PlanTolerance, Report, Switching,
 };
 
-/// What the sensors and estimators give in one tick.
+/// A scan, and the behaviour whose detector reads it.
 #[derive(Debug, Clone, Copy)]
-pub struct TickInput<'a> {
-    /// The horizontal LiDAR's scan, in the ticks where one arrived; only with
-    /// edge following configured (GD-INPUT).
-    pub horizontal: Option<Scan<'a>>,
-    /// The inclined LiDAR's scan, in the ticks where one arrived; only with
-    /// furrow pursuing configured (GD-INPUT).
-    pub inclined: Option<Scan<'a>>,
+pub struct RoutedScan<'a> {
+    /// The behaviour the scan is for (GD-INPUT: it must be configured).
+    pub behaviour: BehaviourId,
+    /// The scan, in its sensor's frame.
+    pub scan: Scan<'a>,
+}
+
+/// What the sensors and estimators give in one tick; `X` is the law's extra
+/// input ([`ControlLaw::Extra`]).
+#[derive(Debug, Clone, Copy)]
+pub struct TickInput<'a, X> {
+    /// The scans that arrived in this tick, at most one per behaviour.
+    pub scans: &'a [RoutedScan<'a>],
     /// The robot's pose from GNSS-RTK localisation, `World` frame; `None`
     /// when localisation has no valid pose (GD-LOCALISATION).
     pub gnss: Option<Pose2<World>>,
     /// The robot's pose from wheel odometry, `Odom` frame, every tick.
     pub odometry: Pose2<Odom>,
-    /// The observer's sideslip estimate, |β| < π/2 (GD-INPUT); used only by
-    /// path tracking with compensation on (GD-PREDICTION).
-    pub sideslip: Sideslip,
+    /// The law's extra input (backstepping: the observer's sideslip
+    /// estimate, |β| < π/2); used only by path tracking with compensation on
+    /// (GD-PREDICTION).
+    pub extra: X,
 }
 
-/// What the vehicle is asked to do in one tick.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Command {
-    /// Desired forward speed, m/s: the source's (GD-SPEED), 0 in Stop (GD-STOP).
-    pub speed: MetersPerSecond,
-    /// Steering angle δ, rad, positive to the left, within the law's saturation.
-    pub steering: Radians,
-    /// Whether the law's output was clamped to the saturation.
-    pub saturated: bool,
-}
-
-/// The mode after a tick, by name (the switching machine's mode with its
-/// behaviour indices resolved through the priority order).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ActiveMode {
+/// The mode after a tick, or the source of its command, by behaviour id.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Mode {
     /// Path tracking on the planned path.
     PathTracking,
-    /// Edge following.
-    EdgeFollowing,
-    /// Furrow pursuing.
-    FurrowPursuing,
-    /// Standstill (SW-STOP, GD-STOP).
+    /// The behaviour of this id.
+    Behaviour(BehaviourId),
+    /// Standstill (SW-STOP, GD-STOP); never a command's source.
     Stop,
-}
-
-impl ActiveMode {
-    /// A label for logs and traces.
-    #[must_use]
-    pub const fn label(self) -> &'static str {
-        match self {
-            Self::PathTracking => "path_tracking",
-            Self::EdgeFollowing => "edge_following",
-            Self::FurrowPursuing => "furrow_pursuing",
-            Self::Stop => "stop",
-        }
-    }
-}
-
-/// The source of a tick's command, by name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Source {
-    /// Path tracking, with valid localisation.
-    PathTracking,
-    /// Edge following, with a valid estimate.
-    EdgeFollowing,
-    /// Furrow pursuing, with a valid estimate.
-    FurrowPursuing,
-}
-
-impl Behaviour {
-    /// The mode of this behaviour.
-    #[must_use]
-    pub const fn mode(self) -> ActiveMode {
-        match self {
-            Self::EdgeFollowing => ActiveMode::EdgeFollowing,
-            Self::FurrowPursuing => ActiveMode::FurrowPursuing,
-        }
-    }
-
-    /// This behaviour as a command source.
-    #[must_use]
-    pub const fn source(self) -> Source {
-        match self {
-            Self::EdgeFollowing => Source::EdgeFollowing,
-            Self::FurrowPursuing => Source::FurrowPursuing,
-        }
-    }
 }
 
 /// What a control law made of its error in one tick.
@@ -171,8 +126,8 @@ impl Behaviour {
 pub enum LawOutcome {
     /// The law was not run: no valid estimate (or no projection).
     NotRun,
-    /// The law's command (saturated).
-    Steer(SteeringCommand),
+    /// The law's command, within the vehicle's limits.
+    Commanded(Saturated),
     /// The law refused the error (PT-HEADING, PT-DENOM, ...): the source
     /// could not command in this tick (GD-COMMAND, GD-LOCALISATION).
     Refused(Precondition),
@@ -181,29 +136,36 @@ pub enum LawOutcome {
 impl LawOutcome {
     /// The law's command, when it gave one.
     #[must_use]
-    pub const fn command(&self) -> Option<&SteeringCommand> {
+    pub const fn command(&self) -> Option<&Saturated> {
         match self {
-            Self::Steer(command) => Some(command),
+            Self::Commanded(command) => Some(command),
             Self::NotRun | Self::Refused(_) => None,
         }
     }
 
-    fn run(
-        law: &BacksteppingConfig,
+    /// The law's outcome on `error`; a command the vehicle refuses (another
+    /// actuation, beyond a limit: a law built for other limits) is the law's
+    /// refusal, `GD-VEHICLE` (GD-VEHICLE).
+    fn run<L: ControlLaw>(
+        law: &L,
+        vehicle: &Vehicle,
         error: &TrackingError,
-        sideslip: Sideslip,
+        extra: &L::Extra,
         speed: MetersPerSecond,
     ) -> Self {
-        match steering_command(law, error, sideslip, speed) {
-            Ok(command) => Self::Steer(command),
+        match law
+            .command(error, extra, speed)
+            .and_then(|c| vehicle.check(&c.command).map(|()| c))
+        {
+            Ok(command) => Self::Commanded(command),
             Err(e) => Self::Refused(e),
         }
     }
 }
 
-/// Path tracking in one tick.
+/// Path tracking in one tick; `X` is the law's extra input.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PathStatus {
+pub struct PathStatus<X> {
     /// The Frénet error of the GNSS pose (with c(s + vT)); `None` without a
     /// pose or when the projection was refused.
     pub frenet: Option<FrenetError>,
@@ -213,17 +175,20 @@ pub struct PathStatus {
     pub law: LawOutcome,
     /// Whether localisation is valid for path tracking (GD-LOCALISATION).
     pub localisation_valid: bool,
-    /// The sideslip the law used: the estimate with compensation on, else zero.
-    pub sideslip_used: Sideslip,
+    /// The extra input the law used: the tick's with compensation on, else
+    /// the law's neutral input.
+    pub extra_used: X,
 }
 
-/// A specialised behaviour in one tick.
+/// A behaviour in one tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BehaviourStatus {
-    /// Whether the behaviour is configured (an unconfigured one is Absent).
-    pub configured: bool,
+    /// The behaviour's id.
+    pub id: BehaviourId,
+    /// The behaviour's label.
+    pub label: &'static str,
     /// The verdict of the held detection: the latest scan's, or Absent
-    /// without one, when too old, refused or unconfigured (GD-SCAN-AGE).
+    /// without one, when too old or refused (GD-SCAN-AGE).
     pub detected: Verdict,
     /// The verdict the switching machine got: `detected`, or Exit when the
     /// law refused a valid estimate (GD-COMMAND).
@@ -231,6 +196,10 @@ pub struct BehaviourStatus {
     /// The tracking error to the behaviour's line at the current pose;
     /// `None` exactly when `detected` is Absent.
     pub error: Option<TrackingError>,
+    /// The quality figure of the held detection's scan, when it has one and
+    /// that scan is at most the maximal scan age old (also for an Absent
+    /// verdict: a furrow selection not yet long enough for a line).
+    pub quality: Option<f64>,
     /// Ticks since the scan of the held detection (0: this tick's scan).
     pub scan_age: Option<u16>,
     /// Why this tick's scan was refused by the detector, if it was.
@@ -243,54 +212,48 @@ pub struct BehaviourStatus {
     pub law: LawOutcome,
 }
 
-impl BehaviourStatus {
-    const UNCONFIGURED: Self = Self {
-        configured: false,
-        detected: Verdict::Absent,
-        reported: Verdict::Absent,
-        error: None,
-        scan_age: None,
-        scan_refused: None,
-        plan: None,
-        plan_consistent: true,
-        law: LawOutcome::NotRun,
-    };
-}
-
-/// Everything one tick produced.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TickOutput {
+/// Everything one tick produced; `X` is the law's extra input, `K` the most
+/// behaviours.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TickOutput<X, const K: usize> {
     /// The command to apply: the selected source's (GD-COMMAND), a stop in
     /// Stop (GD-STOP), `None` when no source may command in this tick.
-    pub command: Option<Command>,
+    pub command: Option<Saturated>,
     /// The mode after this tick.
-    pub mode: ActiveMode,
-    /// The source of `command`; `None` in Stop and without a command.
-    pub source: Option<Source>,
+    pub mode: Mode,
+    /// The source of `command` (never Stop); `None` in Stop and without a
+    /// command.
+    pub source: Option<Mode>,
     /// The switching machine's own output (behaviour indices in priority order).
     pub switching: Output,
     /// Path tracking: projection, law, localisation.
-    pub path: PathStatus,
-    /// Edge following: detection, plan, law.
-    pub edge: BehaviourStatus,
-    /// Furrow pursuing: detection, plan, law.
-    pub furrow: BehaviourStatus,
+    pub path: PathStatus<X>,
+    /// The configured behaviours, in priority order.
+    pub behaviours: Vec<BehaviourStatus, K>,
 }
 
-/// The latest edge detection and where the robot was when its scan was taken.
+impl<X, const K: usize> TickOutput<X, K> {
+    /// The status of behaviour `id`, when it is configured.
+    #[must_use]
+    pub fn behaviour(&self, id: BehaviourId) -> Option<&BehaviourStatus> {
+        self.behaviours.iter().find(|b| b.id == id)
+    }
+}
+
+/// The latest detection of a behaviour and where the robot was when its
+/// scan was taken.
 #[derive(Debug, Clone, Copy)]
-struct HeldEdge {
-    outcome: EdgeOutcome,
+struct Held<L> {
+    detection: Detection<L>,
     odom: Pose2<Odom>,
     age: u16,
 }
 
-/// The latest furrow detection and where the robot was when its scan was taken.
-#[derive(Debug, Clone, Copy)]
-struct HeldFurrow {
-    detection: FurrowDetection,
-    odom: Pose2<Odom>,
-    age: u16,
+/// One behaviour slot's state: its detector and the detection it holds.
+#[derive(Debug, Clone)]
+struct Slot<D: Detector> {
+    detector: D,
+    held: Option<Held<D::Line>>,
 }
 
 /// A behaviour's estimate in the current tick, before plan and law.
@@ -298,6 +261,7 @@ struct HeldFurrow {
 struct Estimate {
     verdict: Verdict,
     error: Option<TrackingError>,
+    quality: Option<f64>,
     age: Option<u16>,
     refused: Option<Precondition>,
 }
@@ -306,119 +270,155 @@ impl Estimate {
     const NONE: Self = Self {
         verdict: Verdict::Absent,
         error: None,
+        quality: None,
         age: None,
         refused: None,
     };
+}
 
-    /// A held detection's verdict and its error moved to the current pose
-    /// (`moved`), Absent when it is too old or cannot be moved.
-    fn held(
-        verdict: Verdict,
-        age: u16,
+impl<D: Detector> Slot<D> {
+    /// This slot's estimate in this tick: the detection of `scan` when one
+    /// came, else the held one aged by a tick and moved to `odometry`, Absent
+    /// when older than `max_age` or when it cannot be moved (GD-SCAN-AGE,
+    /// GD-ODOMETRY).
+    //= spec/guidance.md#gd-scan-age-held-detections
+    //# In a tick without a new scan, a behaviour MUST report the verdict of its
+    //# latest scan, with the tracking error to that scan's line moved to the current
+    //# pose through odometry, as long as that scan is at most the maximal scan age
+    //# old; an older scan, a scan the detector refused, or no scan at all MUST give
+    //# Absent.
+    //= spec/guidance.md#gd-input-malformed-input
+    //# Sensor data MUST NOT be malformed input: any range, NaN and infinities
+    //# included, and any scan a detector refuses MUST give a tick output, the
+    //# refused scan counting as no estimate.
+    fn estimate(
+        &mut self,
+        scan: Option<&Scan<'_>>,
+        odometry: &Pose2<Odom>,
         max_age: u16,
-        fresh: Option<TrackingError>,
-        moved: impl FnOnce() -> Result<TrackingError, Precondition>,
-    ) -> Self {
-        if age > max_age || verdict == Verdict::Absent {
-            return Self {
-                age: Some(age),
-                ..Self::NONE
-            };
+    ) -> Estimate {
+        if let Some(scan) = scan {
+            match self.detector.observe(scan, odometry) {
+                Ok(detection) => {
+                    self.held = Some(Held {
+                        detection,
+                        odom: *odometry,
+                        age: 0,
+                    });
+                }
+                Err(e) => {
+                    self.held = None;
+                    return Estimate {
+                        refused: Some(e),
+                        ..Estimate::NONE
+                    };
+                }
+            }
+        } else if let Some(held) = self.held.as_mut() {
+            held.age = held.age.saturating_add(1);
         }
-        let error = if age == 0 { fresh } else { moved().ok() };
+        let Some(held) = self.held else {
+            return Estimate::NONE;
+        };
+        let aged = Estimate {
+            age: Some(held.age),
+            ..Estimate::NONE
+        };
+        let d = held.detection;
+        if held.age > max_age {
+            return aged;
+        }
+        let aged = Estimate {
+            quality: d.quality,
+            ..aged
+        };
+        if d.verdict == Verdict::Absent {
+            return aged;
+        }
+        let error = if held.age == 0 {
+            d.error
+        } else {
+            d.line.and_then(|line| {
+                let pose = pose_in_scan_frame(&held.odom, odometry).ok()?;
+                line.error_at(&pose).ok()
+            })
+        };
         match error {
-            Some(error) => Self {
-                verdict,
+            Some(error) => Estimate {
+                verdict: d.verdict,
                 error: Some(error),
-                age: Some(age),
-                refused: None,
+                ..aged
             },
             // Moving overflowed (or a detector gave no error): no estimate.
-            None => Self {
-                age: Some(age),
-                ..Self::NONE
-            },
+            None => aged,
         }
     }
 }
 
 /// The per-tick guidance pipeline (`spec/guidance.md`).
 ///
-/// `PATH` is the capacity of the borrowed reference path; `EDGE_POINTS` and
-/// `EDGE_CHAIN` bound the edge detector's valid scan points and chain points;
-/// `FURROW_RAYS` bounds the rays in the furrow detector's angular window and
-/// `FURROW_SCANS` its kept selections (at least `averaged_scans`).
+/// `PATH` is the capacity of the borrowed reference path, `D` the detector
+/// type of every slot (one detector, or [`crate::perception::AnyDetector`]
+/// for several kinds), `L` the law of path tracking and of every behaviour,
+/// `K` the most behaviour slots (1 to 8).
 #[derive(Debug, Clone)]
-pub struct Guidance<
-    'p,
-    const PATH: usize,
-    const EDGE_POINTS: usize = 512,
-    const EDGE_CHAIN: usize = 64,
-    const FURROW_RAYS: usize = 512,
-    const FURROW_SCANS: usize = 32,
-> {
-    config: GuidanceConfig,
+pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: usize> {
+    config: GuidanceConfig<D::Config, L, K>,
     path: &'p ReferencePath<PATH>,
-    machine: Switching<2>,
-    edge: Option<EdgeDetector<EDGE_POINTS, EDGE_CHAIN>>,
-    furrow: Option<FurrowDetector<FURROW_RAYS, FURROW_SCANS>>,
-    held_edge: Option<HeldEdge>,
-    held_furrow: Option<HeldFurrow>,
+    machine: Switching<K>,
+    slots: Vec<Slot<D>, K>,
     /// Abscissa of the last successful projection.
     s_hint: Option<Meters>,
     /// Odometry distance travelled since that projection, m.
     since_projection: f64,
     last_odometry: Option<Pose2<Odom>>,
-    /// Steering of the last command made, held in Stop (GD-STOP).
-    last_steering: Radians,
+    /// The last command made; its stop is held in Stop (GD-STOP).
+    last_command: Command,
 }
 
-impl<
-        'p,
-        const PATH: usize,
-        const EDGE_POINTS: usize,
-        const EDGE_CHAIN: usize,
-        const FURROW_RAYS: usize,
-        const FURROW_SCANS: usize,
-    > Guidance<'p, PATH, EDGE_POINTS, EDGE_CHAIN, FURROW_RAYS, FURROW_SCANS>
+impl<'p, const PATH: usize, D, L, const K: usize> Guidance<'p, PATH, D, L, K>
+where
+    D: Detector,
+    L: ControlLaw + Copy,
+    D::Config: Copy,
 {
     /// A pipeline on `path` in its initial state: path tracking, no
     /// detection held, no projection yet.
     ///
     /// # Errors
-    /// `FUR-ACCUMULATE` when furrow pursuing keeps more scans than
-    /// `FURROW_SCANS`.
+    /// The error of a detector's [`Detector::configure`] (for example
+    /// `FUR-ACCUMULATE` when its capacity is too small for its
+    /// configuration).
     pub fn new(
-        config: GuidanceConfig,
+        config: GuidanceConfig<D::Config, L, K>,
         path: &'p ReferencePath<PATH>,
     ) -> Result<Self, Precondition> {
-        let params = config.params();
-        let edge = params
-            .edge
-            .as_ref()
-            .map(|e| EdgeDetector::new(e.detector, e.mount));
-        let furrow = match &params.furrow {
-            Some(f) => Some(FurrowDetector::new(f.detector)?),
-            None => None,
-        };
+        let mut slots = Vec::new();
+        for b in config.behaviours() {
+            let slot = Slot {
+                detector: D::configure(&b.detector)?,
+                held: None,
+            };
+            // The configuration holds at most K behaviours.
+            if slots.push(slot).is_err() {
+                return Err(Precondition::new("GD-BEHAVIOURS", "more than K behaviours"));
+            }
+        }
         Ok(Self {
             machine: Switching::new(*config.switching()),
+            last_command: config.params().vehicle.actuation().at_rest(),
             config,
             path,
-            edge,
-            furrow,
-            held_edge: None,
-            held_furrow: None,
+            slots,
             s_hint: None,
             since_projection: 0.0,
             last_odometry: None,
-            last_steering: Radians::ZERO,
         })
     }
 
-    /// The configuration.
+    /// The configuration (behaviours in priority order).
     #[must_use]
-    pub const fn config(&self) -> &GuidanceConfig {
+    pub const fn config(&self) -> &GuidanceConfig<D::Config, L, K> {
         &self.config
     }
 
@@ -428,54 +428,78 @@ impl<
         self.path
     }
 
+    /// Replaces the reference path between two ticks (a planner hands a new
+    /// one); the next projection searches the whole new path (GD-PATH).
+    //= spec/guidance.md#gd-path-a-reference-path-replaced-between-ticks
+    //# The reference path MUST be replaceable between ticks without rebuilding the
+    //# pipeline, keeping the mode, the switching counters and the held
+    //# detections, and the first projection on a new path MUST search the whole
+    //# path.
+    pub fn set_path(&mut self, path: &'p ReferencePath<PATH>) {
+        self.path = path;
+        self.s_hint = None;
+        self.since_projection = 0.0;
+    }
+
     /// The switching machine (its mode and counters).
     #[must_use]
-    pub const fn switching(&self) -> &Switching<2> {
+    pub const fn switching(&self) -> &Switching<K> {
         &self.machine
     }
 
     /// The current mode.
     #[must_use]
-    pub fn mode(&self) -> ActiveMode {
-        self.active_mode(self.machine.mode())
+    pub fn mode(&self) -> Mode {
+        self.mode_of(self.machine.mode())
     }
 
-    /// The edge detector (its last points and chain), when configured.
+    /// The label of `mode`: `"path_tracking"`, `"stop"` or the behaviour's.
     #[must_use]
-    pub const fn edge_detector(&self) -> Option<&EdgeDetector<EDGE_POINTS, EDGE_CHAIN>> {
-        self.edge.as_ref()
-    }
-
-    /// The furrow detector (its accumulated selections), when configured.
-    #[must_use]
-    pub const fn furrow_detector(&self) -> Option<&FurrowDetector<FURROW_RAYS, FURROW_SCANS>> {
-        self.furrow.as_ref()
-    }
-
-    /// The latest edge detection held (its scan's outcome), if any.
-    #[must_use]
-    pub fn last_edge(&self) -> Option<&EdgeOutcome> {
-        self.held_edge.as_ref().map(|h| &h.outcome)
-    }
-
-    /// The latest furrow detection held (its scan's detection), if any.
-    #[must_use]
-    pub fn last_furrow(&self) -> Option<&FurrowDetection> {
-        self.held_furrow.as_ref().map(|h| &h.detection)
-    }
-
-    fn active_mode(&self, mode: Mode) -> ActiveMode {
+    pub fn label(&self, mode: Mode) -> &'static str {
         match mode {
-            Mode::PathTracking => ActiveMode::PathTracking,
-            Mode::Stop => ActiveMode::Stop,
-            // Index 2 and beyond cannot occur with K = 2; Stop is the safe reading.
-            Mode::Behaviour(i) => self
+            Mode::PathTracking => "path_tracking",
+            Mode::Stop => "stop",
+            Mode::Behaviour(id) => self
                 .config
-                .params()
-                .priority
-                .order()
+                .behaviours()
+                .iter()
+                .find(|b| b.id == id)
+                .map_or("unknown", |b| b.label),
+        }
+    }
+
+    /// The detector of behaviour `id`, when it is configured.
+    #[must_use]
+    pub fn detector(&self, id: BehaviourId) -> Option<&D> {
+        self.slot(id).map(|s| &s.detector)
+    }
+
+    /// The latest detection behaviour `id` holds, if any.
+    #[must_use]
+    pub fn held(&self, id: BehaviourId) -> Option<&Detection<D::Line>> {
+        self.slot(id)?.held.as_ref().map(|h| &h.detection)
+    }
+
+    fn slot(&self, id: BehaviourId) -> Option<&Slot<D>> {
+        self.config
+            .behaviours()
+            .iter()
+            .position(|b| b.id == id)
+            .and_then(|i| self.slots.get(i))
+    }
+
+    /// The machine's mode with its priority index resolved to the id; an
+    /// index beyond the configured behaviours (never entered: they report
+    /// Absent) reads as Stop, the safe reading.
+    fn mode_of(&self, mode: MachineMode) -> Mode {
+        match mode {
+            MachineMode::PathTracking => Mode::PathTracking,
+            MachineMode::Stop => Mode::Stop,
+            MachineMode::Behaviour(i) => self
+                .config
+                .behaviours()
                 .get(i)
-                .map_or(ActiveMode::Stop, |b| b.mode()),
+                .map_or(Mode::Stop, |b| Mode::Behaviour(b.id)),
         }
     }
 
@@ -483,10 +507,11 @@ impl<
     /// the steps).
     ///
     /// # Errors
-    /// Only for malformed input, before any state changes (GD-INPUT):
-    /// `PT-SIDESLIP` when |β| ≥ π/2, `GD-INPUT` when a scan is given for a
-    /// behaviour that is not configured. Scans with any values, refused
-    /// scans and laws that refuse their errors all give an output.
+    /// Only for malformed input, before any state changes (GD-INPUT): the
+    /// law's refusal of the extra input (`PT-SIDESLIP` when |β| ≥ π/2 for
+    /// backstepping), `GD-INPUT` when a scan is routed to a behaviour that is
+    /// not configured or two scans to one behaviour. Scans with any values,
+    /// refused scans and laws that refuse their errors all give an output.
     //= spec/guidance.md#gd-order-pipeline-order
     //# Each call of `step` MUST process one control tick in this order: the
     //# detections of the tick's scans (or the ageing of the held ones), the Frénet
@@ -497,7 +522,10 @@ impl<
     //# A tick MUST NOT allocate on the heap and MUST NOT read a clock: the
     //# pipeline's buffers are fixed by its const parameters and time is counted in
     //# ticks.
-    pub fn step(&mut self, input: &TickInput<'_>) -> Result<TickOutput, Precondition> {
+    pub fn step(
+        &mut self,
+        input: &TickInput<'_, L::Extra>,
+    ) -> Result<TickOutput<L::Extra, K>, Precondition> {
         self.check_input(input)?;
         let travelled = self
             .last_odometry
@@ -505,29 +533,44 @@ impl<
         self.last_odometry = Some(input.odometry);
 
         // 1. Detections, or the held ones aged and moved (GD-SCAN-AGE).
-        let edge = self.edge_estimate(input);
-        let furrow = self.furrow_estimate(input);
+        let max_age = self.config.max_scan_age_ticks();
+        let mut estimates = [Estimate::NONE; K];
+        for ((estimate, slot), b) in estimates
+            .iter_mut()
+            .zip(self.slots.iter_mut())
+            .zip(self.config.behaviours())
+        {
+            let scan = input
+                .scans
+                .iter()
+                .find(|s| s.behaviour == b.id)
+                .map(|s| &s.scan);
+            *estimate = slot.estimate(scan, &input.odometry, max_age);
+        }
 
         // 2. The path (GD-LOCALISATION).
         let (frenet, projection_refused) = self.project(input.gnss.as_ref(), travelled);
 
         // 3-4. Plan consistency and the laws.
-        let params = *self.config.params();
-        let path_error = frenet.map(|f| f.tracking_error());
-        let sideslip_used = if params.path.sideslip_compensation {
-            input.sideslip
+        let params = self.config.params();
+        let extra_used = if params.path.compensation {
+            input.extra
         } else {
-            Sideslip::ZERO
+            L::NEUTRAL
         };
-        let path_law = match &path_error {
-            //= spec/guidance.md#gd-prediction-sideslip-and-prediction-only-in-path-tracking
-            //# Path tracking MUST use the sideslip estimate, when compensation is
-            //# configured, and the curvature c(s + vT) with v its desired speed and T the
-            //# prediction horizon; edge following and furrow pursuing MUST use zero sideslip
-            //# and a straight line, c = c(s + vT) = 0.
-            Some(error) => {
-                LawOutcome::run(&params.path.law, error, sideslip_used, params.path.speed)
-            }
+        //= spec/guidance.md#gd-prediction-extra-input-and-prediction-only-in-path-tracking
+        //# Path tracking MUST use the tick's extra input, when compensation is
+        //# configured, and the curvature c(s + vT) with v its desired speed and T the
+        //# prediction horizon; every other behaviour MUST use its law's neutral input
+        //# and a straight line, c = c(s + vT) = 0.
+        let path_law = match &frenet {
+            Some(f) => LawOutcome::run(
+                &params.path.law,
+                &params.vehicle,
+                &f.tracking_error(),
+                &extra_used,
+                params.path.speed,
+            ),
             None => LawOutcome::NotRun,
         };
         //= spec/guidance.md#gd-localisation-localisation-for-path-tracking
@@ -540,69 +583,55 @@ impl<
             projection_refused,
             law: path_law,
             localisation_valid,
-            sideslip_used,
+            extra_used,
         };
-        let plan = self.plan_reference(frenet.as_ref());
-        let edge = match &params.edge {
-            Some(e) => behaviour_status(&edge, plan.as_ref(), &e.law, e.speed),
-            None => BehaviourStatus::UNCONFIGURED,
-        };
-        let furrow = match &params.furrow {
-            Some(f) => behaviour_status(&furrow, plan.as_ref(), &f.law, f.speed),
-            None => BehaviourStatus::UNCONFIGURED,
-        };
+        let mut behaviours = Vec::<BehaviourStatus, K>::new();
+        for (estimate, b) in estimates.iter().zip(self.config.behaviours()) {
+            let reference = frenet
+                .as_ref()
+                .map(|f| PlanReference::new(self.path, f, b.plan));
+            // One status per configured behaviour, at most K.
+            let _ = behaviours.push(behaviour_status(
+                estimate,
+                reference.as_ref(),
+                b,
+                &params.vehicle,
+            ));
+        }
 
         // 5. The switching machine (GD-BEHAVIOURS).
-        let order = params.priority.order();
-        let status_of = |b: Behaviour| match b {
-            Behaviour::EdgeFollowing => &edge,
-            Behaviour::FurrowPursuing => &furrow,
-        };
-        let report = |b: Behaviour| Report {
-            verdict: status_of(b).reported,
-            plan_consistent: status_of(b).plan_consistent,
-        };
-        let [first, second] = order;
-        //= spec/guidance.md#gd-behaviours-two-behaviours-in-a-priority-order
-        //# The pipeline MUST run a switching machine with exactly two specialised
-        //# behaviours, edge following and furrow pursuing, in the configured priority
-        //# order, and a behaviour that is not configured MUST report Absent in every
-        //# tick.
+        //= spec/guidance.md#gd-behaviours-behaviour-slots-in-a-priority-order
+        //# The pipeline MUST hold a list of behaviour slots, each with an id unique in
+        //# the pipeline, a label, a detector, a law, a desired speed, two transit
+        //# delays and an optional plan tolerance, and MUST run a switching machine over
+        //# them in the configured priority order; a slot beyond the configured
+        //# behaviours MUST report Absent in every tick.
+        let mut reports = [Report::consistent(Verdict::Absent); K];
+        for (report, status) in reports.iter_mut().zip(behaviours.iter()) {
+            *report = Report {
+                verdict: status.reported,
+                plan_consistent: status.plan_consistent,
+            };
+        }
         let switching = self.machine.step(&Input {
-            behaviours: [report(first), report(second)],
+            behaviours: reports,
             localisation_valid,
         });
 
         // 6. The command of the selected source.
-        let drive = |law: &LawOutcome, speed: MetersPerSecond| {
-            law.command().map(|c| Command {
-                speed,
-                steering: c.steering,
-                saturated: c.saturated,
-            })
-        };
         //= spec/guidance.md#gd-command-the-command-of-the-selected-source
         //# The command MUST be the saturated output of the selected source's control law
         //# on that source's error of the tick, and no other; when the machine selects no
         //# source outside Stop, there MUST be no command.
         //= spec/guidance.md#gd-speed-desired-speed-per-mode
-        //# The speed of a command MUST be the desired speed of its source: path
-        //# tracking, edge following or furrow pursuing (Tables 1 and 2: 0.8, 0.4 and
-        //# 0.7 m/s).
+        //# The speed of a command MUST be the desired speed of its source.
         let (command, source) = match switching.source {
-            CommandSource::PathTracking => (
-                drive(&path.law, params.path.speed),
-                Some(Source::PathTracking),
-            ),
-            CommandSource::Behaviour(i) => match order.get(i) {
-                Some(&b) => {
-                    let speed = match b {
-                        Behaviour::EdgeFollowing => params.edge.map(|e| e.speed),
-                        Behaviour::FurrowPursuing => params.furrow.map(|f| f.speed),
-                    };
-                    let command = speed.and_then(|v| drive(&status_of(b).law, v));
-                    (command, Some(b.source()))
-                }
+            CommandSource::PathTracking => (path.law.command().copied(), Some(Mode::PathTracking)),
+            CommandSource::Behaviour(i) => match behaviours.get(i) {
+                Some(status) => (
+                    status.law.command().copied(),
+                    Some(Mode::Behaviour(status.id)),
+                ),
                 None => (None, None),
             },
             CommandSource::None => (None, None),
@@ -610,18 +639,18 @@ impl<
         // A selected source always has a command (its law ran and gave one:
         // GD-COMMAND); should it not, nothing is commanded and no source named.
         let source = command.and(source);
-        let mode = self.active_mode(switching.mode);
+        let mode = self.mode_of(switching.mode);
         let command = match command {
             Some(c) => {
-                self.last_steering = c.steering;
+                self.last_command = c.command;
                 Some(c)
             }
             //= spec/guidance.md#gd-stop-the-stop-command
-            //# In Stop the command MUST be a speed of 0 m/s with the steering of the last
-            //# command made, or 0 rad before any command, never saturated.
-            None if mode == ActiveMode::Stop => Some(Command {
-                speed: MetersPerSecond::ZERO,
-                steering: self.last_steering,
+            //# In Stop the command MUST be the stop of the last command made (every speed
+            //# zero, steering angles held, a yaw rate zero), or the vehicle at rest before
+            //# any command, never saturated.
+            None if mode == Mode::Stop => Some(Saturated {
+                command: self.last_command.stopped(),
                 saturated: false,
             }),
             None => None,
@@ -632,149 +661,39 @@ impl<
             source,
             switching,
             path,
-            edge,
-            furrow,
+            behaviours,
         })
     }
 
     /// GD-INPUT: refuse malformed input before anything changes.
     //= spec/guidance.md#gd-input-malformed-input
     //# A tick whose input is malformed MUST be refused with an error before any
-    //# state changes: a sideslip estimate outside |β| < π/2 (`PT-SIDESLIP`), or a
-    //# scan for a behaviour that is not configured (`GD-INPUT`).
-    fn check_input(&self, input: &TickInput<'_>) -> Result<(), Precondition> {
-        input.sideslip.check()?;
-        if input.horizontal.is_some() && self.edge.is_none() {
-            return Err(Precondition::new(
-                "GD-INPUT",
-                "horizontal scan given but edge following is not configured",
-            ));
-        }
-        if input.inclined.is_some() && self.furrow.is_none() {
-            return Err(Precondition::new(
-                "GD-INPUT",
-                "inclined scan given but furrow pursuing is not configured",
-            ));
+    //# state changes: an extra input the law refuses (for backstepping a sideslip
+    //# outside |β| < π/2, `PT-SIDESLIP`), a scan routed to a behaviour that is not
+    //# configured, or two scans routed to one behaviour in one tick (`GD-INPUT`).
+    fn check_input(&self, input: &TickInput<'_, L::Extra>) -> Result<(), Precondition> {
+        L::check_extra(&input.extra)?;
+        for (i, routed) in input.scans.iter().enumerate() {
+            if !self
+                .config
+                .behaviours()
+                .iter()
+                .any(|b| b.id == routed.behaviour)
+            {
+                return Err(Precondition::new(
+                    "GD-INPUT",
+                    "scan routed to a behaviour that is not configured",
+                ));
+            }
+            let again = input.scans.iter().skip(i.saturating_add(1));
+            if again.into_iter().any(|o| o.behaviour == routed.behaviour) {
+                return Err(Precondition::new(
+                    "GD-INPUT",
+                    "two scans routed to one behaviour in one tick",
+                ));
+            }
         }
         Ok(())
-    }
-
-    /// Edge following's estimate in this tick (GD-SCAN-AGE, GD-ODOMETRY).
-    //= spec/guidance.md#gd-input-malformed-input
-    //# Sensor data MUST NOT be malformed input: any range, NaN and infinities
-    //# included, and any scan a detector refuses MUST give a tick output, the
-    //# refused scan counting as no estimate.
-    fn edge_estimate(&mut self, input: &TickInput<'_>) -> Estimate {
-        let (Some(detector), Some(params)) = (self.edge.as_mut(), self.config.params().edge) else {
-            return Estimate::NONE;
-        };
-        if let Some(scan) = &input.horizontal {
-            match detector.detect(scan, params.side) {
-                Ok(outcome) => {
-                    self.held_edge = Some(HeldEdge {
-                        outcome,
-                        odom: input.odometry,
-                        age: 0,
-                    });
-                }
-                Err(e) => {
-                    self.held_edge = None;
-                    return Estimate {
-                        refused: Some(e),
-                        ..Estimate::NONE
-                    };
-                }
-            }
-        } else if let Some(held) = self.held_edge.as_mut() {
-            held.age = held.age.saturating_add(1);
-        }
-        let Some(held) = self.held_edge else {
-            return Estimate::NONE;
-        };
-        Estimate::held(
-            held.outcome.verdict,
-            held.age,
-            self.config.max_scan_age_ticks(),
-            held.outcome.fit.map(|f| f.error),
-            || {
-                let fit = held
-                    .outcome
-                    .fit
-                    .ok_or(Precondition::new("GD-SCAN-AGE", "no fit to move"))?;
-                let pose = odometry::pose_in_scan_frame(&held.odom, &input.odometry)?;
-                odometry::moved_edge_error(&fit, params.side, params.detector.offset(), &pose)
-            },
-        )
-    }
-
-    /// Furrow pursuing's estimate in this tick (GD-SCAN-AGE, GD-ODOMETRY).
-    //= spec/guidance.md#gd-scan-age-held-detections
-    //# In a tick without a new scan, a behaviour MUST report the verdict of its
-    //# latest scan, with the tracking error to that scan's line moved to the current
-    //# pose through odometry, as long as that scan is at most the maximal scan age
-    //# old; an older scan, a scan the detector refused, or no scan at all MUST give
-    //# Absent.
-    fn furrow_estimate(&mut self, input: &TickInput<'_>) -> Estimate {
-        let Some(detector) = self.furrow.as_mut() else {
-            return Estimate::NONE;
-        };
-        if let Some(scan) = &input.inclined {
-            match detector.step(scan, &input.odometry) {
-                Ok(detection) => {
-                    self.held_furrow = Some(HeldFurrow {
-                        detection,
-                        odom: input.odometry,
-                        age: 0,
-                    });
-                }
-                Err(e) => {
-                    self.held_furrow = None;
-                    return Estimate {
-                        refused: Some(e),
-                        ..Estimate::NONE
-                    };
-                }
-            }
-        } else if let Some(held) = self.held_furrow.as_mut() {
-            held.age = held.age.saturating_add(1);
-        }
-        let Some(held) = self.held_furrow else {
-            return Estimate::NONE;
-        };
-        Estimate::held(
-            held.detection.verdict,
-            held.age,
-            self.config.max_scan_age_ticks(),
-            held.detection.error,
-            || {
-                let lines = held
-                    .detection
-                    .lines
-                    .ok_or(Precondition::new("GD-SCAN-AGE", "no lines to move"))?;
-                let pose = odometry::pose_in_scan_frame(&held.odom, &input.odometry)?;
-                odometry::moved_rows_error(&lines, &pose)
-            },
-        )
-    }
-
-    /// The path's error of the tick and, with plan consistency configured, the
-    /// path at its look-ahead (GD-PLAN); `None` without a projection.
-    //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
-    //# The path ahead MUST be taken at the tolerance's look-ahead from the
-    //# projection's abscissa.
-    fn plan_reference(&self, frenet: Option<&FrenetError>) -> Option<PlanReference> {
-        let frenet = frenet?;
-        let path = frenet.tracking_error();
-        let check = self.config.params().plan.map(|p| {
-            let tolerance = p.tolerance;
-            let ahead = if tolerance.lookahead().get() > 0.0 {
-                PathAhead::on_path(self.path, frenet.s, tolerance.lookahead()).ok()
-            } else {
-                Some(PathAhead::HERE)
-            };
-            (tolerance, ahead)
-        });
-        Some(PlanReference { path, check })
     }
 
     /// The Frénet error of the GNSS pose, searched near the last abscissa
@@ -811,31 +730,57 @@ impl<
     }
 }
 
-/// What a tick's lines are compared with: the path's error and, when plan
-/// consistency is configured, its tolerance and the path at its look-ahead
-/// (`None` when that overflowed).
+/// What a tick's line is compared with: the path's error and, when the
+/// behaviour has a plan tolerance, that tolerance and the path at its
+/// look-ahead (`None` when that overflowed).
 struct PlanReference {
     path: TrackingError,
     check: Option<(PlanTolerance, Option<PathAhead>)>,
 }
 
+impl PlanReference {
+    /// The reference of a behaviour with tolerance `plan` in a tick whose
+    /// projection is `frenet`.
+    //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
+    //# The path ahead MUST be taken at the tolerance's look-ahead from the
+    //# projection's abscissa.
+    fn new<const N: usize>(
+        path: &ReferencePath<N>,
+        frenet: &FrenetError,
+        plan: Option<PlanTolerance>,
+    ) -> Self {
+        let check = plan.map(|tolerance| {
+            let ahead = if tolerance.lookahead().get() > 0.0 {
+                PathAhead::on_path(path, frenet.s, tolerance.lookahead()).ok()
+            } else {
+                Some(PathAhead::HERE)
+            };
+            (tolerance, ahead)
+        });
+        Self {
+            path: frenet.tracking_error(),
+            check,
+        }
+    }
+}
+
 /// Plan consistency and the law of one configured behaviour (GD-PLAN,
 /// GD-PREDICTION, GD-COMMAND).
-fn behaviour_status(
+fn behaviour_status<C, L: ControlLaw>(
     estimate: &Estimate,
     plan_reference: Option<&PlanReference>,
-    law: &BacksteppingConfig,
-    speed: MetersPerSecond,
+    behaviour: &BehaviourParams<C, L>,
+    vehicle: &Vehicle,
 ) -> BehaviourStatus {
     let plan = match (&estimate.error, plan_reference) {
         (Some(line), Some(r)) => line_relative_to_path(line, &r.path).ok(),
         _ => None,
     };
     //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
-    //# A behaviour's line MUST be reported consistent with the plan when plan
-    //# consistency is not configured or when the path has no projection in the tick;
-    //# otherwise it MUST be reported as `PlanTolerance::is_consistent` judges its
-    //# tracking error against the path's.
+    //# A behaviour's line MUST be reported consistent with the plan when the
+    //# behaviour has no plan tolerance or when the path has no projection in the
+    //# tick; otherwise it MUST be reported as `PlanTolerance::is_consistent` judges
+    //# its tracking error against the path's.
     let plan_consistent = match (&estimate.error, plan_reference) {
         (Some(line), Some(r)) => match &r.check {
             Some((tolerance, Some(ahead))) => tolerance.is_consistent(line, &r.path, ahead),
@@ -845,12 +790,13 @@ fn behaviour_status(
         _ => true,
     };
     let law = match &estimate.error {
-        // Straight line, no sideslip, no prediction (GD-PREDICTION).
+        // Straight line, neutral input, no prediction (GD-PREDICTION).
         Some(e) if estimate.verdict.estimate_is_valid() => LawOutcome::run(
-            law,
+            &behaviour.law,
+            vehicle,
             &TrackingError::to_straight_line(e.y, e.angular_deviation),
-            Sideslip::ZERO,
-            speed,
+            &L::NEUTRAL,
+            behaviour.speed,
         ),
         _ => LawOutcome::NotRun,
     };
@@ -860,13 +806,15 @@ fn behaviour_status(
     //# whose law gave a command.
     let reported = match law {
         LawOutcome::Refused(_) => Verdict::Exit,
-        LawOutcome::NotRun | LawOutcome::Steer(_) => estimate.verdict,
+        LawOutcome::NotRun | LawOutcome::Commanded(_) => estimate.verdict,
     };
     BehaviourStatus {
-        configured: true,
+        id: behaviour.id,
+        label: behaviour.label,
         detected: estimate.verdict,
         reported,
         error: estimate.error,
+        quality: estimate.quality,
         scan_age: estimate.age,
         scan_refused: estimate.refused,
         plan,

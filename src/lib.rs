@@ -2,7 +2,8 @@
 //!
 //! Verification-first guidance for agricultural field robots: path tracking with
 //! sideslip (Pierre et al. 2022), edge following and furrow pursuing on 2D
-//! LiDAR scans, and the switching between them.
+//! LiDAR scans, and the switching between them, in one pipeline open to any
+//! detector, control law and vehicle.
 //!
 //! The core is `no_std`, allocates nothing, never panics and never returns a
 //! NaN: functions with a restricted domain return `Result<_, Precondition>`
@@ -10,18 +11,24 @@
 //!
 //! ## One tick, as data flows through the core
 //!
-//! 1. A LiDAR scan goes to a detector in [`perception`], which returns a line
-//!    or parabola in the robot frame and a quality verdict.
-//! 2. The robot pose goes to [`geometry::path::ReferencePath::project`], which
+//! 1. Each LiDAR scan goes to the detector of the behaviour it is routed to,
+//!    behind [`perception::Detector`], which returns a verdict, the error to
+//!    its line at the robot and the line, held and moved by odometry until the
+//!    next scan.
+//! 2. The GNSS pose goes to [`geometry::path::ReferencePath::project`], which
 //!    returns the Frénet error (s, y, θ̃, c(s), c(s + vT)).
-//! 3. Verdicts and localisation status go to [`supervisor`], which selects the
-//!    behaviour.
-//! 4. The selected behaviour's error goes to a law in [`control`], which returns
-//!    a saturated steering command.
+//! 3. Every source with a valid estimate (path tracking, each behaviour) runs
+//!    its law behind [`control::ControlLaw`], which returns a command of the
+//!    vehicle's actuation ([`model::Command`]) within its limits, or refuses
+//!    its error.
+//! 4. The verdicts, and whether each law could command, go to the switching
+//!    machine in [`supervisor`], which selects the source whose command is
+//!    applied, or Stop.
 //!
-//! [`guidance::Guidance`] runs these four steps once per control tick, scans,
-//! poses and odometry in, a command at the selected behaviour's speed out
-//! (`spec/guidance.md`).
+//! [`guidance::Guidance`] runs these steps once per control tick, for any
+//! number of behaviour slots, routed scans, poses and odometry in, the
+//! selected source's command at its speed out (`spec/guidance.md`);
+//! [`presets`] configures it as in Pierre 2022's experiments.
 //!
 //! ## Conventions
 //!
@@ -56,6 +63,7 @@ pub mod geometry;
 pub mod guidance;
 pub mod model;
 pub mod perception;
+pub mod presets;
 pub mod supervisor;
 
 pub use error::Precondition;

@@ -4,11 +4,12 @@
 
 use approx::assert_relative_eq;
 use fieldguide::control::backstepping::{
-    steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Inversion,
-    SteeringLimit,
+    steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Gains,
+    Inversion,
 };
-use fieldguide::control::Gains;
-use fieldguide::model::bicycle::{frenet_rates, yaw_rate, Sideslip, Wheelbase};
+use fieldguide::model::bicycle::{
+    frenet_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
+};
 use fieldguide::{Curvature, Meters, MetersPerSecond, Radians, TrackingError};
 use proptest::prelude::*;
 
@@ -24,8 +25,12 @@ fn tracking(y: f64, theta: f64, c: f64, c_ahead: f64) -> TrackingError {
 fn config(k_y: f64, k_theta: f64, inversion: Inversion) -> BacksteppingConfig {
     BacksteppingConfig {
         gains: Gains::new(k_y, k_theta, 1.0).unwrap(),
-        wheelbase: Wheelbase::new(2.0).unwrap(),
-        max_steering: SteeringLimit::new(1.5).unwrap(),
+        vehicle: Bicycle::new(
+            Wheelbase::new(2.0).unwrap(),
+            SteeringLimit::new(1.5).unwrap(),
+            None,
+        )
+        .unwrap(),
         inversion,
     }
 }
@@ -210,9 +215,15 @@ fn preconditions_name_their_requirement() {
     );
     let e = tracking(0.1, 0.0, 0.0, 0.0);
     assert_eq!(
-        frenet_rates(&e, speed(0.0), Radians::ZERO, Sideslip::ZERO, cfg.wheelbase)
-            .unwrap_err()
-            .requirement,
+        frenet_rates(
+            &e,
+            speed(0.0),
+            Radians::ZERO,
+            Sideslip::ZERO,
+            cfg.vehicle.wheelbase
+        )
+        .unwrap_err()
+        .requirement,
         "PT-SPEED"
     );
 }
@@ -282,10 +293,10 @@ proptest! {
         let error = tracking(y, theta, c, c_ahead);
         let cmd = steering_command(&cfg, &error, slip, speed(v)).unwrap();
         prop_assume!(!cmd.saturated);
-        let u = yaw_rate(speed(v), cmd.steering, slip, cfg.wheelbase).unwrap();
+        let u = yaw_rate(speed(v), cmd.steering, slip, cfg.vehicle.wheelbase).unwrap();
         let u_obj = yaw_rate_objective(&cfg.gains, &error, slip, speed(v)).unwrap();
         prop_assert!((u.get() - u_obj.get()).abs() <= 1e-9 * (1.0 + u_obj.get().abs()));
-        let rates = frenet_rates(&error, speed(v), cmd.steering, slip, cfg.wheelbase).unwrap();
+        let rates = frenet_rates(&error, speed(v), cmd.steering, slip, cfg.vehicle.wheelbase).unwrap();
         let e = theta - cmd.target_angular_deviation.get();
         let wanted = cfg.gains.k_theta() * e + c_ahead - c;
         prop_assert!((rates.angular_deviation - wanted).abs() <= 1e-8 * (1.0 + wanted.abs()),
@@ -308,7 +319,7 @@ proptest! {
         let error = tracking(y, theta, c, c);
         let cmd = steering_command(&cfg, &error, slip, speed(v)).unwrap();
         prop_assume!(!cmd.saturated);
-        let rates = frenet_rates(&error, speed(v), cmd.steering, slip, cfg.wheelbase).unwrap();
+        let rates = frenet_rates(&error, speed(v), cmd.steering, slip, cfg.vehicle.wheelbase).unwrap();
         let drive = cfg.gains.k_theta() * (theta - cmd.target_angular_deviation.get()) + c;
         let theta2 = theta + beta_r;
         let miss = drive * (beta_r.cos() / theta2.cos() - 1.0);
@@ -359,7 +370,7 @@ proptest! {
         prop_assume!(1.0 - y * c > 0.0 && (theta + beta_r).cos() > 0.0);
         let mut cfg = config(k_y, 2.0 * k_y,
             if printed { Inversion::Printed } else { Inversion::Exact });
-        cfg.max_steering = SteeringLimit::new(limit).unwrap();
+        cfg.vehicle.max_steering = SteeringLimit::new(limit).unwrap();
         let slip = Sideslip::new(beta_f, beta_r).unwrap();
         let error = tracking(y, theta, c, c_ahead);
         let cmd = steering_command(&cfg, &error, slip, speed(v)).unwrap();
@@ -399,13 +410,12 @@ proptest! {
             let slip = Sideslip::new(raw[4], raw[5])?;
             let cfg = BacksteppingConfig {
                 gains: Gains::new(raw[6], raw[7], 1.0)?,
-                wheelbase: Wheelbase::new(raw[8])?,
-                max_steering: SteeringLimit::new(raw[9])?,
+                vehicle: Bicycle::new(Wheelbase::new(raw[8])?, SteeringLimit::new(raw[9])?, None)?,
                 inversion: Inversion::Exact,
             };
             let v = MetersPerSecond::new(raw[10])?;
             let cmd = steering_command(&cfg, &error, slip, v)?;
-            let rates = frenet_rates(&error, v, cmd.steering, slip, cfg.wheelbase)?;
+            let rates = frenet_rates(&error, v, cmd.steering, slip, cfg.vehicle.wheelbase)?;
             Ok((cmd, rates))
         };
         if let Ok((cmd, rates)) = build() {
@@ -456,8 +466,12 @@ proptest! {
 fn edges_of_the_domain_give_values_or_errors() {
     let cfg = BacksteppingConfig {
         gains: Gains::new(-1e300, -1e301, 1.0).unwrap(),
-        wheelbase: Wheelbase::new(1e300).unwrap(),
-        max_steering: SteeringLimit::new(0.5).unwrap(),
+        vehicle: Bicycle::new(
+            Wheelbase::new(1e300).unwrap(),
+            SteeringLimit::new(0.5).unwrap(),
+            None,
+        )
+        .unwrap(),
         inversion: Inversion::Exact,
     };
     for (y, theta, c) in [

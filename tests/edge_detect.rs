@@ -15,10 +15,11 @@ mod edge_support;
 
 use edge_support::{cast_line, hedge, pt, wall};
 use fieldguide::perception::edge::{
-    detect, detect_points, ChainEnd, EdgeConfig, EdgeDetection, EdgeDetector, EdgeParameters, Side,
+    detect, detect_points, ChainEnd, EdgeConfig, EdgeDetection, EdgeDetector, EdgeDetectorConfig,
+    EdgeParameters, Side,
 };
 use fieldguide::perception::{RangeLimits, Scan};
-use fieldguide::{Meters, Point2, Pose2, Radians, Robot, Sensor, Transform2, Verdict, World};
+use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Robot, Sensor, Transform2, Verdict, World};
 use proptest::prelude::*;
 
 const N: usize = 1024;
@@ -321,7 +322,18 @@ proptest! {
 fn the_detector_agrees_with_the_free_functions_and_forgets_failed_scans() {
     let config = config();
     let mount = Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap();
-    let mut detector = EdgeDetector::<N, M>::new(config, mount);
+    // One detector per side (the side is part of a detector's configuration),
+    // each reused across scans; the edge detector ignores the odometry pose.
+    let detector_on = |side| {
+        EdgeDetector::<N, M>::new(EdgeDetectorConfig {
+            edge: config,
+            mount,
+            side,
+        })
+    };
+    let mut left = detector_on(Side::Left);
+    let mut right = detector_on(Side::Right);
+    let odom = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
     let inc = core::f64::consts::TAU / 360.0;
     for (k, (dist, angle)) in [(1.4, 0.0), (1.0, 0.2), (2.2, -0.1), (0.8, 0.05)]
         .into_iter()
@@ -345,7 +357,11 @@ fn the_detector_agrees_with_the_free_functions_and_forgets_failed_scans() {
             ranges: &ranges,
             limits: limits(),
         };
-        let outcome = detector.detect(&scan, side).unwrap();
+        let detector = match side {
+            Side::Left => &mut left,
+            Side::Right => &mut right,
+        };
+        let outcome = detector.detect(&scan, &odom).unwrap();
         let free = detect::<N, M>(&scan, &mount, side, &config).unwrap();
         assert_eq!(outcome.verdict, free.verdict);
         assert_eq!(outcome.fit, free.fit);
@@ -357,7 +373,11 @@ fn the_detector_agrees_with_the_free_functions_and_forgets_failed_scans() {
     }
     // A scan with more valid rays than the buffer: an error, and no chain
     // from the previous scan is left behind.
-    let mut small = EdgeDetector::<8, M>::new(config, mount);
+    let mut small = EdgeDetector::<8, M>::new(EdgeDetectorConfig {
+        edge: config,
+        mount,
+        side: Side::Left,
+    });
     let good = [f64::INFINITY; 8];
     let scan = Scan {
         start: Radians::new(0.0).unwrap(),
@@ -365,7 +385,7 @@ fn the_detector_agrees_with_the_free_functions_and_forgets_failed_scans() {
         ranges: &good,
         limits: limits(),
     };
-    small.detect(&scan, Side::Left).unwrap();
+    small.detect(&scan, &odom).unwrap();
     let many = [1.5; 20];
     let scan = Scan {
         start: Radians::new(0.0).unwrap(),
@@ -374,7 +394,7 @@ fn the_detector_agrees_with_the_free_functions_and_forgets_failed_scans() {
         limits: limits(),
     };
     assert_eq!(
-        small.detect(&scan, Side::Left).unwrap_err().requirement,
+        small.detect(&scan, &odom).unwrap_err().requirement,
         "EDGE-SCAN"
     );
     assert!(small.chain().is_empty());

@@ -82,7 +82,7 @@ fn drive(
     for _ in 0..ticks {
         let ranges = ridge_scan(params, &l, pose, ridges);
         let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
-        last = Some(det.step(&scan(&ranges, &l), &odom).unwrap());
+        last = Some(det.detect(&scan(&ranges, &l), &odom).unwrap());
         pose = (pose.0 + 0.028 * psi.cos(), pose.1 + 0.028 * psi.sin(), psi);
     }
     (last.unwrap(), pose)
@@ -179,7 +179,7 @@ fn bad_scans_are_absent() {
     for ranges in [&flat, &nan, &inf, &empty] {
         let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
         for _ in 0..30 {
-            let d = det.step(&scan(ranges, &l), &odom).unwrap();
+            let d = det.detect(&scan(ranges, &l), &odom).unwrap();
             assert_eq!(d.verdict, Verdict::Absent);
             assert!(d.error.is_none() && d.lines.is_none());
             assert_eq!(d.maxima, 0);
@@ -222,7 +222,7 @@ fn bad_scans_are_absent() {
         ],
     );
     for _ in 0..30 {
-        let d = det.step(&scan(&ranges, &l), &odom).unwrap();
+        let d = det.detect(&scan(&ranges, &l), &odom).unwrap();
         assert_eq!(d.verdict, Verdict::Absent);
     }
 }
@@ -242,7 +242,7 @@ fn scans_the_detector_cannot_read_are_errors_and_dropped_rays_keep_indices() {
     let mut small = FurrowDetector::<64, 32>::new(FurrowConfig::new(&params).unwrap()).unwrap();
     assert_eq!(
         small
-            .step(&scan(&ranges, &l), &odom)
+            .detect(&scan(&ranges, &l), &odom)
             .unwrap_err()
             .requirement,
         "FUR-SCAN"
@@ -255,7 +255,7 @@ fn scans_the_detector_cannot_read_are_errors_and_dropped_rays_keep_indices() {
             ranges: &ranges,
             limits: limits(),
         };
-        assert_eq!(det.step(&bad, &odom).unwrap_err().requirement, "FUR-SCAN");
+        assert_eq!(det.detect(&bad, &odom).unwrap_err().requirement, "FUR-SCAN");
     }
     // Dropping rays far from the plants moves no maximum.
     let (clean, w) = det.maxima(&scan(&ranges, &l)).unwrap();
@@ -351,7 +351,7 @@ fn a_stretch_without_plants_is_exit_then_absent_never_a_line() {
     for _ in 0..60 {
         let ranges = ridge_scan(&params, &l, (x, 0.0, 0.0), &maize());
         let d = det
-            .step(&scan(&ranges, &l), &Pose2::new(x, 0.0, 0.0).unwrap())
+            .detect(&scan(&ranges, &l), &Pose2::new(x, 0.0, 0.0).unwrap())
             .unwrap();
         let (c_l, c_r) = match d.selected {
             Some(_) => (d.quality.unwrap(), d.quality.unwrap()),
@@ -366,7 +366,7 @@ fn a_stretch_without_plants_is_exit_then_absent_never_a_line() {
     while x < 60.0 * 0.028 + 11.0 {
         let flat = flat_scan(&params, &l, 0.01);
         let d = det
-            .step(&scan(&flat, &l), &Pose2::new(x, 0.0, 0.0).unwrap())
+            .detect(&scan(&flat, &l), &Pose2::new(x, 0.0, 0.0).unwrap())
             .unwrap();
         assert!(matches!(d.verdict, Verdict::Exit | Verdict::Absent));
         seen.push(d.verdict);
@@ -479,7 +479,7 @@ proptest! {
                 ranges,
                 limits: limits(),
             };
-            match det.step(&s, &odom) {
+            match det.detect(&s, &odom) {
                 Ok(d) => {
                     prop_assert_eq!(d.error.is_none(), d.verdict == Verdict::Absent);
                     prop_assert_eq!(d.lines.is_none(), d.verdict == Verdict::Absent);

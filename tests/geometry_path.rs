@@ -97,7 +97,7 @@ fn noisy(points: &[Point2<World>], sigma: f64, seed: u64) -> Vec<Point2<World>> 
         .collect()
 }
 
-/// The U-turn of issue #2: east along y = 0 for 20 m, a left semicircle of
+/// A recorded U-turn: east along y = 0 for 20 m, a left semicircle of
 /// radius 3 m centred at (20, 3), then west along y = 6 for 20 m; every 0.1 m.
 fn u_turn_points() -> Vec<Point2<World>> {
     let mut pts = line_points(0.0, 0.0, 0.0, 200, 0.1);

@@ -2,8 +2,9 @@
 //! (`spec/guidance.md`, GD-*): path tracking without detections, entry into a
 //! behaviour after its delay with the command the law gives for that
 //! detector's error, held detections moved by odometry, localisation lost in a
-//! behaviour, Stop, priority, plan flags, malformed input, configuration, and
-//! properties over random tick sequences and arbitrary scans.
+//! behaviour, Stop, priority, plan flags, malformed input, configuration, a
+//! path replaced between ticks, the vehicle's actuation, and properties over
+//! random tick sequences and arbitrary scans.
 #![allow(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -19,33 +20,44 @@ mod furrow_common;
 
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use fieldguide::control::backstepping::steering_command;
+use fieldguide::control::backstepping::{steering_command, BacksteppingConfig, SteeringCommand};
+use fieldguide::control::ControlLaw;
+use fieldguide::geometry::carry::{moved_line_error, pose_in_scan_frame};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
-use fieldguide::guidance::odometry::{
-    moved_edge_error, moved_line_error, moved_rows_error, pose_in_scan_frame,
-};
 use fieldguide::guidance::{
-    ActiveMode, Command, EdgeFollowingParams, Guidance, GuidanceConfig, GuidanceParams, LawOutcome,
-    PlanCheck, Priority, Source, TickInput, TickOutput,
+    BehaviourId, BehaviourParams, BehaviourStatus, Guidance, GuidanceConfig, GuidanceParams,
+    LawOutcome, Mode, RoutedScan, TickInput, TickOutput, MAX_SCAN_AGE_TICKS,
 };
 use fieldguide::model::bicycle::Sideslip;
+use fieldguide::model::{Actuation, Command, Saturated, Vehicle};
 use fieldguide::perception::edge::{
-    EdgeConfig, EdgeDetector, EdgeFit, EdgeQuality, ParabolaFit, Side,
+    EdgeConfig, EdgeDetector, EdgeDetectorConfig, EdgeLine, ParabolaFit, Side,
 };
 use fieldguide::perception::furrow::lines::{self, RowLine};
 use fieldguide::perception::furrow::selection::Pair;
 use fieldguide::perception::furrow::{FurrowDetector, FurrowParams, RowLines};
-use fieldguide::perception::{RangeLimits, Scan};
-use fieldguide::supervisor::switching::{PathAhead, PlanTolerance};
+use fieldguide::perception::{AnyDetector, AnyDetectorConfig, HeldLine, RangeLimits, Scan};
+use fieldguide::presets::{
+    furrow_pursuing, pierre2022_both, pierre2022_edge, pierre2022_furrow, pierre2022_path,
+    Pierre2022, Pierre2022Params, EDGE, FURROW,
+};
+use fieldguide::supervisor::switching::{Mode as MachineMode, PathAhead, PlanTolerance};
 use fieldguide::{
-    Meters, MetersPerSecond, Odom, Point2, Pose2, Radians, Robot, Seconds, Sensor, TrackingError,
-    Transform2, Verdict, World,
+    Meters, MetersPerSecond, Odom, Point2, Pose2, Precondition, Radians, Robot, Seconds, Sensor,
+    TrackingError, Transform2, Verdict, World,
 };
 use furrow_common::{ridge_scan, Lidar, Ridge};
 use proptest::prelude::*;
 
 const PATH_N: usize = 256;
-type Pipeline<'p> = Guidance<'p, PATH_N>;
+type Pipeline<'p> = Pierre2022<'p, PATH_N>;
+type Params = Pierre2022Params;
+type Behaviour = BehaviourParams<AnyDetectorConfig, BacksteppingConfig>;
+type Out = TickOutput<Sideslip, 2>;
+
+/// The priority orders of the two behaviours of the presets.
+const FURROW_FIRST: [BehaviourId; 2] = [FURROW, EDGE];
+const EDGE_FIRST: [BehaviourId; 2] = [EDGE, FURROW];
 
 /// The horizontal LiDAR: 360 rays over a full turn, 1.2 m ahead of O.
 const MOUNT_X: f64 = 1.2;
@@ -76,6 +88,11 @@ fn edge_scan(ranges: &[f64]) -> Scan<'_> {
         ranges,
         limits: limits(),
     }
+}
+
+/// `scan` routed to behaviour `behaviour`.
+fn routed(behaviour: BehaviourId, scan: Scan<'_>) -> RoutedScan<'_> {
+    RoutedScan { behaviour, scan }
 }
 
 /// A wall along the world x axis at `y`, from `x_min` to `x_max`.
@@ -161,55 +178,98 @@ fn odom(p: (f64, f64, f64)) -> Pose2<Odom> {
     Pose2::new(p.0, p.1, p.2).unwrap()
 }
 
-fn edge_params() -> GuidanceParams {
-    GuidanceParams::pierre2022_edge(Side::Left, mount()).unwrap()
+fn edge_params() -> Params {
+    pierre2022_edge(Side::Left, mount()).unwrap()
 }
 
-fn both_params(priority: Priority) -> GuidanceParams {
-    GuidanceParams {
-        edge: Some(EdgeFollowingParams::pierre2022(Side::Left, mount()).unwrap()),
-        priority,
-        ..GuidanceParams::pierre2022_furrow().unwrap()
+/// Both behaviours of the presets, in `priority` order.
+fn both_params(priority: [BehaviourId; 2]) -> Params {
+    let mut params = pierre2022_both(Side::Left, mount()).unwrap();
+    params.priority = heapless::Vec::from_slice(&priority).unwrap();
+    params
+}
+
+/// `params` with the plan checked for every behaviour with `tolerance`, a
+/// disagreement left after `delay`.
+fn with_plan(mut params: Params, tolerance: PlanTolerance, delay: Seconds) -> Params {
+    for b in &mut params.behaviours {
+        b.plan = Some(tolerance);
     }
+    params.plan_delay = Some(delay);
+    params
 }
 
-fn pipeline<'p>(params: &GuidanceParams, path: &'p ReferencePath<PATH_N>) -> Pipeline<'p> {
-    Guidance::new(GuidanceConfig::new(params).unwrap(), path).unwrap()
+/// The parameters of behaviour `id`.
+fn behaviour(params: &Params, id: BehaviourId) -> &Behaviour {
+    params.behaviours.iter().find(|b| b.id == id).unwrap()
+}
+
+fn behaviour_mut(params: &mut Params, id: BehaviourId) -> &mut Behaviour {
+    params.behaviours.iter_mut().find(|b| b.id == id).unwrap()
+}
+
+/// The status of behaviour `id` in a tick; it must be configured.
+fn status(out: &Out, id: BehaviourId) -> &BehaviourStatus {
+    out.behaviour(id).expect("a configured behaviour")
+}
+
+fn pipeline<'p>(params: &Params, path: &'p ReferencePath<PATH_N>) -> Pipeline<'p> {
+    Guidance::new(GuidanceConfig::new::<AnyDetector>(params).unwrap(), path).unwrap()
 }
 
 /// A tick with only poses: no scan.
-fn bare(pose: (f64, f64, f64), gnss: bool) -> TickInput<'static> {
+fn bare(pose: (f64, f64, f64), gnss: bool) -> TickInput<'static, Sideslip> {
     TickInput {
-        horizontal: None,
-        inclined: None,
+        scans: &[],
         gnss: gnss.then(|| world(pose)),
         odometry: odom(pose),
-        sideslip: Sideslip::ZERO,
+        extra: Sideslip::ZERO,
     }
 }
 
-fn command(out: &TickOutput) -> Command {
+fn command(out: &Out) -> Saturated {
     out.command.expect("a command")
+}
+
+/// The steering angle of a bicycle command.
+fn steering(c: &Saturated) -> Radians {
+    c.command.steering().expect("a bicycle command")
+}
+
+/// The command the pipeline makes of the backstepping law's output `c` at
+/// the desired speed `speed`.
+fn bicycle(c: &SteeringCommand, speed: MetersPerSecond) -> Saturated {
+    Saturated {
+        command: Command::Bicycle {
+            speed,
+            steering: c.steering,
+        },
+        saturated: c.saturated,
+    }
 }
 
 /// The edge detector's own error on a scan, straight from the detector.
 fn edge_error_of(ranges: &[f64]) -> (Verdict, TrackingError) {
-    let mut detector = EdgeDetector::<512, 64>::new(EdgeConfig::pierre2022().unwrap(), mount());
-    let outcome = detector.detect(&edge_scan(ranges), Side::Left).unwrap();
+    let mut detector = EdgeDetector::<512, 64>::new(EdgeDetectorConfig {
+        edge: EdgeConfig::pierre2022().unwrap(),
+        mount: mount(),
+        side: Side::Left,
+    });
+    let outcome = detector
+        .detect(&edge_scan(ranges), &odom((0.0, 0.0, 0.0)))
+        .unwrap();
     (outcome.verdict, outcome.fit.unwrap().error)
 }
 
-//= spec/guidance.md#gd-prediction-sideslip-and-prediction-only-in-path-tracking
+//= spec/guidance.md#gd-prediction-extra-input-and-prediction-only-in-path-tracking
 //= type=test
-//# Path tracking MUST use the sideslip estimate, when compensation is
+//# Path tracking MUST use the tick's extra input, when compensation is
 //# configured, and the curvature c(s + vT) with v its desired speed and T the
-//# prediction horizon; edge following and furrow pursuing MUST use zero sideslip
+//# prediction horizon; every other behaviour MUST use its law's neutral input
 //# and a straight line, c = c(s + vT) = 0.
 //= spec/guidance.md#gd-speed-desired-speed-per-mode
 //= type=test
-//# The speed of a command MUST be the desired speed of its source: path
-//# tracking, edge following or furrow pursuing (Tables 1 and 2: 0.8, 0.4 and
-//# 0.7 m/s).
+//# The speed of a command MUST be the desired speed of its source.
 #[test]
 fn path_tracking_without_detections_uses_sideslip_and_prediction() {
     // 10 m straight, then a left arc of radius 5 m: at s = 9 the smoothed
@@ -222,21 +282,21 @@ fn path_tracking_without_detections_uses_sideslip_and_prediction() {
         points.push(Point2::new(10.0 + 5.0 * a.sin(), 5.0 - 5.0 * a.cos()).unwrap());
     }
     let path = ReferencePath::<PATH_N>::from_waypoints(&points, PathConfig::default()).unwrap();
-    let params = both_params(Priority::FurrowFirst);
+    let params = both_params(FURROW_FIRST);
     let mut g = pipeline(&params, &path);
     let pose = (9.0, 0.02, 0.0);
     let slip = Sideslip::new(-0.02, -0.03).unwrap();
     let out = g
         .step(&TickInput {
-            sideslip: slip,
+            extra: slip,
             ..bare(pose, true)
         })
         .unwrap();
-    assert_eq!(out.mode, ActiveMode::PathTracking);
-    assert_eq!(out.source, Some(Source::PathTracking));
+    assert_eq!(out.mode, Mode::PathTracking);
+    assert_eq!(out.source, Some(Mode::PathTracking));
     assert!(out.path.localisation_valid);
-    assert_eq!(out.edge.detected, Verdict::Absent);
-    assert_eq!(out.furrow.detected, Verdict::Absent);
+    assert_eq!(status(&out, EDGE).detected, Verdict::Absent);
+    assert_eq!(status(&out, FURROW).detected, Verdict::Absent);
 
     // The same computation by hand: global projection with look-ahead 0.8 m,
     // the law of Table 1 with the sideslip, at 0.8 m/s.
@@ -249,30 +309,32 @@ fn path_tracking_without_detections_uses_sideslip_and_prediction() {
     let v = MetersPerSecond::new(0.8).unwrap();
     let expected = steering_command(&law, &frenet.tracking_error(), slip, v).unwrap();
     let c = command(&out);
-    assert_eq!(c.speed, v);
-    assert_eq!(c.steering, expected.steering);
+    assert_eq!(c.command.speed(), v);
+    assert_eq!(steering(&c), expected.steering);
+    assert_eq!(c, bicycle(&expected, v));
     assert_eq!(out.path.frenet, Some(frenet));
-    assert_eq!(out.path.sideslip_used, slip);
+    assert_eq!(out.path.extra_used, slip);
     // Both the sideslip and the prediction change the command.
     let no_slip = steering_command(&law, &frenet.tracking_error(), Sideslip::ZERO, v).unwrap();
     assert!(!c.saturated, "{c:?}");
-    assert!((no_slip.steering.get() - c.steering.get()).abs() > 1e-3);
+    assert!((no_slip.steering.get() - steering(&c).get()).abs() > 1e-3);
     let now = path.project(&world(pose), Meters::ZERO).unwrap();
     let no_prediction = steering_command(&law, &now.tracking_error(), slip, v).unwrap();
-    assert!((no_prediction.steering.get() - c.steering.get()).abs() > 1e-3);
+    assert!((no_prediction.steering.get() - steering(&c).get()).abs() > 1e-3);
 
-    // Compensation off: zero sideslip.
+    // Compensation off: the law's neutral input, zero sideslip.
     let mut off = params;
-    off.path.sideslip_compensation = false;
+    off.path.compensation = false;
     let mut g = pipeline(&off, &path);
     let out = g
         .step(&TickInput {
-            sideslip: slip,
+            extra: slip,
             ..bare(pose, true)
         })
         .unwrap();
-    assert_eq!(out.path.sideslip_used, Sideslip::ZERO);
-    assert_eq!(command(&out).steering, no_slip.steering);
+    assert_eq!(out.path.extra_used, Sideslip::ZERO);
+    assert_eq!(out.path.extra_used, BacksteppingConfig::NEUTRAL);
+    assert_eq!(steering(&command(&out)), no_slip.steering);
 }
 
 //= spec/guidance.md#gd-command-the-command-of-the-selected-source
@@ -287,11 +349,11 @@ fn path_tracking_without_detections_uses_sideslip_and_prediction() {
 //# projection of the GNSS pose, the plan consistency of each detected line, the
 //# control law of each source whose estimate is valid, one step of the switching
 //# machine, and the command of the source the machine selects.
-//= spec/guidance.md#gd-prediction-sideslip-and-prediction-only-in-path-tracking
+//= spec/guidance.md#gd-prediction-extra-input-and-prediction-only-in-path-tracking
 //= type=test
-//# Path tracking MUST use the sideslip estimate, when compensation is
+//# Path tracking MUST use the tick's extra input, when compensation is
 //# configured, and the curvature c(s + vT) with v its desired speed and T the
-//# prediction horizon; edge following and furrow pursuing MUST use zero sideslip
+//# prediction horizon; every other behaviour MUST use its law's neutral input
 //# and a straight line, c = c(s + vT) = 0.
 #[test]
 fn forty_enter_ticks_bring_edge_following_with_the_laws_command() {
@@ -306,44 +368,48 @@ fn forty_enter_ticks_bring_edge_following_with_the_laws_command() {
     assert!((error.y.get() + 0.1).abs() < 1e-9, "{error:?}");
     assert!(error.angular_deviation.get().abs() < 1e-9);
     let slip = Sideslip::new(0.05, -0.04).unwrap();
+    let scans = [routed(EDGE, edge_scan(&ranges))];
     let tick = TickInput {
-        horizontal: Some(edge_scan(&ranges)),
-        sideslip: slip,
+        scans: &scans,
+        extra: slip,
         ..bare(pose, true)
     };
     // Table 1: 0.4 s at 100 Hz is 40 ticks of Enter verdicts.
     for k in 1..=39 {
         let out = g.step(&tick).unwrap();
-        assert_eq!(out.mode, ActiveMode::PathTracking, "tick {k}");
-        assert_eq!(out.source, Some(Source::PathTracking));
-        assert_eq!(out.edge.detected, Verdict::Enter);
-        assert_eq!(out.edge.error, Some(error));
-        assert_eq!(command(&out).speed.get(), 0.8);
+        assert_eq!(out.mode, Mode::PathTracking, "tick {k}");
+        assert_eq!(out.source, Some(Mode::PathTracking));
+        assert_eq!(status(&out, EDGE).detected, Verdict::Enter);
+        assert_eq!(status(&out, EDGE).error, Some(error));
+        assert_eq!(command(&out).command.speed().get(), 0.8);
     }
     let out = g.step(&tick).unwrap();
-    assert_eq!(out.mode, ActiveMode::EdgeFollowing);
-    assert_eq!(out.source, Some(Source::EdgeFollowing));
+    assert_eq!(out.mode, Mode::Behaviour(EDGE));
+    assert_eq!(out.source, Some(Mode::Behaviour(EDGE)));
     // The law of Table 1 on the detector's error: no sideslip, straight line,
     // at 0.4 m/s, whatever the input's sideslip.
     let v = MetersPerSecond::new(0.4).unwrap();
-    let law = params.edge.unwrap().law;
+    let law = behaviour(&params, EDGE).law;
     let expected = steering_command(&law, &error, Sideslip::ZERO, v).unwrap();
     let c = command(&out);
-    assert_eq!(c.speed, v);
-    assert_eq!(c.steering, expected.steering);
+    assert_eq!(c.command.speed(), v);
+    assert_eq!(steering(&c), expected.steering);
     assert_eq!(c.saturated, expected.saturated);
-    assert_eq!(out.edge.law, LawOutcome::Steer(expected));
+    assert_eq!(
+        status(&out, EDGE).law,
+        LawOutcome::Commanded(bicycle(&expected, v))
+    );
     // The path law ran too (the pipeline runs every valid source's law).
-    assert!(matches!(out.path.law, LawOutcome::Steer(_)));
+    assert!(matches!(out.path.law, LawOutcome::Commanded(_)));
 }
 
 /// The robot drives along x at 0.7 m/s (0.007 m per 10 ms tick), 5 cm left of
 /// the rows' middle; the inclined LiDAR scans every 10th tick.
 fn furrow_drive(
-    params: &GuidanceParams,
+    params: &Params,
     path: &ReferencePath<PATH_N>,
     ticks: usize,
-    mut each: impl FnMut(usize, (f64, f64, f64), bool, &TickOutput),
+    mut each: impl FnMut(usize, (f64, f64, f64), bool, &Out),
 ) {
     let mut g = pipeline(params, path);
     let lidar = furrow_lidar();
@@ -352,9 +418,10 @@ fn furrow_drive(
         let pose = (0.007 * k as f64, 0.05, 0.0);
         let scanned = k % 10 == 0;
         let ranges = ridge_scan(&furrow_params(), &lidar, pose, &rows);
+        let scans = scanned.then(|| routed(FURROW, furrow_scan(&ranges, &lidar)));
         let out = g
             .step(&TickInput {
-                inclined: scanned.then(|| furrow_scan(&ranges, &lidar)),
+                scans: scans.as_slice(),
                 ..bare(pose, true)
             })
             .unwrap();
@@ -372,9 +439,12 @@ fn furrow_drive(
 #[test]
 fn furrow_scans_at_10_hz_are_held_and_entered_after_50_enter_ticks() {
     let path = straight_path();
-    let params = GuidanceParams::pierre2022_furrow().unwrap();
-    let furrow = params.furrow.unwrap();
-    let mut twin = FurrowDetector::<512, 32>::new(furrow.detector).unwrap();
+    let params = pierre2022_furrow().unwrap();
+    let furrow = *behaviour(&params, FURROW);
+    let AnyDetectorConfig::Furrow(detector) = furrow.detector else {
+        panic!("furrow pursuing has a furrow detector");
+    };
+    let mut twin = FurrowDetector::<512, 32>::new(detector).unwrap();
     let lidar = furrow_lidar();
     let rows = two_rows();
     let mut latest = None;
@@ -384,17 +454,20 @@ fn furrow_scans_at_10_hz_are_held_and_entered_after_50_enter_ticks() {
         if scanned {
             let ranges = ridge_scan(&furrow_params(), &lidar, pose, &rows);
             let d = twin
-                .step(&furrow_scan(&ranges, &lidar), &odom(pose))
+                .detect(&furrow_scan(&ranges, &lidar), &odom(pose))
                 .unwrap();
             latest = Some((d, pose));
         }
         let (d, at) = latest.unwrap();
-        assert_eq!(out.furrow.scan_age, Some((k % 10) as u16));
-        assert_eq!(out.furrow.detected, d.verdict, "tick {k}");
+        let furrow_status = status(out, FURROW);
+        assert_eq!(furrow_status.scan_age, Some((k % 10) as u16));
+        assert_eq!(furrow_status.detected, d.verdict, "tick {k}");
+        // The quality of the held scan, Absent verdicts included.
+        assert_eq!(furrow_status.quality, d.quality, "tick {k}");
         match d.error {
-            None => assert_eq!(out.furrow.error, None),
+            None => assert_eq!(furrow_status.error, None),
             Some(e) => {
-                let got = out.furrow.error.unwrap();
+                let got = furrow_status.error.unwrap();
                 if scanned {
                     assert_eq!(got, e);
                 } else {
@@ -421,19 +494,19 @@ fn furrow_scans_at_10_hz_are_held_and_entered_after_50_enter_ticks() {
                 }
             }
         }
-        if out.furrow.reported == Verdict::Enter {
+        if furrow_status.reported == Verdict::Enter {
             first_enter.get_or_insert(k);
         } else if entered.is_none() {
             first_enter = None;
         }
-        if out.mode == ActiveMode::FurrowPursuing && entered.is_none() {
+        if out.mode == Mode::Behaviour(FURROW) && entered.is_none() {
             entered = Some(k);
-            let error = out.furrow.error.unwrap();
+            let error = furrow_status.error.unwrap();
             let v = MetersPerSecond::new(0.7).unwrap();
             let expected = steering_command(&furrow.law, &error, Sideslip::ZERO, v).unwrap();
-            assert_eq!(command(out).steering, expected.steering);
-            assert_eq!(command(out).speed, v);
-            assert_eq!(out.source, Some(Source::FurrowPursuing));
+            assert_eq!(steering(&command(out)), expected.steering);
+            assert_eq!(command(out).command.speed(), v);
+            assert_eq!(out.source, Some(Mode::Behaviour(FURROW)));
         }
     });
     // Table 2: 0.5 s at 100 Hz, 50 consecutive ticks of Enter, held between scans.
@@ -461,55 +534,63 @@ fn furrow_scans_at_10_hz_are_held_and_entered_after_50_enter_ticks() {
 fn a_held_edge_detection_expires_after_the_maximal_age_and_a_refused_scan_drops_it() {
     let path = straight_path();
     let params = edge_params();
-    let config = GuidanceConfig::new(&params).unwrap();
+    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
     assert_eq!(config.max_scan_age_ticks(), 10); // 0.1 s at 0.01 s
     let mut g = pipeline(&params, &path);
     let pose = (0.0, 0.0, 0.0);
     let ranges = wall_ranges(pose, long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
     let out = g
         .step(&TickInput {
-            horizontal: Some(edge_scan(&ranges)),
+            scans: &scans,
             ..bare(pose, true)
         })
         .unwrap();
     assert_eq!(
-        (out.edge.detected, out.edge.scan_age),
+        (status(&out, EDGE).detected, status(&out, EDGE).scan_age),
         (Verdict::Enter, Some(0))
     );
     for age in 1..=10 {
         let out = g.step(&bare(pose, true)).unwrap();
-        assert_eq!(out.edge.detected, Verdict::Enter, "age {age}");
-        assert_eq!(out.edge.scan_age, Some(age));
-        assert!(out.edge.error.is_some());
+        assert_eq!(status(&out, EDGE).detected, Verdict::Enter, "age {age}");
+        assert_eq!(status(&out, EDGE).scan_age, Some(age));
+        assert!(status(&out, EDGE).error.is_some());
     }
     let out = g.step(&bare(pose, true)).unwrap();
-    assert_eq!(out.edge.detected, Verdict::Absent);
-    assert_eq!(out.edge.error, None);
-    assert_eq!(out.edge.scan_age, Some(11));
+    assert_eq!(status(&out, EDGE).detected, Verdict::Absent);
+    assert_eq!(status(&out, EDGE).error, None);
+    assert_eq!(status(&out, EDGE).scan_age, Some(11));
 
     // A detector with room for 200 points takes the wall (about 177 valid
     // rays), then refuses a scan of 360 valid rays: the held wall is dropped.
-    let mut small: Guidance<'_, PATH_N, 200> =
-        Guidance::new(GuidanceConfig::new(&params).unwrap(), &path).unwrap();
+    let mut small: Guidance<'_, PATH_N, AnyDetector<200>, BacksteppingConfig, 2> = Guidance::new(
+        GuidanceConfig::new::<AnyDetector<200>>(&params).unwrap(),
+        &path,
+    )
+    .unwrap();
     small
         .step(&TickInput {
-            horizontal: Some(edge_scan(&ranges)),
+            scans: &scans,
             ..bare(pose, true)
         })
         .unwrap();
-    assert_eq!(small.last_edge().map(|o| o.verdict), Some(Verdict::Enter));
+    assert_eq!(small.held(EDGE).map(|d| d.verdict), Some(Verdict::Enter));
     let circle = vec![5.0; RAYS];
     let out = small
         .step(&TickInput {
-            horizontal: Some(edge_scan(&circle)),
+            scans: &[routed(EDGE, edge_scan(&circle))],
             ..bare(pose, true)
         })
         .unwrap();
-    assert_eq!(out.edge.scan_refused.unwrap().requirement, "EDGE-SCAN");
-    assert_eq!(out.edge.detected, Verdict::Absent);
-    assert_eq!(out.edge.error, None);
-    assert!(small.last_edge().is_none());
-    assert_eq!(out.mode, ActiveMode::PathTracking);
+    let edge_status = status(&out, EDGE);
+    assert_eq!(edge_status.scan_refused.unwrap().requirement, "EDGE-SCAN");
+    assert_eq!(edge_status.detected, Verdict::Absent);
+    assert_eq!(edge_status.error, None);
+    assert!(small.held(EDGE).is_none());
+    // The refused scan left no chain behind in the detector either.
+    let detector = small.detector(EDGE).and_then(AnyDetector::as_edge).unwrap();
+    assert!(detector.chain().is_empty());
+    assert_eq!(out.mode, Mode::PathTracking);
 }
 
 //= spec/guidance.md#gd-localisation-localisation-for-path-tracking
@@ -524,22 +605,23 @@ fn losing_localisation_in_edge_following_keeps_the_behaviour() {
     let mut g = pipeline(&params, &path);
     let pose = (0.0, 0.0, 0.0);
     let ranges = wall_ranges(pose, long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
     let scan = |gnss: bool| TickInput {
-        horizontal: Some(edge_scan(&ranges)),
+        scans: &scans,
         ..bare(pose, gnss)
     };
     for _ in 0..40 {
         g.step(&scan(true)).unwrap();
     }
-    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
     let with_gnss = command(&g.step(&scan(true)).unwrap());
     for k in 0..300 {
         let out = g.step(&scan(false)).unwrap();
         assert!(!out.path.localisation_valid);
         assert_eq!(out.path.frenet, None);
         assert_eq!(out.path.law, LawOutcome::NotRun);
-        assert_eq!(out.mode, ActiveMode::EdgeFollowing, "tick {k}");
-        assert_eq!(out.source, Some(Source::EdgeFollowing));
+        assert_eq!(out.mode, Mode::Behaviour(EDGE), "tick {k}");
+        assert_eq!(out.source, Some(Mode::Behaviour(EDGE)));
         assert_eq!(command(&out), with_gnss);
     }
     // Facing backwards along the path: the projection exists but the law
@@ -556,14 +638,8 @@ fn losing_localisation_in_edge_following_keeps_the_behaviour() {
     assert_eq!(out.source, None);
 }
 
-//= spec/guidance.md#gd-localisation-localisation-for-path-tracking
-//= type=test
-//# The projection MUST search the path locally, within the search window plus
-//# the odometry distance travelled since the last successful projection, around
-//# that projection's abscissa, and globally only before the first one.
-#[test]
-fn projection_is_local_and_its_window_grows_with_the_odometry_travelled() {
-    // A U-turn: out along y = 0, a half circle of radius 1.5 m, back along y = 3.
+/// A U-turn: out along y = 0, a half circle of radius 1.5 m, back along y = 3.
+fn u_turn() -> ReferencePath<PATH_N> {
     let mut points: Vec<Point2<World>> = (0..=40)
         .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
         .collect();
@@ -574,8 +650,18 @@ fn projection_is_local_and_its_window_grows_with_the_odometry_travelled() {
     for i in 0..=40 {
         points.push(Point2::new(20.0 - 0.5 * f64::from(i), 3.0).unwrap());
     }
-    let path = ReferencePath::<PATH_N>::from_waypoints(&points, PathConfig::default()).unwrap();
-    let mut g = pipeline(&GuidanceParams::pierre2022_path().unwrap(), &path);
+    ReferencePath::<PATH_N>::from_waypoints(&points, PathConfig::default()).unwrap()
+}
+
+//= spec/guidance.md#gd-localisation-localisation-for-path-tracking
+//= type=test
+//# The projection MUST search the path locally, within the search window plus
+//# the odometry distance travelled since the last successful projection, around
+//# that projection's abscissa, and globally only before the first one.
+#[test]
+fn projection_is_local_and_its_window_grows_with_the_odometry_travelled() {
+    let path = u_turn();
+    let mut g = pipeline(&pierre2022_path().unwrap(), &path);
     // First tick: global search, on the first leg.
     let out = g.step(&bare((5.0, 0.0, 0.0), true)).unwrap();
     assert!((out.path.frenet.unwrap().s.get() - 5.0).abs() < 1e-9);
@@ -588,13 +674,13 @@ fn projection_is_local_and_its_window_grows_with_the_odometry_travelled() {
         assert!((f.s.get() - 5.0).abs() < 1e-9 && (f.y.get() - y).abs() < 1e-9);
     }
     // A pipeline starting there would take the return leg (global search).
-    let mut fresh = pipeline(&GuidanceParams::pierre2022_path().unwrap(), &path);
+    let mut fresh = pipeline(&pierre2022_path().unwrap(), &path);
     let out = fresh.step(&bare((5.0, 1.6, 0.0), true)).unwrap();
     assert!(out.path.frenet.unwrap().s.get() > 30.0);
 
     // GNSS lost over 12 m of odometry: the window grows by that distance, so
     // the next pose is found at s = 17, beyond the 3 m base window.
-    let mut g = pipeline(&GuidanceParams::pierre2022_path().unwrap(), &path);
+    let mut g = pipeline(&pierre2022_path().unwrap(), &path);
     g.step(&bare((5.0, 0.0, 0.0), true)).unwrap();
     for k in 1..=120 {
         g.step(&bare((5.0 + 0.1 * f64::from(k), 0.0, 0.0), false))
@@ -606,10 +692,64 @@ fn projection_is_local_and_its_window_grows_with_the_odometry_travelled() {
     assert!(out.path.localisation_valid);
 }
 
+//= spec/guidance.md#gd-path-a-reference-path-replaced-between-ticks
+//= type=test
+//# The reference path MUST be replaceable between ticks without rebuilding the
+//# pipeline, keeping the mode, the switching counters and the held
+//# detections, and the first projection on a new path MUST search the whole
+//# path.
+#[test]
+fn a_path_replaced_between_ticks_keeps_the_state_and_is_searched_whole() {
+    let straight = straight_path();
+    let turn = u_turn();
+    let params = edge_params();
+    let mut g = pipeline(&params, &straight);
+    let pose = (5.0, 1.6, 0.0);
+    let ranges = wall_ranges(pose, long_wall(3.1));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
+    let tick = TickInput {
+        scans: &scans,
+        ..bare(pose, true)
+    };
+    // 20 of the 40 Enter ticks edge following needs, on the straight path.
+    for _ in 0..20 {
+        let out = g.step(&tick).unwrap();
+        assert_eq!(status(&out, EDGE).detected, Verdict::Enter);
+        assert!((out.path.frenet.unwrap().s.get() - 25.0).abs() < 1e-9);
+    }
+    let (mode, machine, held) = (g.mode(), *g.switching(), *g.held(EDGE).unwrap());
+    assert_eq!(machine.state().entry_run(0), Some(20));
+    g.set_path(&turn);
+    // Nothing but the path changed.
+    assert!(core::ptr::eq(g.path(), &turn));
+    assert_eq!(g.mode(), mode);
+    assert_eq!(*g.switching(), machine);
+    assert_eq!(*g.held(EDGE).unwrap(), held);
+    // The first projection on the new path is global: 1.6 m left of its first
+    // leg at s = 5 but 1.4 m from its return leg, it takes the return leg (a
+    // local search around the old abscissa s = 25 would not), as a pipeline
+    // built on that path does.
+    let held_tick = bare(pose, true);
+    let out = g.step(&held_tick).unwrap();
+    let mut fresh = pipeline(&params, &turn);
+    let first = fresh.step(&held_tick).unwrap();
+    assert!(out.path.frenet.unwrap().s.get() > 30.0);
+    assert_eq!(out.path.frenet, first.path.frenet);
+    // The held detection was kept: the scan of before the change is one tick old.
+    assert_eq!(status(&out, EDGE).scan_age, Some(1));
+    assert_eq!(status(&out, EDGE).detected, Verdict::Enter);
+    // The counters were kept: the 40th Enter tick enters edge following.
+    for k in 22..=40 {
+        let out = g.step(&tick).unwrap();
+        assert_eq!(out.mode == Mode::Behaviour(EDGE), k == 40, "tick {k}");
+    }
+}
+
 //= spec/guidance.md#gd-stop-the-stop-command
 //= type=test
-//# In Stop the command MUST be a speed of 0 m/s with the steering of the last
-//# command made, or 0 rad before any command, never saturated.
+//# In Stop the command MUST be the stop of the last command made (every speed
+//# zero, steering angles held, a yaw rate zero), or the vehicle at rest before
+//# any command, never saturated.
 #[test]
 fn without_a_source_for_the_stop_delay_the_command_is_a_stop() {
     let path = straight_path();
@@ -619,46 +759,52 @@ fn without_a_source_for_the_stop_delay_the_command_is_a_stop() {
     for _ in 0..10 {
         last = Some(command(&g.step(&bare((2.0, 0.4, 0.0), true)).unwrap()));
     }
-    let steering = last.unwrap().steering;
-    assert!(steering.get() < -0.01);
+    let last = last.unwrap();
+    let held = steering(&last);
+    assert!(held.get() < -0.01);
     // No GNSS, no scan: no source. 0.5 s at 100 Hz: Stop in the 50th tick.
     for k in 1..=49 {
         let out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
-        assert_eq!(out.mode, ActiveMode::PathTracking, "tick {k}");
+        assert_eq!(out.mode, Mode::PathTracking, "tick {k}");
         assert_eq!((out.command, out.source), (None, None));
     }
     for _ in 0..20 {
         let out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
-        assert_eq!(out.mode, ActiveMode::Stop);
+        assert_eq!(out.mode, Mode::Stop);
         assert_eq!(out.source, None);
         assert_eq!(
             out.command,
-            Some(Command {
-                speed: MetersPerSecond::ZERO,
-                steering,
+            Some(Saturated {
+                command: Command::Bicycle {
+                    speed: MetersPerSecond::ZERO,
+                    steering: held,
+                },
                 saturated: false,
             })
         );
+        assert_eq!(command(&out).command, last.command.stopped());
     }
     // Localisation returns: path tracking at once.
     let out = g.step(&bare((2.0, 0.4, 0.0), true)).unwrap();
-    assert_eq!(out.mode, ActiveMode::PathTracking);
-    assert_eq!(command(&out).speed.get(), 0.8);
+    assert_eq!(out.mode, Mode::PathTracking);
+    assert_eq!(command(&out).command.speed().get(), 0.8);
 
-    // Before any command, the stop steers straight.
+    // Before any command, the stop steers straight: the vehicle at rest.
     let mut g = pipeline(&params, &path);
     let mut out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
     for _ in 1..50 {
         out = g.step(&bare((2.0, 0.4, 0.0), false)).unwrap();
     }
-    assert_eq!(out.mode, ActiveMode::Stop);
-    assert_eq!(command(&out).steering, Radians::ZERO);
-    assert_eq!(command(&out).speed, MetersPerSecond::ZERO);
+    assert_eq!(out.mode, Mode::Stop);
+    assert_eq!(steering(&command(&out)), Radians::ZERO);
+    assert_eq!(command(&out).command.speed(), MetersPerSecond::ZERO);
+    assert_eq!(command(&out).command, Actuation::Bicycle.at_rest());
+    assert!(!command(&out).saturated);
 }
 
 /// Drives along x with a wall 1.5 m left and two rows under the inclined
 /// LiDAR; returns the modes.
-fn both_detectors(priority: Priority) -> Vec<TickOutput> {
+fn both_detectors(priority: [BehaviourId; 2]) -> Vec<Out> {
     let path = straight_path();
     let params = both_params(priority);
     let mut g = pipeline(&params, &path);
@@ -669,9 +815,15 @@ fn both_detectors(priority: Priority) -> Vec<TickOutput> {
             let pose = (0.007 * k as f64, 0.0, 0.0);
             let inclined = ridge_scan(&furrow_params(), &lidar, pose, &rows);
             let horizontal = wall_ranges(pose, long_wall(1.5));
+            let mut scans = Vec::new();
+            if k % 10 == 5 {
+                scans.push(routed(EDGE, edge_scan(&horizontal)));
+            }
+            if k % 10 == 0 {
+                scans.push(routed(FURROW, furrow_scan(&inclined, &lidar)));
+            }
             g.step(&TickInput {
-                horizontal: (k % 10 == 5).then(|| edge_scan(&horizontal)),
-                inclined: (k % 10 == 0).then(|| furrow_scan(&inclined, &lidar)),
+                scans: &scans,
                 ..bare(pose, true)
             })
             .unwrap()
@@ -679,101 +831,169 @@ fn both_detectors(priority: Priority) -> Vec<TickOutput> {
         .collect()
 }
 
-//= spec/guidance.md#gd-behaviours-two-behaviours-in-a-priority-order
+//= spec/guidance.md#gd-behaviours-behaviour-slots-in-a-priority-order
 //= type=test
-//# The pipeline MUST run a switching machine with exactly two specialised
-//# behaviours, edge following and furrow pursuing, in the configured priority
-//# order, and a behaviour that is not configured MUST report Absent in every
-//# tick.
+//# The pipeline MUST hold a list of behaviour slots, each with an id unique in
+//# the pipeline, a label, a detector, a law, a desired speed, two transit
+//# delays and an optional plan tolerance, and MUST run a switching machine over
+//# them in the configured priority order; a slot beyond the configured
+//# behaviours MUST report Absent in every tick.
 #[test]
 fn both_detectors_at_once_follow_the_priority_order() {
     // Furrow first: the wall is entered first (the rows need five scans for a
     // line), then furrow pursuing takes over as soon as its entry is complete.
-    let outs = both_detectors(Priority::FurrowFirst);
+    let outs = both_detectors(FURROW_FIRST);
     let furrow_at = outs
         .iter()
-        .position(|o| o.mode == ActiveMode::FurrowPursuing)
+        .position(|o| o.mode == Mode::Behaviour(FURROW))
         .unwrap();
     let edge_at = outs
         .iter()
-        .position(|o| o.mode == ActiveMode::EdgeFollowing)
+        .position(|o| o.mode == Mode::Behaviour(EDGE))
         .unwrap();
     assert!(edge_at < furrow_at);
     assert!(outs[furrow_at..]
         .iter()
-        .all(|o| o.mode == ActiveMode::FurrowPursuing));
+        .all(|o| o.mode == Mode::Behaviour(FURROW)));
     assert!(outs[furrow_at..]
         .iter()
-        .all(|o| o.edge.detected == Verdict::Enter));
-    assert_eq!(
-        outs[furrow_at].switching.mode,
-        fieldguide::supervisor::switching::Mode::Behaviour(0)
-    );
+        .all(|o| status(o, EDGE).detected == Verdict::Enter));
+    assert_eq!(outs[furrow_at].switching.mode, MachineMode::Behaviour(0));
+    // The statuses are in priority order.
+    assert!(outs
+        .iter()
+        .all(|o| o.behaviours.iter().map(|b| b.id).eq(FURROW_FIRST)));
     // Edge first: once in edge following, the rows never take over.
-    let outs = both_detectors(Priority::EdgeFirst);
+    let outs = both_detectors(EDGE_FIRST);
     let edge_at = outs
         .iter()
-        .position(|o| o.mode == ActiveMode::EdgeFollowing)
+        .position(|o| o.mode == Mode::Behaviour(EDGE))
         .unwrap();
     assert!(outs[edge_at..]
         .iter()
-        .all(|o| o.mode == ActiveMode::EdgeFollowing));
-    assert!(outs.last().unwrap().furrow.detected == Verdict::Enter);
+        .all(|o| o.mode == Mode::Behaviour(EDGE)));
+    assert_eq!(outs[edge_at].switching.mode, MachineMode::Behaviour(0));
+    assert!(status(outs.last().unwrap(), FURROW).detected == Verdict::Enter);
+    assert!(outs
+        .iter()
+        .all(|o| o.behaviours.iter().map(|b| b.id).eq(EDGE_FIRST)));
 
-    // Not configured: Absent every tick, whatever happens.
+    // Not configured: no status, and the slot beyond edge following reports
+    // Absent every tick, whatever happens (no entry evidence, never entered).
     let path = straight_path();
     let mut g = pipeline(&edge_params(), &path);
     let ranges = wall_ranges((0.0, 0.0, 0.0), long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
     for _ in 0..60 {
         let out = g
             .step(&TickInput {
-                horizontal: Some(edge_scan(&ranges)),
+                scans: &scans,
                 ..bare((0.0, 0.0, 0.0), true)
             })
             .unwrap();
-        assert!(!out.furrow.configured);
-        assert_eq!(out.furrow.detected, Verdict::Absent);
-        assert_eq!(out.furrow.reported, Verdict::Absent);
-        assert_ne!(out.mode, ActiveMode::FurrowPursuing);
+        assert!(out.behaviour(FURROW).is_none());
+        assert_eq!(out.behaviours.len(), 1);
+        assert_eq!(g.switching().state().entry_run(1), Some(0));
+        assert_ne!(out.switching.mode, MachineMode::Behaviour(1));
+        assert_ne!(out.mode, Mode::Behaviour(FURROW));
     }
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
+    assert!(g.detector(FURROW).is_none() && g.held(FURROW).is_none());
+}
+
+//= spec/guidance.md#gd-behaviours-behaviour-slots-in-a-priority-order
+//= type=test
+//# A configuration with two behaviours of one id, or a priority that names an
+//# unknown behaviour, names one twice or leaves one out, MUST be refused with
+//# `GD-BEHAVIOURS`.
+#[test]
+fn behaviour_ids_and_the_priority_are_validated() {
+    let refused = |p: &Params| {
+        GuidanceConfig::new::<AnyDetector>(p)
+            .unwrap_err()
+            .requirement
+    };
+    // Two behaviours of one id, with or without a priority.
+    let mut p = both_params(FURROW_FIRST);
+    behaviour_mut(&mut p, EDGE).id = FURROW;
+    assert_eq!(refused(&p), "GD-BEHAVIOURS");
+    p.priority.clear();
+    assert_eq!(refused(&p), "GD-BEHAVIOURS");
+    // A priority naming an unknown behaviour, one twice, or leaving one out.
+    for priority in [
+        &[FURROW, BehaviourId(7)][..],
+        &[FURROW, FURROW][..],
+        &[EDGE][..],
+        &[BehaviourId(7)][..],
+    ] {
+        let mut p = both_params(FURROW_FIRST);
+        p.priority = heapless::Vec::from_slice(priority).unwrap();
+        assert_eq!(refused(&p), "GD-BEHAVIOURS", "{priority:?}");
+    }
+    let mut p = edge_params();
+    p.priority = heapless::Vec::from_slice(&[FURROW]).unwrap();
+    assert_eq!(refused(&p), "GD-BEHAVIOURS");
+
+    // The configuration holds the behaviours in priority order; an empty
+    // priority keeps the order of the list.
+    let ids = |p: &Params| -> Vec<BehaviourId> {
+        let config = GuidanceConfig::new::<AnyDetector>(p).unwrap();
+        assert!(config.params().priority.is_empty());
+        config.behaviours().iter().map(|b| b.id).collect()
+    };
+    assert_eq!(ids(&both_params(FURROW_FIRST)), FURROW_FIRST);
+    assert_eq!(ids(&both_params(EDGE_FIRST)), EDGE_FIRST);
+    let mut listed = edge_params();
+    listed.behaviours.push(furrow_pursuing().unwrap()).unwrap();
+    assert_eq!(ids(&listed), EDGE_FIRST);
+    listed.priority = heapless::Vec::from_slice(&FURROW_FIRST).unwrap();
+    assert_eq!(ids(&listed), FURROW_FIRST);
+    assert_eq!(ids(&pierre2022_path().unwrap()), []);
+    // The machine's behaviour 0 is the first in priority: edge's thresholds.
+    let config = GuidanceConfig::new::<AnyDetector>(&both_params(EDGE_FIRST)).unwrap();
+    let b = config.switching().behaviour(0).unwrap().thresholds();
+    assert_eq!((b.enter(), b.exit()), (0.15, 0.5));
+    // Each slot has its label.
+    let path = straight_path();
+    let g = pipeline(&both_params(EDGE_FIRST), &path);
+    assert_eq!(g.label(Mode::Behaviour(EDGE)), "edge_following");
+    assert_eq!(g.label(Mode::Behaviour(FURROW)), "furrow_pursuing");
+    assert_eq!(g.label(Mode::PathTracking), "path_tracking");
+    assert_eq!(g.label(Mode::Stop), "stop");
 }
 
 //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
 //= type=test
-//# A behaviour's line MUST be reported consistent with the plan when plan
-//# consistency is not configured or when the path has no projection in the tick;
-//# otherwise it MUST be reported as `PlanTolerance::is_consistent` judges its
-//# tracking error against the path's.
+//# A behaviour's line MUST be reported consistent with the plan when the
+//# behaviour has no plan tolerance or when the path has no projection in the
+//# tick; otherwise it MUST be reported as `PlanTolerance::is_consistent` judges
+//# its tracking error against the path's.
 #[test]
 fn a_line_far_from_the_plan_is_not_entered() {
     let path = straight_path();
     let tolerance = PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap();
-    let params = GuidanceParams {
-        plan: Some(PlanCheck {
-            tolerance,
-            delay: Seconds::new(0.5).unwrap(),
-        }),
-        ..edge_params()
-    };
+    let params = with_plan(edge_params(), tolerance, Seconds::new(0.5).unwrap());
     let pose = (0.0, 0.0, 0.0);
     // The wall 2.5 m left: the line to follow is 1.1 m left of the path.
     let far = wall_ranges(pose, long_wall(2.5));
+    let far_scans = [routed(EDGE, edge_scan(&far))];
     let mut g = pipeline(&params, &path);
     for _ in 0..100 {
         let out = g
             .step(&TickInput {
-                horizontal: Some(edge_scan(&far)),
+                scans: &far_scans,
                 ..bare(pose, true)
             })
             .unwrap();
-        assert_eq!(out.edge.detected, Verdict::Enter);
-        let plan = out.edge.plan.unwrap();
+        let edge = status(&out, EDGE);
+        assert_eq!(edge.detected, Verdict::Enter);
+        let plan = edge.plan.unwrap();
         assert!((plan.offset.get() - 1.1).abs() < 1e-9, "{plan:?}");
-        let line = out.edge.error.unwrap();
+        let line = edge.error.unwrap();
         let path_error = out.path.frenet.unwrap().tracking_error();
         assert!(!tolerance.is_consistent(&line, &path_error, &PathAhead::HERE));
-        assert!(!out.edge.plan_consistent);
-        assert_eq!(out.mode, ActiveMode::PathTracking);
+        assert!(!edge.plan_consistent);
+        assert_eq!(out.mode, Mode::PathTracking);
     }
     // Without GNSS the check cannot be made: consistent, and entered.
     let mut g = pipeline(&params, &path);
@@ -781,38 +1001,54 @@ fn a_line_far_from_the_plan_is_not_entered() {
     for _ in 0..40 {
         out = Some(
             g.step(&TickInput {
-                horizontal: Some(edge_scan(&far)),
+                scans: &far_scans,
                 ..bare(pose, false)
             })
             .unwrap(),
         );
     }
     let out = out.unwrap();
-    assert!(out.edge.plan_consistent && out.edge.plan.is_none());
-    assert_eq!(out.mode, ActiveMode::EdgeFollowing);
+    assert!(status(&out, EDGE).plan_consistent && status(&out, EDGE).plan.is_none());
+    assert_eq!(out.mode, Mode::Behaviour(EDGE));
     // Without a plan check: consistent, and entered, with GNSS.
     let mut g = pipeline(&edge_params(), &path);
     for _ in 0..40 {
         g.step(&TickInput {
-            horizontal: Some(edge_scan(&far)),
+            scans: &far_scans,
             ..bare(pose, true)
         })
         .unwrap();
     }
-    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
+    // A plan delay but no tolerance for this behaviour: consistent, and
+    // entered, with GNSS.
+    let mut no_tolerance = edge_params();
+    no_tolerance.plan_delay = Some(Seconds::new(0.5).unwrap());
+    let mut g = pipeline(&no_tolerance, &path);
+    for _ in 0..40 {
+        let out = g
+            .step(&TickInput {
+                scans: &far_scans,
+                ..bare(pose, true)
+            })
+            .unwrap();
+        assert!(status(&out, EDGE).plan_consistent);
+        assert!(status(&out, EDGE).plan.is_some());
+    }
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
     // A wall 1.5 m left: the line is 0.1 m from the path, consistent.
     let near = wall_ranges(pose, long_wall(1.5));
     let mut g = pipeline(&params, &path);
     for _ in 0..40 {
         let out = g
             .step(&TickInput {
-                horizontal: Some(edge_scan(&near)),
+                scans: &[routed(EDGE, edge_scan(&near))],
                 ..bare(pose, true)
             })
             .unwrap();
-        assert!(out.edge.plan_consistent);
+        assert!(status(&out, EDGE).plan_consistent);
     }
-    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
 }
 
 //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
@@ -841,43 +1077,38 @@ fn a_line_going_straight_on_where_the_path_turns_is_not_entered() {
             .unwrap()
             .with_lookahead(m(lookahead))
             .unwrap();
-        let params = GuidanceParams {
-            plan: Some(PlanCheck {
-                tolerance,
-                delay: Seconds::new(0.5).unwrap(),
-            }),
-            ..edge_params()
-        };
+        let params = with_plan(edge_params(), tolerance, Seconds::new(0.5).unwrap());
         let mut g = pipeline(&params, &path);
         let mut last = None;
         for _ in 0..60 {
             last = Some(
                 g.step(&TickInput {
-                    horizontal: Some(edge_scan(&wall)),
+                    scans: &[routed(EDGE, edge_scan(&wall))],
                     ..bare(pose, true)
                 })
                 .unwrap(),
             );
         }
         let out = last.unwrap();
+        let edge = status(&out, EDGE);
         // The offset reported is the one at the robot, whatever the look-ahead.
-        let plan = out.edge.plan.unwrap();
+        let plan = edge.plan.unwrap();
         assert!((plan.offset.get() - 0.1).abs() < 1e-3, "{plan:?}");
         // The pipeline's flag is the tolerance's judgement with the path 2 m
         // ahead of the projection's abscissa.
         let frenet = out.path.frenet.unwrap();
         let ahead = PathAhead::on_path(&path, frenet.s, m(lookahead)).unwrap();
-        let line = out.edge.error.unwrap();
+        let line = edge.error.unwrap();
         assert_eq!(
-            out.edge.plan_consistent,
+            edge.plan_consistent,
             tolerance.is_consistent(&line, &frenet.tracking_error(), &ahead)
         );
-        (out.edge.plan_consistent, out.mode)
+        (edge.plan_consistent, out.mode)
     };
     // Checked at the robot only: consistent, edge following entered.
-    assert_eq!(check(0.0), (true, ActiveMode::EdgeFollowing));
+    assert_eq!(check(0.0), (true, Mode::Behaviour(EDGE)));
     // Checked 2 m ahead too: inconsistent, never entered.
-    assert_eq!(check(2.0), (false, ActiveMode::PathTracking));
+    assert_eq!(check(2.0), (false, Mode::PathTracking));
 }
 
 //= spec/guidance.md#gd-command-the-command-of-the-selected-source
@@ -891,14 +1122,15 @@ fn a_law_that_refuses_a_held_estimate_reports_exit() {
     let mut g = pipeline(&edge_params(), &path);
     let pose = (0.0, 0.0, 0.0);
     let ranges = wall_ranges(pose, long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
     for _ in 0..40 {
         g.step(&TickInput {
-            horizontal: Some(edge_scan(&ranges)),
+            scans: &scans,
             ..bare(pose, true)
         })
         .unwrap();
     }
-    assert_eq!(g.mode(), ActiveMode::EdgeFollowing);
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
     // Odometry says the robot has turned 2 rad since the scan: the held line is
     // now behind its side, |θ̃| > π/2, and the law refuses it.
     let out = g
@@ -907,32 +1139,35 @@ fn a_law_that_refuses_a_held_estimate_reports_exit() {
             ..bare(pose, true)
         })
         .unwrap();
-    assert_eq!(out.edge.detected, Verdict::Enter);
-    assert!((out.edge.error.unwrap().angular_deviation.get() - 2.0).abs() < 1e-9);
-    match out.edge.law {
+    let edge = status(&out, EDGE);
+    assert_eq!(edge.detected, Verdict::Enter);
+    assert!((edge.error.unwrap().angular_deviation.get() - 2.0).abs() < 1e-9);
+    match edge.law {
         LawOutcome::Refused(e) => assert_eq!(e.requirement, "PT-HEADING"),
         other => panic!("{other:?}"),
     }
-    assert_eq!(out.edge.reported, Verdict::Exit);
+    assert_eq!(edge.reported, Verdict::Exit);
     // Still in edge following (its exit delay runs), steered by path tracking.
-    assert_eq!(out.mode, ActiveMode::EdgeFollowing);
-    assert_eq!(out.source, Some(Source::PathTracking));
-    assert_eq!(command(&out).speed.get(), 0.8);
+    assert_eq!(out.mode, Mode::Behaviour(EDGE));
+    assert_eq!(out.source, Some(Mode::PathTracking));
+    assert_eq!(command(&out).command.speed().get(), 0.8);
 }
 
 //= spec/guidance.md#gd-input-malformed-input
 //= type=test
 //# A tick whose input is malformed MUST be refused with an error before any
-//# state changes: a sideslip estimate outside |β| < π/2 (`PT-SIDESLIP`), or a
-//# scan for a behaviour that is not configured (`GD-INPUT`).
+//# state changes: an extra input the law refuses (for backstepping a sideslip
+//# outside |β| < π/2, `PT-SIDESLIP`), a scan routed to a behaviour that is not
+//# configured, or two scans routed to one behaviour in one tick (`GD-INPUT`).
 #[test]
 fn malformed_input_is_refused_and_changes_nothing() {
     let path = straight_path();
     let mut g = pipeline(&edge_params(), &path);
     let pose = (0.0, 0.0, 0.0);
     let wall = wall_ranges(pose, long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&wall))];
     let good = TickInput {
-        horizontal: Some(edge_scan(&wall)),
+        scans: &scans,
         ..bare(pose, true)
     };
     for _ in 0..20 {
@@ -945,16 +1180,29 @@ fn malformed_input_is_refused_and_changes_nothing() {
     };
     let err = g
         .step(&TickInput {
-            sideslip: slip,
+            extra: slip,
             ..good
         })
         .unwrap_err();
     assert_eq!(err.requirement, "PT-SIDESLIP");
+    // A scan routed to a behaviour that is not configured, alone or with a
+    // good one.
     let ridges = vec![2.0; 360];
     let l = furrow_lidar();
+    let unconfigured = routed(FURROW, furrow_scan(&ridges, &l));
+    for scans in [vec![unconfigured], vec![scans[0], unconfigured]] {
+        let err = g
+            .step(&TickInput {
+                scans: &scans,
+                ..good
+            })
+            .unwrap_err();
+        assert_eq!(err.requirement, "GD-INPUT");
+    }
+    // Two scans routed to one behaviour in one tick.
     let err = g
         .step(&TickInput {
-            inclined: Some(furrow_scan(&ridges, &l)),
+            scans: &[scans[0], scans[0]],
             ..good
         })
         .unwrap_err();
@@ -966,12 +1214,20 @@ fn malformed_input_is_refused_and_changes_nothing() {
         let a = g.step(&good).unwrap();
         let b = before.step(&good).unwrap();
         assert_eq!(a, b);
-        assert_eq!(a.mode == ActiveMode::EdgeFollowing, k >= 40, "tick {k}");
+        assert_eq!(a.mode == Mode::Behaviour(EDGE), k >= 40, "tick {k}");
     }
     // A horizontal scan for a pipeline without edge following.
-    let mut p = pipeline(&GuidanceParams::pierre2022_furrow().unwrap(), &path);
+    let mut p = pipeline(&pierre2022_furrow().unwrap(), &path);
     let err = p.step(&good).unwrap_err();
     assert_eq!(err.requirement, "GD-INPUT");
+}
+
+fn s(v: f64) -> Seconds {
+    Seconds::new(v).unwrap()
+}
+
+fn v(x: f64) -> MetersPerSecond {
+    MetersPerSecond::new(x).unwrap()
 }
 
 //= spec/guidance.md#gd-config-configuration-validated-once
@@ -980,28 +1236,23 @@ fn malformed_input_is_refused_and_changes_nothing() {
 //# with an error naming the requirement that fails: a speed that is not positive
 //# (`GD-SPEED`), a negative prediction horizon (`GD-PREDICTION`), a search window
 //# that is not positive (`GD-LOCALISATION`), a maximal scan age that is negative
-//# or longer than 65 535 ticks (`GD-SCAN-AGE`), or a delay of the switching
+//# or longer than 65 534 ticks (`GD-SCAN-AGE`), or a delay of the switching
 //# machine (`SW-DELAYS`, `SW-STOP`, `SW-PLAN-CONSISTENCY`).
 #[test]
 fn each_bad_parameter_is_refused_naming_its_requirement() {
-    let good = both_params(Priority::FurrowFirst);
-    assert!(GuidanceConfig::new(&good).is_ok());
-    fn s(v: f64) -> Seconds {
-        Seconds::new(v).unwrap()
-    }
-    fn v(x: f64) -> MetersPerSecond {
-        MetersPerSecond::new(x).unwrap()
-    }
-    type Change = Box<dyn Fn(&mut GuidanceParams)>;
+    let good = both_params(FURROW_FIRST);
+    assert!(GuidanceConfig::new::<AnyDetector>(&good).is_ok());
+    type Change = Box<dyn Fn(&mut Params)>;
+    let tolerance = PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap();
     let cases: Vec<(Change, &str)> = vec![
         (Box::new(|p| p.path.speed = v(0.0)), "GD-SPEED"),
         (Box::new(|p| p.path.speed = v(-0.8)), "GD-SPEED"),
         (
-            Box::new(|p| p.edge.as_mut().unwrap().speed = v(0.0)),
+            Box::new(|p| behaviour_mut(p, EDGE).speed = v(0.0)),
             "GD-SPEED",
         ),
         (
-            Box::new(|p| p.furrow.as_mut().unwrap().speed = v(-1.0)),
+            Box::new(|p| behaviour_mut(p, FURROW).speed = v(-1.0)),
             "GD-SPEED",
         ),
         (Box::new(|p| p.path.horizon = s(-0.1)), "GD-PREDICTION"),
@@ -1011,31 +1262,34 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
         ),
         (Box::new(|p| p.max_scan_age = s(-0.01)), "GD-SCAN-AGE"),
         (Box::new(|p| p.max_scan_age = s(655.36)), "GD-SCAN-AGE"),
+        (Box::new(|p| p.max_scan_age = s(655.35)), "GD-SCAN-AGE"),
         (Box::new(|p| p.period = s(0.0)), "SW-DELAYS"),
         (
-            Box::new(|p| p.edge.as_mut().unwrap().enter_delay = s(0.0)),
+            Box::new(|p| behaviour_mut(p, EDGE).enter_delay = s(0.0)),
             "SW-DELAYS",
         ),
         (
-            Box::new(|p| p.furrow.as_mut().unwrap().exit_delay = s(-0.3)),
+            Box::new(|p| behaviour_mut(p, FURROW).exit_delay = s(-0.3)),
             "SW-DELAYS",
         ),
         (Box::new(|p| p.stop_delay = s(0.0)), "SW-STOP"),
         (
-            Box::new(|p| {
-                p.plan = Some(PlanCheck {
-                    tolerance: PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap(),
-                    delay: s(0.0),
-                });
-            }),
+            Box::new(move |p| *p = with_plan(p.clone(), tolerance, s(0.0))),
+            "SW-PLAN-CONSISTENCY",
+        ),
+        // A plan tolerance without a plan delay.
+        (
+            Box::new(move |p| behaviour_mut(p, EDGE).plan = Some(tolerance)),
             "SW-PLAN-CONSISTENCY",
         ),
     ];
     for (change, requirement) in cases {
-        let mut p = good;
+        let mut p = good.clone();
         change(&mut p);
         assert_eq!(
-            GuidanceConfig::new(&p).unwrap_err().requirement,
+            GuidanceConfig::new::<AnyDetector>(&p)
+                .unwrap_err()
+                .requirement,
             requirement
         );
     }
@@ -1050,48 +1304,133 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
     ] {
         let p = GuidanceParams {
             max_scan_age: s(age),
-            ..good
+            ..good.clone()
         };
-        assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
+        assert_eq!(
+            GuidanceConfig::new::<AnyDetector>(&p)
+                .unwrap()
+                .max_scan_age_ticks(),
+            ticks
+        );
     }
-    let p = GuidanceParams {
-        max_scan_age: s(655.35),
-        ..good
-    };
-    assert_eq!(
-        GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(),
-        u16::MAX
-    );
     // The furrow detector's storage is checked when the pipeline is built.
     let path = straight_path();
-    let config = GuidanceConfig::new(&good).unwrap();
-    let small = Guidance::<'_, PATH_N, 512, 64, 512, 8>::new(config, &path);
+    let config = GuidanceConfig::new::<AnyDetector<512, 64, 512, 8>>(&good).unwrap();
+    let small = Guidance::<'_, PATH_N, AnyDetector<512, 64, 512, 8>, BacksteppingConfig, 2>::new(
+        config, &path,
+    );
     assert_eq!(small.unwrap_err().requirement, "FUR-ACCUMULATE");
+}
+
+/// The longest maximal scan age, 65 534 ticks, is accepted and expires: the
+/// age counter can always count one tick beyond it.
+//= spec/guidance.md#gd-config-configuration-validated-once
+//= type=test
+//# A guidance configuration MUST be validated once, at construction, and refused
+//# with an error naming the requirement that fails: a speed that is not positive
+//# (`GD-SPEED`), a negative prediction horizon (`GD-PREDICTION`), a search window
+//# that is not positive (`GD-LOCALISATION`), a maximal scan age that is negative
+//# or longer than 65 534 ticks (`GD-SCAN-AGE`), or a delay of the switching
+//# machine (`SW-DELAYS`, `SW-STOP`, `SW-PLAN-CONSISTENCY`).
+//= spec/guidance.md#gd-scan-age-held-detections
+//= type=test
+//# In a tick without a new scan, a behaviour MUST report the verdict of its
+//# latest scan, with the tracking error to that scan's line moved to the current
+//# pose through odometry, as long as that scan is at most the maximal scan age
+//# old; an older scan, a scan the detector refused, or no scan at all MUST give
+//# Absent.
+#[test]
+fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
+    // 655.35 s at 100 Hz is 65 535 ticks: refused.
+    let too_long = GuidanceParams {
+        max_scan_age: s(655.35),
+        ..edge_params()
+    };
+    assert_eq!(
+        GuidanceConfig::new::<AnyDetector>(&too_long)
+            .unwrap_err()
+            .requirement,
+        "GD-SCAN-AGE"
+    );
+    // 655.34 s is 65 534 ticks: accepted.
+    let params = GuidanceParams {
+        max_scan_age: s(655.34),
+        ..edge_params()
+    };
+    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    assert_eq!(config.max_scan_age_ticks(), 65_534);
+    assert_eq!(config.max_scan_age_ticks(), MAX_SCAN_AGE_TICKS);
+    let path = straight_path();
+    let mut g = pipeline(&params, &path);
+    let pose = (0.0, 0.0, 0.0);
+    let ranges = wall_ranges(pose, long_wall(1.5));
+    let out = g
+        .step(&TickInput {
+            scans: &[routed(EDGE, edge_scan(&ranges))],
+            ..bare(pose, false)
+        })
+        .unwrap();
+    assert_eq!(status(&out, EDGE).detected, Verdict::Enter);
+    // Held for 65 534 ticks without a scan.
+    for age in 1..=65_534_u16 {
+        let out = g.step(&bare(pose, false)).unwrap();
+        let edge = status(&out, EDGE);
+        assert_eq!(
+            (edge.detected, edge.scan_age),
+            (Verdict::Enter, Some(age)),
+            "age {age}"
+        );
+    }
+    // Expired in the next tick, and it stays expired as the counter saturates.
+    for _ in 0..3 {
+        let out = g.step(&bare(pose, false)).unwrap();
+        let edge = status(&out, EDGE);
+        assert_eq!(edge.detected, Verdict::Absent);
+        assert_eq!(edge.error, None);
+        assert_eq!(edge.scan_age, Some(u16::MAX));
+    }
 }
 
 //= spec/guidance.md#gd-speed-desired-speed-per-mode
 //= type=test
-//# The speed of a command MUST be the desired speed of its source: path
-//# tracking, edge following or furrow pursuing (Tables 1 and 2: 0.8, 0.4 and
-//# 0.7 m/s).
+//# The speed of a command MUST be the desired speed of its source.
 #[test]
 fn the_presets_are_tables_1_and_2() {
-    let p = both_params(Priority::FurrowFirst);
+    let p = both_params(FURROW_FIRST);
     assert_eq!(p.path.speed.get(), 0.8);
     assert_eq!(p.path.horizon.get(), 1.0);
     assert_eq!(p.path.law.gains.k_y(), -0.7);
-    assert!(p.path.sideslip_compensation);
-    let e = p.edge.unwrap();
+    assert!(p.path.compensation);
+    let e = behaviour(&p, EDGE);
+    assert_eq!(e.label, "edge_following");
     assert_eq!(e.speed.get(), 0.4);
     assert_eq!(e.law.gains.k_y(), -0.75);
-    assert_eq!(e.detector.offset().get(), 1.4);
-    assert_eq!(e.detector.radius().get(), 1.0);
-    assert_eq!(e.detector.max_chain_length().get(), 3.0);
-    let f = p.furrow.unwrap();
+    let AnyDetectorConfig::Edge(edge) = e.detector else {
+        panic!("edge following has an edge detector");
+    };
+    assert_eq!(edge.edge.offset().get(), 1.4);
+    assert_eq!(edge.edge.radius().get(), 1.0);
+    assert_eq!(edge.edge.max_chain_length().get(), 3.0);
+    assert_eq!((edge.side, edge.mount), (Side::Left, mount()));
+    let f = behaviour(&p, FURROW);
+    assert_eq!(f.label, "furrow_pursuing");
     assert_eq!(f.speed.get(), 0.7);
     assert_eq!(f.law.gains.k_y(), -0.8);
-    assert_eq!(f.detector.params().averaged_scans, 25);
-    let config = GuidanceConfig::new(&p).unwrap();
+    let AnyDetectorConfig::Furrow(furrow) = f.detector else {
+        panic!("furrow pursuing has a furrow detector");
+    };
+    assert_eq!(furrow.params().averaged_scans, 25);
+    // One vehicle for every law: wheelbase 2 m, steering limit 30°.
+    let Vehicle::Bicycle(vehicle) = p.vehicle;
+    assert_eq!(vehicle.wheelbase.get().get(), 2.0);
+    assert_eq!(
+        vehicle.max_steering.get().get(),
+        core::f64::consts::FRAC_PI_6
+    );
+    assert!([p.path.law, e.law, f.law]
+        .iter()
+        .all(|l| l.vehicle == vehicle));
+    let config = GuidanceConfig::new::<AnyDetector>(&p).unwrap();
     assert_eq!(config.lookahead().get(), 0.8);
     // Priority furrow first: behaviour 0 is furrow (0.5 s / 0.3 s), 1 is edge
     // (0.4 s / 0.26 s), in ticks at 100 Hz.
@@ -1104,7 +1443,169 @@ fn the_presets_are_tables_1_and_2() {
     assert_eq!((b.enter(), b.exit()), (0.15, 0.5));
     let b = config.switching().behaviour(0).unwrap().thresholds();
     assert_eq!((b.enter(), b.exit()), (0.4, 0.2));
-    assert_eq!(ActiveMode::FurrowPursuing.label(), "furrow_pursuing");
+    let path = straight_path();
+    let g = pipeline(&p, &path);
+    assert_eq!(g.label(Mode::Behaviour(FURROW)), "furrow_pursuing");
+}
+
+/// A test-only law: backstepping's, declared for `actuation`; for a
+/// differential vehicle it commands both wheels at the desired speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Declared {
+    law: BacksteppingConfig,
+    actuation: Actuation,
+}
+
+impl ControlLaw for Declared {
+    type Extra = Sideslip;
+
+    const NEUTRAL: Sideslip = Sideslip::ZERO;
+
+    fn actuation(&self) -> Actuation {
+        self.actuation
+    }
+
+    fn check_extra(extra: &Sideslip) -> Result<(), Precondition> {
+        extra.check()
+    }
+
+    fn command(
+        &self,
+        error: &TrackingError,
+        extra: &Sideslip,
+        speed: MetersPerSecond,
+    ) -> Result<Saturated, Precondition> {
+        let bicycle = self.law.command(error, extra, speed)?;
+        Ok(match self.actuation {
+            Actuation::Differential => Saturated {
+                command: Command::Differential {
+                    left: speed,
+                    right: speed,
+                },
+                saturated: bicycle.saturated,
+            },
+            _ => bicycle,
+        })
+    }
+}
+
+/// `params` with every law declared for the bicycle, except the path's law
+/// (`path`) or behaviour `behaviour`'s, declared for a differential vehicle.
+fn declared(
+    params: &Params,
+    path: bool,
+    behaviour: Option<BehaviourId>,
+) -> GuidanceParams<AnyDetectorConfig, Declared, 2> {
+    let declare = |law, differential: bool| Declared {
+        law,
+        actuation: if differential {
+            Actuation::Differential
+        } else {
+            Actuation::Bicycle
+        },
+    };
+    GuidanceParams {
+        period: params.period,
+        vehicle: params.vehicle,
+        path: fieldguide::guidance::PathTrackingParams {
+            law: declare(params.path.law, path),
+            speed: params.path.speed,
+            horizon: params.path.horizon,
+            compensation: params.path.compensation,
+            search_window: params.path.search_window,
+        },
+        behaviours: params
+            .behaviours
+            .iter()
+            .map(|b| BehaviourParams {
+                id: b.id,
+                label: b.label,
+                detector: b.detector,
+                law: declare(b.law, behaviour == Some(b.id)),
+                speed: b.speed,
+                enter_delay: b.enter_delay,
+                exit_delay: b.exit_delay,
+                plan: b.plan,
+            })
+            .collect(),
+        priority: params.priority.clone(),
+        stop_delay: params.stop_delay,
+        plan_delay: params.plan_delay,
+        max_scan_age: params.max_scan_age,
+    }
+}
+
+//= spec/guidance.md#gd-vehicle-one-vehicle-one-command-type
+//= type=test
+//# A configuration whose path-tracking law or any behaviour's law commands
+//# another actuation than the configured vehicle's MUST be refused with
+//# `GD-VEHICLE`.
+#[test]
+fn a_law_for_another_actuation_than_the_vehicles_is_refused() {
+    let params = both_params(FURROW_FIRST);
+    for (path, behaviour) in [(true, None), (false, Some(EDGE)), (false, Some(FURROW))] {
+        let p = declared(&params, path, behaviour);
+        assert_eq!(
+            GuidanceConfig::new::<AnyDetector>(&p)
+                .unwrap_err()
+                .requirement,
+            "GD-VEHICLE",
+            "{path} {behaviour:?}"
+        );
+    }
+    // Every law for the bicycle: accepted, and it drives the pipeline as
+    // backstepping does.
+    let p = declared(&params, false, None);
+    let path = straight_path();
+    let mut g: Guidance<'_, PATH_N, AnyDetector, Declared, 2> =
+        Guidance::new(GuidanceConfig::new::<AnyDetector>(&p).unwrap(), &path).unwrap();
+    let mut reference = pipeline(&params, &path);
+    for k in 0..20 {
+        let tick = bare((0.1 * f64::from(k), 0.3, 0.05), true);
+        let (a, b) = (g.step(&tick).unwrap(), reference.step(&tick).unwrap());
+        assert_eq!(a.command, b.command);
+        assert_eq!(a.command.unwrap().command.actuation(), Actuation::Bicycle);
+    }
+}
+
+//= spec/guidance.md#gd-vehicle-one-vehicle-one-command-type
+//= type=test
+//# A command MUST be of the actuation of the vehicle it is sent to and
+//# within that vehicle's actuator limits.
+#[test]
+fn commands_are_of_the_vehicles_actuation_and_within_its_limits() {
+    let params = both_params(FURROW_FIRST);
+    let path = straight_path();
+    let mut g = pipeline(&params, &path);
+    // Far off the path, steering saturates at the vehicle's limit; then Stop.
+    let (mut saturated, mut stopped) = (false, false);
+    for k in 0..120 {
+        let out = g.step(&bare((1.0, 4.0, 0.0), k < 60)).unwrap();
+        if let Some(c) = out.command {
+            saturated |= c.saturated;
+            stopped |= out.mode == Mode::Stop;
+            assert_eq!(c.command.actuation(), params.vehicle.actuation());
+            assert!(params.vehicle.check(&c.command).is_ok(), "{c:?}");
+        }
+    }
+    assert!(saturated && stopped);
+    // The vehicle refuses a command of another actuation or beyond its limit.
+    let wheels = Command::Differential {
+        left: v(0.5),
+        right: v(0.5),
+    };
+    assert_eq!(
+        params.vehicle.check(&wheels).unwrap_err().requirement,
+        "GD-VEHICLE"
+    );
+    let beyond = Command::Bicycle {
+        speed: v(0.5),
+        steering: Radians::new(0.6).unwrap(),
+    };
+    assert_eq!(
+        params.vehicle.check(&beyond).unwrap_err().requirement,
+        "GD-VEHICLE"
+    );
 }
 
 fn error(y: f64, theta: f64) -> TrackingError {
@@ -1151,20 +1652,16 @@ fn moved_errors_by_hand() {
 
     // A left wall y = 0.1 x + 1.5 (a straight parabola), D = 1.4: eq. 11 at
     // x_r = 1 gives y₀ = 1.4 − 1.6 cos φ, θ̃₀ = −φ, φ = arctan 0.1.
-    let fit = EdgeFit {
+    let edge = EdgeLine {
         parabola: ParabolaFit {
             a: 0.0,
             b: 0.1,
             c: 1.5,
         },
-        quality: EdgeQuality {
-            length: m(3.0),
-            width: m(0.3),
-            residual_std: m(0.0),
-        },
-        error: error(0.0, 0.0),
+        side: Side::Left,
+        offset: m(1.4),
     };
-    let e = moved_edge_error(&fit, Side::Left, m(1.4), &pose).unwrap();
+    let e = edge.error_at(&pose).unwrap();
     let phi = 0.1_f64.atan();
     assert!((e.y.get() - (1.4 - 1.6 * phi.cos() + 0.1 * phi.cos())).abs() < 1e-12);
     assert!((e.angular_deviation.get() - (0.05 - phi)).abs() < 1e-12);
@@ -1176,7 +1673,7 @@ fn moved_errors_by_hand() {
     // Two rows: the mean of both moved errors.
     let left = RowLine::new(0.05, m(0.4)).unwrap();
     let right = RowLine::new(-0.02, m(-0.35)).unwrap();
-    let two = moved_rows_error(&RowLines::Two(Pair { left, right }), &pose).unwrap();
+    let two = RowLines::Two(Pair { left, right }).error_at(&pose).unwrap();
     let l = moved_line_error(&lines::tracking_error(&left).unwrap(), &pose).unwrap();
     let r = moved_line_error(&lines::tracking_error(&right).unwrap(), &pose).unwrap();
     assert!((two.y.get() - 0.5 * (l.y.get() + r.y.get())).abs() < 1e-15);
@@ -1186,7 +1683,7 @@ fn moved_errors_by_hand() {
         .abs()
             < 1e-15
     );
-    let one = moved_rows_error(&RowLines::One(left), &pose).unwrap();
+    let one = RowLines::One(left).error_at(&pose).unwrap();
     assert_eq!(one, l);
 }
 
@@ -1221,7 +1718,7 @@ proptest! {
         let pose = pose_in_scan_frame(&then_pose, &now_pose).unwrap();
         prop_assert!((pose.position.x() - step.0).abs() < 1e-9);
         prop_assert!((pose.position.y() - step.1).abs() < 1e-9);
-        let moved = moved_rows_error(&RowLines::One(line), &pose).unwrap();
+        let moved = RowLines::One(line).error_at(&pose).unwrap();
         // Oracle: two points of the line into the new frame, a new RowLine.
         let to_new = |x: f64, y: f64| {
             let (dx, dy) = (x - step.0, y - step.1);
@@ -1320,57 +1817,53 @@ fn finite_error(e: &Option<TrackingError>) -> bool {
     e.is_none_or(|e| e.y.get().is_finite() && e.angular_deviation.get().is_finite())
 }
 
-/// The property checks of one tick (GD-COMMAND, GD-SPEED, GD-STOP).
-fn check_tick(out: &TickOutput, params: &GuidanceParams) -> Result<(), TestCaseError> {
-    let drive = |law: &LawOutcome, speed: MetersPerSecond| {
-        law.command().map(|c| Command {
-            speed,
-            steering: c.steering,
-            saturated: c.saturated,
-        })
-    };
+/// The property checks of one tick (GD-COMMAND, GD-SPEED, GD-STOP,
+/// GD-VEHICLE).
+fn check_tick(out: &Out, params: &Params) -> Result<(), TestCaseError> {
     match out.source {
-        Some(Source::PathTracking) => {
+        Some(Mode::PathTracking) => {
             prop_assert!(out.path.localisation_valid);
-            prop_assert_ne!(out.mode, ActiveMode::Stop);
-            prop_assert_eq!(out.command, drive(&out.path.law, params.path.speed));
+            prop_assert_ne!(out.mode, Mode::Stop);
+            prop_assert_eq!(out.command, out.path.law.command().copied());
+            prop_assert_eq!(out.command.unwrap().command.speed(), params.path.speed);
         }
-        Some(Source::EdgeFollowing) => {
-            prop_assert_eq!(out.mode, ActiveMode::EdgeFollowing);
-            prop_assert!(out.edge.reported.estimate_is_valid());
-            prop_assert!(out.edge.detected.estimate_is_valid());
+        Some(Mode::Behaviour(id)) => {
+            prop_assert_eq!(out.mode, Mode::Behaviour(id));
+            let b = status(out, id);
+            prop_assert!(b.reported.estimate_is_valid());
+            prop_assert!(b.detected.estimate_is_valid());
+            prop_assert_eq!(out.command, b.law.command().copied());
             prop_assert_eq!(
-                out.command,
-                drive(&out.edge.law, params.edge.unwrap().speed)
+                out.command.unwrap().command.speed(),
+                behaviour(params, id).speed
             );
         }
-        Some(Source::FurrowPursuing) => {
-            prop_assert_eq!(out.mode, ActiveMode::FurrowPursuing);
-            prop_assert!(out.furrow.reported.estimate_is_valid());
-            prop_assert_eq!(
-                out.command,
-                drive(&out.furrow.law, params.furrow.unwrap().speed)
-            );
-        }
+        Some(Mode::Stop) => prop_assert!(false, "Stop is never a source"),
         None => match out.command {
             Some(c) => {
-                prop_assert_eq!(out.mode, ActiveMode::Stop);
-                prop_assert_eq!(c.speed, MetersPerSecond::ZERO);
+                prop_assert_eq!(out.mode, Mode::Stop);
+                prop_assert_eq!(c.command.speed(), MetersPerSecond::ZERO);
                 prop_assert!(!c.saturated);
             }
-            None => prop_assert_ne!(out.mode, ActiveMode::Stop),
+            None => prop_assert_ne!(out.mode, Mode::Stop),
         },
     }
     if let Some(c) = out.command {
-        prop_assert!(c.steering.get().is_finite() && c.speed.get().is_finite());
-        prop_assert!(c.steering.get().abs() <= core::f64::consts::FRAC_PI_6 + 1e-12);
+        let steering = c.command.steering();
+        prop_assert!(steering.is_some_and(|s| s.get().is_finite()));
+        prop_assert!(c.command.speed().get().is_finite());
+        prop_assert!(
+            steering.is_some_and(|s| s.get().abs() <= core::f64::consts::FRAC_PI_6 + 1e-12)
+        );
+        prop_assert!(params.vehicle.check(&c.command).is_ok());
     }
-    for b in [&out.edge, &out.furrow] {
+    prop_assert_eq!(out.behaviours.len(), params.behaviours.len());
+    for b in &out.behaviours {
         prop_assert_eq!(b.detected == Verdict::Absent, b.error.is_none());
         prop_assert!(finite_error(&b.error));
         match b.law {
             LawOutcome::Refused(_) => prop_assert_eq!(b.reported, Verdict::Exit),
-            LawOutcome::Steer(_) => prop_assert_eq!(b.reported, b.detected),
+            LawOutcome::Commanded(_) => prop_assert_eq!(b.reported, b.detected),
             LawOutcome::NotRun => prop_assert!(!b.detected.estimate_is_valid()),
         }
     }
@@ -1390,22 +1883,27 @@ proptest! {
     //# source outside Stop, there MUST be no command.
     //= spec/guidance.md#gd-stop-the-stop-command
     //= type=test
-    //# In Stop the command MUST be a speed of 0 m/s with the steering of the last
-    //# command made, or 0 rad before any command, never saturated.
+    //# In Stop the command MUST be the stop of the last command made (every speed
+    //# zero, steering angles held, a yaw rate zero), or the vehicle at rest before
+    //# any command, never saturated.
+    //= spec/guidance.md#gd-vehicle-one-vehicle-one-command-type
+    //= type=test
+    //# A command MUST be of the actuation of the vehicle it is sent to and
+    //# within that vehicle's actuator limits.
     #[test]
     fn every_command_comes_from_a_source_valid_in_its_tick(
         segments in prop::collection::vec(segment(), 1..8),
         edge_first in any::<bool>(),
         seed in any::<u64>(),
     ) {
-        let priority = if edge_first { Priority::EdgeFirst } else { Priority::FurrowFirst };
+        let priority = if edge_first { EDGE_FIRST } else { FURROW_FIRST };
         let params = both_params(priority);
         let path = straight_path();
         let mut g = pipeline(&params, &path);
         let lidar = furrow_lidar();
         let rows = two_rows();
         let mut k = 0usize;
-        let mut last_steering = Radians::ZERO;
+        let mut last = Actuation::Bicycle.at_rest();
         for seg in segments {
             for i in 0..seg.ticks {
                 let pose = (0.007 * k as f64, 0.05 * (k as f64 * 0.01).sin(), 0.0);
@@ -1426,19 +1924,25 @@ proptest! {
                     Gnss::Off => None,
                     Gnss::Backwards => Some(world((pose.0, pose.1, PI))),
                 };
+                let mut scans = Vec::new();
+                if let Some(h) = h.as_deref().filter(|_| scan_now) {
+                    scans.push(routed(EDGE, edge_scan(h)));
+                }
+                if let Some(f) = f.as_deref().filter(|_| scan_now) {
+                    scans.push(routed(FURROW, furrow_scan(f, &lidar)));
+                }
                 let input = TickInput {
-                    horizontal: h.as_deref().filter(|_| scan_now).map(edge_scan),
-                    inclined: f.as_deref().filter(|_| scan_now).map(|r| furrow_scan(r, &lidar)),
+                    scans: &scans,
                     gnss,
                     odometry: odom(pose),
-                    sideslip: Sideslip::new(0.01, -0.02).unwrap(),
+                    extra: Sideslip::new(0.01, -0.02).unwrap(),
                 };
                 let out = g.step(&input).unwrap();
                 check_tick(&out, &params)?;
-                if out.mode == ActiveMode::Stop {
-                    prop_assert_eq!(out.command.unwrap().steering, last_steering);
+                if out.mode == Mode::Stop {
+                    prop_assert_eq!(out.command.unwrap().command, last.stopped());
                 } else if let Some(c) = out.command {
-                    last_steering = c.steering;
+                    last = c.command;
                 }
                 k += 1;
             }
@@ -1463,27 +1967,36 @@ proptest! {
         pose in (-1e6..1e6_f64, -1e6..1e6_f64, -10.0..10.0_f64),
         ticks in 1..4usize,
     ) {
-        let params = both_params(Priority::FurrowFirst);
+        let params = both_params(FURROW_FIRST);
         let path = straight_path();
         let mut g = pipeline(&params, &path);
         for _ in 0..ticks {
-            let out = g
-                .step(&TickInput {
-                    horizontal: Some(Scan {
+            let scans = [
+                routed(
+                    EDGE,
+                    Scan {
                         start: Radians::new(start).unwrap(),
                         increment: Radians::new(increment).unwrap(),
                         ranges: &horizontal,
                         limits: limits(),
-                    }),
-                    inclined: Some(Scan {
+                    },
+                ),
+                routed(
+                    FURROW,
+                    Scan {
                         start: Radians::new(angle_min).unwrap(),
                         increment: Radians::new(angle_increment).unwrap(),
                         ranges: &inclined,
                         limits: furrow_limits(),
-                    }),
+                    },
+                ),
+            ];
+            let out = g
+                .step(&TickInput {
+                    scans: &scans,
                     gnss: Some(world(pose)),
                     odometry: odom(pose),
-                    sideslip: Sideslip::ZERO,
+                    extra: Sideslip::ZERO,
                 })
                 .unwrap();
             check_tick(&out, &params)?;

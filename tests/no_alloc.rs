@@ -14,18 +14,14 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
-use fieldguide::control::backstepping::{
-    steering_command, BacksteppingConfig, Inversion, SteeringLimit,
-};
-use fieldguide::control::Gains;
+use fieldguide::control::backstepping::{steering_command, BacksteppingConfig, Gains, Inversion};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
-use fieldguide::guidance::{
-    EdgeFollowingParams, Guidance, GuidanceConfig, GuidanceParams, Priority, TickInput,
-};
-use fieldguide::model::bicycle::{world_rates, Sideslip, Wheelbase};
-use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, Side};
+use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, RoutedScan, TickInput};
+use fieldguide::model::bicycle::{world_rates, Bicycle, Sideslip, SteeringLimit, Wheelbase};
+use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, EdgeDetectorConfig, Side};
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
-use fieldguide::perception::{RangeLimits, Scan};
+use fieldguide::perception::{AnyDetector, RangeLimits, Scan};
+use fieldguide::presets::{pierre2022_both, Pierre2022, EDGE, FURROW};
 use fieldguide::supervisor::switching::{
     BehaviourConfig, Input, Report, Switching, SwitchingConfig,
 };
@@ -103,8 +99,12 @@ fn path_tracking_tick_does_not_allocate() {
         .collect();
     let config = BacksteppingConfig {
         gains: Gains::new(-0.7, -1.4, 2.0).unwrap(),
-        wheelbase: Wheelbase::new(2.0).unwrap(),
-        max_steering: SteeringLimit::new(0.6).unwrap(),
+        vehicle: Bicycle::new(
+            Wheelbase::new(2.0).unwrap(),
+            SteeringLimit::new(0.6).unwrap(),
+            None,
+        )
+        .unwrap(),
         inversion: Inversion::Exact,
     };
     let speed = MetersPerSecond::new(0.8).unwrap();
@@ -127,7 +127,8 @@ fn path_tracking_tick_does_not_allocate() {
                 .unwrap();
             s_hint = frenet.s;
             let cmd = steering_command(&config, &TrackingError::from(frenet), slip, speed).unwrap();
-            let rates = world_rates(&pose, speed, cmd.steering, slip, config.wheelbase).unwrap();
+            let rates =
+                world_rates(&pose, speed, cmd.steering, slip, config.vehicle.wheelbase).unwrap();
             pose = Pose2::new(
                 pose.position.x() + 0.05 * rates.x_dot,
                 pose.position.y() + 0.05 * rates.y_dot,
@@ -175,10 +176,13 @@ fn scans() -> (f64, Vec<f64>, f64, Vec<f64>) {
 #[test]
 fn detectors_and_switching_do_not_allocate() {
     let (step, wall, furrow_step, ridges) = scans();
-    let mut edge = EdgeDetector::<512, 128>::new(
-        EdgeConfig::pierre2022().unwrap(),
-        Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
-    );
+    let mut edge = EdgeDetector::<512, 128>::new(EdgeDetectorConfig {
+        edge: EdgeConfig::pierre2022().unwrap(),
+        mount: Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
+        side: Side::Left,
+    });
+    // The edge detector does not read the odometry pose.
+    let origin = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
     let mut furrow =
         FurrowDetector::<512, 25>::new(FurrowConfig::new(&FurrowParams::table2()).unwrap())
             .unwrap();
@@ -209,7 +213,7 @@ fn detectors_and_switching_do_not_allocate() {
                 ranges: &wall,
                 limits,
             };
-            let edge_outcome = edge.detect(&horizontal, Side::Left).unwrap();
+            let edge_outcome = edge.detect(&horizontal, &origin).unwrap();
             let inclined = Scan {
                 start: Radians::new(-0.6).unwrap(),
                 increment: Radians::new(furrow_step).unwrap(),
@@ -217,7 +221,7 @@ fn detectors_and_switching_do_not_allocate() {
                 limits: furrow_limits,
             };
             let odom = Pose2::<Odom>::new(0.007 * f64::from(tick), 0.0, 0.0).unwrap();
-            let furrow_outcome = furrow.step(&inclined, &odom).unwrap();
+            let furrow_outcome = furrow.detect(&inclined, &odom).unwrap();
             let output = switching.step(&Input {
                 behaviours: [
                     Report::consistent(edge_outcome.verdict),
@@ -239,7 +243,7 @@ fn detectors_and_switching_do_not_allocate() {
                 ranges: &wall,
                 limits,
             },
-            Side::Left
+            &origin
         )
         .unwrap()
         .verdict
@@ -261,19 +265,15 @@ fn guidance_pipeline_does_not_allocate() {
         .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
         .collect();
     let path = ReferencePath::<256>::from_waypoints(&waypoints, PathConfig::default()).unwrap();
-    let params = GuidanceParams {
-        edge: Some(
-            EdgeFollowingParams::pierre2022(
-                Side::Left,
-                Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
-            )
-            .unwrap(),
-        ),
-        priority: Priority::EdgeFirst,
-        ..GuidanceParams::pierre2022_furrow().unwrap()
-    };
-    let config = GuidanceConfig::new(&params).unwrap();
-    let mut guidance = Guidance::<256>::new(config, &path).unwrap();
+    // Both behaviours, edge following first.
+    let mut params = pierre2022_both(
+        Side::Left,
+        Transform2::<Sensor, Robot>::new(1.2, 0.0, 0.0).unwrap(),
+    )
+    .unwrap();
+    params.priority = heapless::Vec::from_slice(&[EDGE, FURROW]).unwrap();
+    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    let mut guidance: Pierre2022<'_, 256> = Guidance::new(config, &path).unwrap();
     let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
     let furrow_limits =
         RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(20.0).unwrap()).unwrap();
@@ -282,22 +282,36 @@ fn guidance_pipeline_does_not_allocate() {
     let count = allocations_in(|| {
         for tick in 0..100u32 {
             let x = 0.007 * f64::from(tick);
-            let input = TickInput {
-                horizontal: Some(Scan {
+            let horizontal = RoutedScan {
+                behaviour: EDGE,
+                scan: Scan {
                     start: Radians::new(-std::f64::consts::PI).unwrap(),
                     increment: Radians::new(step).unwrap(),
                     ranges: &wall,
                     limits,
-                }),
-                inclined: (tick % 10 == 0).then(|| Scan {
+                },
+            };
+            let inclined = RoutedScan {
+                behaviour: FURROW,
+                scan: Scan {
                     start: Radians::new(-0.6).unwrap(),
                     increment: Radians::new(furrow_step).unwrap(),
                     ranges: &ridges,
                     limits: furrow_limits,
-                }),
+                },
+            };
+            // The horizontal scan every tick, the inclined one every tenth.
+            let both = [horizontal, inclined];
+            let scans: &[RoutedScan<'_>] = if tick % 10 == 0 {
+                &both
+            } else {
+                core::slice::from_ref(&horizontal)
+            };
+            let input = TickInput {
+                scans,
                 gnss: (tick < 60).then(|| Pose2::<World>::new(x, 0.05, 0.0).unwrap()),
                 odometry: Pose2::<Odom>::new(x, 0.05, 0.0).unwrap(),
-                sideslip: Sideslip::new(0.01, -0.02).unwrap(),
+                extra: Sideslip::new(0.01, -0.02).unwrap(),
             };
             outputs.push(guidance.step(&input).unwrap());
         }
@@ -308,5 +322,5 @@ fn guidance_pipeline_does_not_allocate() {
     // the edge law, not only path tracking.
     assert!(outputs
         .iter()
-        .any(|o| o.mode == fieldguide::guidance::ActiveMode::EdgeFollowing && o.command.is_some()));
+        .any(|o| o.mode == Mode::Behaviour(EDGE) && o.command.is_some()));
 }

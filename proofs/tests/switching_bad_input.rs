@@ -1,4 +1,4 @@
-//! Bad input for the switching machine (issue 5): verdicts that flip every
+//! Bad input for the switching machine: verdicts that flip every
 //! tick, localisation lost in the middle of a plot, both detectors reporting
 //! at once, and configurations that must be refused. In every run the machine
 //! stays in a defined mode and the monitor checks every property after every

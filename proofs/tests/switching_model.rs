@@ -323,3 +323,20 @@ fn the_take_over_instead_of_a_stop_is_needed() {
     assert_eq!(out.source, CommandSource::Behaviour(1));
     assert_eq!(spec.stop, 20);
 }
+
+/// The machine keeps every property for more than two behaviours: three
+/// behaviours (the pipeline's slots are any K up to 8), with short delays so
+/// that every reachable state is explored in seconds, with and without the
+/// plan check.
+#[test]
+fn three_behaviours_keep_every_property() {
+    let behaviours = [(40, 30), (50, 20), (30, 40)];
+    let (config, spec) = model_parts(behaviours, 50, None);
+    let plain = explore("three behaviours, stop 0.05 s", config, spec);
+    let (config, spec) = model_parts(behaviours, 50, Some(20));
+    let planned = explore("three behaviours with plan check", config, spec);
+    // Each behaviour's entry run alone gives a few states: the three
+    // together give many more than any one.
+    assert!(plain > 1_000, "{plain}");
+    assert!(planned > plain, "{planned} vs {plain}");
+}

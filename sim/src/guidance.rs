@@ -1,60 +1,19 @@
 //! The robot's side of a tick: from sensor readings to a command.
 //!
-//! The runner calls a [`Guidance`] once per control period and knows nothing of
-//! the law inside, so later behaviours (edge following, furrow pursuing, a mode
-//! selector fed by LiDAR detectors) plug in as new implementations and new
-//! [`Mode`] labels without touching the runner.
+//! The runner calls a [`Guidance`] once per control period and knows nothing
+//! of the laws inside; the one implementation is the core's pipeline
+//! ([`pipeline::Pipeline`]), configured from the scenario's behaviour
+//! sections.
 
 pub mod pipeline;
 
-use fieldguide::control::backstepping::{steering_command, BacksteppingConfig};
+use fieldguide::guidance::Mode;
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::Scan as HorizontalScan;
-use fieldguide::{Meters, MetersPerSecond, Precondition, TrackingError, Verdict};
+use fieldguide::{MetersPerSecond, Precondition, TrackingError, Verdict};
 
 use crate::lidar::inclined::InclinedScan;
-use crate::scenario::setup::Reference;
 use crate::sensors::Readings;
-
-/// The behaviour that produced a tick's command (the colour of the plots and
-/// the keys of `mode_distance_m`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Mode {
-    /// Tracking the recorded reference path (Pierre 2022, section 2.1).
-    PathTracking,
-    /// Following crop rows seen by the inclined LiDAR (Pierre 2022, section 2.3).
-    FurrowPursuing,
-    /// Following a hedge or a wall seen by the horizontal LiDAR (Pierre 2022, section 2.2).
-    EdgeFollowing,
-    /// Standstill: no valid command source for the Stop delay (SW-STOP, GD-STOP).
-    Stop,
-}
-
-impl Mode {
-    /// The label used in CSV traces and JSON summaries.
-    #[must_use]
-    pub const fn label(self) -> &'static str {
-        match self {
-            Self::PathTracking => "path_tracking",
-            Self::FurrowPursuing => "furrow_pursuing",
-            Self::EdgeFollowing => "edge_following",
-            Self::Stop => "stop",
-        }
-    }
-
-    /// Plot colour (Pierre 2022, Figs. 8 and 10: path tracking in red, the
-    /// specialised behaviour in blue; edge following a lighter blue, so the
-    /// two specialised behaviours stay apart in one legend).
-    #[must_use]
-    pub const fn colour(self) -> &'static str {
-        match self {
-            Self::PathTracking => "#d62728",
-            Self::FurrowPursuing => "#1f3fd0",
-            Self::EdgeFollowing => "#1f8fd0",
-            Self::Stop => "#222222",
-        }
-    }
-}
 
 /// What the guidance sees at one tick.
 #[derive(Debug, Clone, Copy)]
@@ -74,17 +33,20 @@ pub struct TickInput<'a> {
 /// What the guidance sends to the vehicle at one tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Command {
-    /// Steering angle δ, radians, positive to the left, within the saturation.
-    pub steering: f64,
-    /// Forward speed, m/s.
-    pub speed: MetersPerSecond,
+    /// The core's command to the vehicle (held from the previous tick when
+    /// no source may command, GD-COMMAND).
+    pub drive: fieldguide::model::Command,
     /// The behaviour whose law made the command (the plots' colour), or
     /// Stop.
     pub mode: Mode,
+    /// The label of `mode` (traces, summaries, legends).
+    pub label: &'static str,
     /// The switching machine's mode (differs from `mode` while an exit delay
     /// runs without a valid estimate: path tracking steers, SW-COMMAND).
     pub switching_mode: Mode,
-    /// Whether the law saturated the steering.
+    /// The label of `switching_mode`.
+    pub switching_label: &'static str,
+    /// Whether the law saturated the command.
     pub saturated: bool,
     /// The tracking error the law used (from the estimated pose).
     pub estimated_error: Option<TrackingError>,
@@ -92,6 +54,21 @@ pub struct Command {
     pub sideslip_used: Sideslip,
     /// What a row detector reported, when the guidance has one.
     pub detector: Option<DetectorStatus>,
+}
+
+impl Command {
+    /// The commanded forward speed.
+    #[must_use]
+    pub fn speed(&self) -> MetersPerSecond {
+        self.drive.speed()
+    }
+
+    /// The commanded steering angle, radians (0 for a vehicle that does not
+    /// steer with an angle).
+    #[must_use]
+    pub fn steering(&self) -> f64 {
+        self.drive.steering().map_or(0.0, fieldguide::Radians::get)
+    }
 }
 
 /// A detector's state at one tick, recorded with the command.
@@ -120,78 +97,29 @@ pub trait Guidance {
     fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition>;
 }
 
-/// Backstepping path tracking (Pierre 2022, eqs. 2-7) on the estimated pose.
-#[derive(Debug, Clone)]
-pub struct PathTracking<'p> {
-    path: &'p Reference,
-    config: BacksteppingConfig,
-    speed: MetersPerSecond,
-    lookahead: Meters,
-    compensate: bool,
-    /// Abscissa of the last projection, to search near it.
-    s_hint: Option<Meters>,
-}
-
-/// Half-width of the abscissa window searched around the last projection,
-/// metres: far more than a tick's travel, far less than a U-turn's length, so
-/// the projection cannot jump to the other leg.
-pub const SEARCH_WINDOW_M: f64 = 3.0;
-
-impl<'p> PathTracking<'p> {
-    /// Tracking of `path` at `speed` with the law `config`, curvature fed
-    /// forward `lookahead` metres ahead (v T), using the observer's sideslip
-    /// only when `compensate`.
-    #[must_use]
-    pub fn new(
-        path: &'p Reference,
-        config: BacksteppingConfig,
-        speed: MetersPerSecond,
-        lookahead: Meters,
-        compensate: bool,
-    ) -> Self {
-        Self {
-            path,
-            config,
-            speed,
-            lookahead,
-            compensate,
-            s_hint: None,
+/// The plot colour of a mode's label (Pierre 2022, Figs. 8 and 10: path
+/// tracking in red, the specialised behaviour in blue; edge following a
+/// lighter blue, so the two specialised behaviours stay apart in one
+/// legend); other behaviours take greens and purples by label.
+#[must_use]
+pub fn colour(label: &str) -> &'static str {
+    match label {
+        "path_tracking" => "#d62728",
+        "furrow_pursuing" => "#1f3fd0",
+        "edge_following" => "#1f8fd0",
+        "stop" => "#222222",
+        other => {
+            const OTHERS: [&str; 4] = ["#2ca02c", "#9467bd", "#8c564b", "#e377c2"];
+            let hash = other.bytes().fold(0_usize, |h, b| {
+                h.wrapping_mul(31).wrapping_add(usize::from(b))
+            });
+            OTHERS[hash % OTHERS.len()]
         }
     }
 }
 
-impl Guidance for PathTracking<'_> {
-    fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition> {
-        let Some(pose) = &input.readings.gnss else {
-            return Err(Precondition::new(
-                "GD-LOCALISATION",
-                "path tracking alone cannot steer without a GNSS pose",
-            ));
-        };
-        let frenet = match self.s_hint {
-            None => self.path.project(pose, self.lookahead)?,
-            Some(hint) => {
-                self.path
-                    .project_near(pose, self.lookahead, hint, Meters::new(SEARCH_WINDOW_M)?)?
-            }
-        };
-        self.s_hint = Some(frenet.s);
-        let error = TrackingError::from(frenet);
-        let sideslip = if self.compensate {
-            input.readings.sideslip
-        } else {
-            Sideslip::ZERO
-        };
-        let cmd = steering_command(&self.config, &error, sideslip, self.speed)?;
-        Ok(Command {
-            steering: cmd.steering.get(),
-            speed: self.speed,
-            mode: Mode::PathTracking,
-            switching_mode: Mode::PathTracking,
-            saturated: cmd.saturated,
-            estimated_error: Some(error),
-            sideslip_used: sideslip,
-            detector: None,
-        })
-    }
-}
+/// Half-width of the abscissa window searched around the last projection,
+/// metres: far more than a tick's travel, far less than a U-turn's length, so
+/// the projection cannot jump to the other leg (the core's search window, and
+/// the runner's for the ground truth).
+pub const SEARCH_WINDOW_M: f64 = 3.0;

@@ -12,6 +12,7 @@
 //! ([`runner::prepare_with_seed`]), one summary per seed.
 #![forbid(unsafe_code)]
 
+pub mod capacity;
 pub mod error;
 pub mod guidance;
 pub mod lidar;

@@ -31,9 +31,9 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::guidance::Mode;
 use crate::runner::{LineTruth, RunEnd, RunOutput, TickRecord};
 use crate::scenario::Setup;
+use fieldguide::guidance::Mode;
 
 /// Statistics of |error| over ticks.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -257,7 +257,7 @@ fn mode_distances(
     for pair in trace.windows(2) {
         let [a, b] = pair else { continue };
         if keep(a) {
-            *out.entry(a.mode().label()).or_insert(0.0) += b.distance_m - a.distance_m;
+            *out.entry(a.label()).or_insert(0.0) += b.distance_m - a.distance_m;
         }
     }
     out
@@ -281,7 +281,7 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
         .filter(|w| matches!(w, [a, b] if a.mode() != b.mode()))
         .count();
     if let Some(last) = trace.last() {
-        mode_distance.entry(last.mode().label()).or_insert(0.0);
+        mode_distance.entry(last.label()).or_insert(0.0);
     }
     let in_plot = error_stats(in_plot_errors(trace, None));
     let plots = stretch_summaries(

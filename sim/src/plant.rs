@@ -1,13 +1,14 @@
-//! The vehicle plant: the extended kinematic bicycle of Pierre 2022 (eq. 1,
-//! through the core's `world_rates`), a first-order steering actuator with a
-//! rate limit and saturation, integrated with RK4 sub-steps.
+//! The vehicle plants, one per actuation behind [`Plant`], each taking the
+//! core's [`Command`]: today the extended kinematic bicycle of Pierre 2022
+//! (eq. 1, through the core's `world_rates`), a first-order steering actuator
+//! with a rate limit and saturation, integrated with RK4 sub-steps.
 //!
 //! Pure and deterministic: the next state is a function of the state, the
 //! command held over the control period, the speed and the terrain.
 
-use fieldguide::control::backstepping::SteeringLimit;
-use fieldguide::model::bicycle::{world_rates, Sideslip, Wheelbase};
-use fieldguide::{MetersPerSecond, Pose2, Precondition, Radians, World};
+use fieldguide::model::bicycle::{world_rates, Bicycle, Sideslip, SteeringLimit, Wheelbase};
+use fieldguide::model::{Actuation, Command};
+use fieldguide::{MetersPerSecond, Pose2, Precondition, Radians, RadiansPerSecond, World};
 
 use crate::world::terrain::Terrain;
 
@@ -80,6 +81,74 @@ impl VehicleParams {
         let l = self.wheelbase.get().get();
         let at = |fwd: f64, left: f64| [x + fwd * c - left * s, y + fwd * s + left * c];
         [at(0.0, half), at(0.0, -half), at(l, half), at(l, -half)]
+    }
+}
+
+impl VehicleParams {
+    /// The vehicle as the core's model describes it: its wheelbase and the
+    /// steering actuator's saturation and rate limit.
+    #[must_use]
+    pub fn bicycle(&self) -> Bicycle {
+        Bicycle {
+            wheelbase: self.wheelbase,
+            max_steering: self.actuator.limit,
+            max_steering_rate: RadiansPerSecond::new(self.actuator.rate_limit_rad_s)
+                .ok()
+                .filter(|r| r.get() > 0.0),
+        }
+    }
+}
+
+/// A simulated vehicle: the core's command in, the true state one control
+/// period later out.
+pub trait Plant {
+    /// The actuation this plant takes.
+    fn actuation(&self) -> Actuation;
+
+    /// Advances `state` by `period` seconds in `substeps` sub-steps with
+    /// `command` held.
+    ///
+    /// # Errors
+    /// `GD-VEHICLE` for a command of another actuation; the model's
+    /// preconditions otherwise.
+    fn advance(
+        &self,
+        state: &VehicleState,
+        command: &Command,
+        terrain: &Terrain,
+        period: f64,
+        substeps: u32,
+    ) -> Result<VehicleState, Precondition>;
+}
+
+impl Plant for VehicleParams {
+    fn actuation(&self) -> Actuation {
+        Actuation::Bicycle
+    }
+
+    fn advance(
+        &self,
+        state: &VehicleState,
+        command: &Command,
+        terrain: &Terrain,
+        period: f64,
+        substeps: u32,
+    ) -> Result<VehicleState, Precondition> {
+        match *command {
+            Command::Bicycle { speed, steering } => step(
+                self,
+                state,
+                steering.get(),
+                speed,
+                terrain,
+                period,
+                substeps,
+            ),
+            _ => Err(Precondition::new(
+                "GD-VEHICLE",
+                "the bicycle plant takes bicycle commands only",
+            )),
+        }
     }
 }
 

@@ -18,15 +18,16 @@ use fieldguide::{Meters, Pose2, Precondition, World};
 
 use crate::error::ScenarioError;
 use crate::guidance::pipeline::Pipeline;
-use crate::guidance::{Command, Guidance, Mode, TickInput, SEARCH_WINDOW_M};
+use crate::guidance::{Command, Guidance, TickInput, SEARCH_WINDOW_M};
 use crate::lidar::inclined::{InclinedLidar, InclinedScan};
-use crate::plant::{self, VehicleState};
+use crate::plant::{Plant, VehicleState};
 use crate::rng::SimRng;
 use crate::scenario::{Setup, Source};
 use crate::sensors::{Readings, Sensors};
 use crate::world::crops::PlantIndex;
 use crate::world::grid::Grid;
 use crate::world::PlantKind;
+use fieldguide::guidance::Mode;
 
 /// Cell size of the plant index, metres (a few plants per cell in a row).
 pub const PLANT_INDEX_CELL_M: f64 = 0.5;
@@ -94,6 +95,12 @@ impl TickRecord {
     #[must_use]
     pub const fn mode(&self) -> Mode {
         self.command.mode
+    }
+
+    /// The label of the behaviour in charge at this tick.
+    #[must_use]
+    pub const fn label(&self) -> &'static str {
+        self.command.label
     }
 }
 
@@ -223,11 +230,9 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
                     end = RunEnd::PathEnd;
                     break;
                 }
-                match plant::step(
-                    &setup.vehicle,
+                match setup.vehicle.advance(
                     &state,
-                    record.command.steering,
-                    record.command.speed,
+                    &record.command.drive,
                     terrain,
                     period,
                     setup.run.substeps,

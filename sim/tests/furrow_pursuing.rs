@@ -17,10 +17,12 @@
 
 mod common;
 
-use fieldguide::control::Gains;
+use fieldguide::control::backstepping::Gains;
+use fieldguide::guidance::Mode;
 use fieldguide::perception::furrow::Rows;
 use fieldguide::{MetersPerSecond, Precondition, Verdict};
-use fieldguide_sim::guidance::{Command, Guidance, Mode, TickInput};
+use fieldguide_sim::guidance::pipeline::FURROW;
+use fieldguide_sim::guidance::{Command, Guidance, TickInput};
 use fieldguide_sim::metrics::{error_stats, in_plot_errors, summarize};
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
@@ -166,7 +168,7 @@ fn two_rows_are_followed_within_5_cm_on_average_and_10_cm_at_most() {
                 fail(format!("never inside {}", plot.name));
                 continue;
             };
-            let furrow = plot_distance(&out, i, Some(Mode::FurrowPursuing));
+            let furrow = plot_distance(&out, i, Some(Mode::Behaviour(FURROW)));
             let all = plot_distance(&out, i, None);
             eprintln!(
                 "seed {seed}, {}: |y| mean {:.4} m, max {:.4} m; furrow pursuing over {furrow:.1} of {all:.1} m",
@@ -280,7 +282,7 @@ fn the_rows_steer_not_the_recorded_path() {
     let out = run(&setup, &mut rng);
     // Furrow-pursuing ticks well inside the plots, 3 m after taking over.
     let mut checked = 0;
-    for tick in common::settled_in(&out.trace, Mode::FurrowPursuing, 3.0) {
+    for tick in common::settled_in(&out.trace, Mode::Behaviour(FURROW), 3.0) {
         if let Some(p) = tick.plot {
             assert!(p.lateral_error_m.abs() < MAX_BOUND_M / 2.0, "{p:?}");
             checked += 1;
@@ -401,7 +403,7 @@ fn no_command_comes_from_a_stale_or_invalid_estimate() {
     // In the headland, before the LiDAR reaches the maize, no line: Absent.
     // Table 2: 0.5 s (50 ticks) to enter, 0.7 m/s, path tracking 0.8 m/s.
     let furrow = common::Behaviour {
-        mode: Mode::FurrowPursuing,
+        mode: Mode::Behaviour(FURROW),
         enter_ticks: 50,
         speed: 0.7,
         path_speed: 0.8,
@@ -418,10 +420,14 @@ struct Straight;
 impl Guidance for Straight {
     fn step(&mut self, _input: &TickInput<'_>) -> Result<Command, Precondition> {
         Ok(Command {
-            steering: 0.0,
-            speed: MetersPerSecond::new(0.7)?,
+            drive: fieldguide::model::Command::Bicycle {
+                speed: MetersPerSecond::new(0.7)?,
+                steering: fieldguide::Radians::ZERO,
+            },
             mode: Mode::PathTracking,
+            label: "path_tracking",
             switching_mode: Mode::PathTracking,
+            switching_label: "path_tracking",
             saturated: false,
             estimated_error: None,
             sideslip_used: fieldguide::model::bicycle::Sideslip::ZERO,

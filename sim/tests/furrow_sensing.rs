@@ -43,7 +43,7 @@ fn drive(plants: Vec<Plant>, y0: f64, psi: f64, distance: f64, seed: u64) -> Vec
     let mut ticks = Vec::new();
     while pose.position.x() < distance {
         let scan = lidar.scan(&pose, &index, &mut rng);
-        let d = det.step(&scan.as_scan().unwrap(), &odo.pose()).unwrap();
+        let d = det.detect(&scan.as_scan().unwrap(), &odo.pose()).unwrap();
         ticks.push(Tick {
             x: pose.position.x(),
             y: pose.position.y(),

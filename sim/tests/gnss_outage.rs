@@ -1,4 +1,4 @@
-//! Localisation lost in the middle of a plot, closed loop (issue 5, "Bad
+//! Localisation lost in the middle of a plot, closed loop ("Bad
 //! input"): the built-in scenario `gnss-outage` is the furrow-pursuing field
 //! with the GNSS fix lost twice, once mid-plot (the rows keep steering) and
 //! once over the bare stretch (no source is left: Stop until the fix
@@ -10,7 +10,8 @@
     clippy::panic
 )]
 
-use fieldguide_sim::guidance::Mode;
+use fieldguide::guidance::Mode;
+use fieldguide_sim::guidance::pipeline::FURROW;
 use fieldguide_sim::metrics::summarize;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
 use fieldguide_sim::scenario::{Setup, Source};
@@ -41,8 +42,9 @@ fn has_source(r: &TickRecord) -> bool {
 //# behaviour gave a valid estimate.
 //= spec/guidance.md#gd-stop-the-stop-command
 //= type=test
-//# In Stop the command MUST be a speed of 0 m/s with the steering of the last
-//# command made, or 0 rad before any command, never saturated.
+//# In Stop the command MUST be the stop of the last command made (every speed
+//# zero, steering angles held, a yaw rate zero), or the vehicle at rest before
+//# any command, never saturated.
 #[test]
 fn the_rows_steer_through_a_lost_fix_and_the_robot_stops_when_nothing_is_left() {
     let (setup, out) = run("gnss-outage");
@@ -69,11 +71,11 @@ fn the_rows_steer_through_a_lost_fix_and_the_robot_stops_when_nothing_is_left() 
     for r in &first {
         assert_eq!(
             r.command.switching_mode,
-            Mode::FurrowPursuing,
+            Mode::Behaviour(FURROW),
             "t = {}",
             r.t_s
         );
-        assert_eq!(r.mode(), Mode::FurrowPursuing, "t = {}", r.t_s);
+        assert_eq!(r.mode(), Mode::Behaviour(FURROW), "t = {}", r.t_s);
         let e = r.plot.expect("inside the maize plot").lateral_error_m;
         assert!(e.abs() < 0.1, "t = {}: {e}", r.t_s);
     }
@@ -102,7 +104,7 @@ fn the_rows_steer_through_a_lost_fix_and_the_robot_stops_when_nothing_is_left() 
     let stopped = &second[stop_at..];
     for r in stopped {
         assert_eq!(r.command.switching_mode, Mode::Stop, "t = {}", r.t_s);
-        assert_eq!(r.command.speed.get(), 0.0);
+        assert_eq!(r.command.speed().get(), 0.0);
         assert!(!r.command.saturated);
     }
     let moved = stopped.last().unwrap().distance_m - stopped[0].distance_m;
@@ -126,12 +128,12 @@ fn the_rows_steer_through_a_lost_fix_and_the_robot_stops_when_nothing_is_left() 
     // The first tick with the fix back: path tracking steers again.
     let back = t.iter().find(|r| r.t_s >= spans[1].1 - 1e-9).unwrap();
     assert_eq!(back.command.switching_mode, Mode::PathTracking);
-    assert!(has_source(back) && back.command.speed.get() > 0.0);
+    assert!(has_source(back) && back.command.speed().get() > 0.0);
     // ... and furrow pursuing takes the rows again after the bare stretch.
     assert!(t
         .iter()
         .filter(|r| r.t_s > back.t_s)
-        .any(|r| r.mode() == Mode::FurrowPursuing));
+        .any(|r| r.mode() == Mode::Behaviour(FURROW)));
 
     // The whole run: rows followed within 0.1 m, no plant run over, and the
     // summary's times measured.

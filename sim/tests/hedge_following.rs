@@ -18,10 +18,11 @@
 
 mod common;
 
-use fieldguide::control::Gains;
+use fieldguide::control::backstepping::Gains;
+use fieldguide::guidance::Mode;
 use fieldguide::perception::edge::Side;
 use fieldguide::Verdict;
-use fieldguide_sim::guidance::Mode;
+use fieldguide_sim::guidance::pipeline::EDGE;
 use fieldguide_sim::metrics::summarize;
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
@@ -281,7 +282,7 @@ fn across_the_gap_the_verdict_is_exit_or_absent_and_path_tracking_steers() {
         let back = out
             .trace
             .iter()
-            .filter(|r| r.mode() == Mode::EdgeFollowing)
+            .filter(|r| r.mode() == Mode::Behaviour(EDGE))
             .filter_map(|r| truth(&setup, r).map(|t| t.along))
             .find(|a| *a > g0)
             .unwrap();
@@ -306,7 +307,7 @@ fn no_command_comes_from_a_stale_chain_or_a_rejected_verdict() {
         // Before the LiDAR sees the hedge: no chain, Absent, path tracking.
         // Table 1: 0.4 s (40 ticks) to enter, 0.4 m/s, path tracking 0.8 m/s.
         let edge = common::Behaviour {
-            mode: Mode::EdgeFollowing,
+            mode: Mode::Behaviour(EDGE),
             enter_ticks: 40,
             speed: 0.4,
             path_speed: 0.8,
@@ -396,7 +397,7 @@ fn the_hedge_steers_not_the_recorded_path() {
     common::shift_recorded_path(&mut setup, 0.2);
     let out = run(&setup, &mut rng);
     let mut checked = 0;
-    for tick in common::settled_in(&out.trace, Mode::EdgeFollowing, 4.0) {
+    for tick in common::settled_in(&out.trace, Mode::Behaviour(EDGE), 4.0) {
         if let Some(h) = tick.hedge {
             assert!(h.lateral_error_m.abs() < MAX_BOUND_M / 2.0, "{h:?}");
             checked += 1;

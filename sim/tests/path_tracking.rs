@@ -6,7 +6,7 @@
 //! Every error is ground truth: the true pose projected on the reference path.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-use fieldguide::control::Gains;
+use fieldguide::control::backstepping::Gains;
 use fieldguide_sim::metrics::{check_convergence, summarize, ConvergenceCheck, ConvergenceFailure};
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput};

@@ -779,7 +779,7 @@ fn hedge_horizontal_lidar_and_edge_fields_are_named() {
 }
 
 #[test]
-fn edge_following_needs_its_sensor_and_is_the_only_specialised_behaviour() {
+fn edge_following_needs_its_sensor_and_the_priority_names_each_behaviour_once() {
     let section = |t: &str, name: &str| -> (usize, usize) {
         let start = t.find(name).unwrap();
         let end = t[start + 1..]
@@ -792,12 +792,47 @@ fn edge_following_needs_its_sensor_and_is_the_only_specialised_behaviour() {
         format!("{}{}", &t[..start], &t[end..])
     });
     assert_field(&e, "edge", "[horizontal_lidar]");
-    // The furrow-pursuing scenario's LiDAR and furrow sections added.
+    // The furrow-pursuing scenario's LiDAR and furrow sections added: both
+    // behaviours, furrow first unless `switching.priority` says otherwise.
     let furrow = Source::builtin("furrow-pursuing").unwrap().text;
     let (l0, l1) = section(&furrow, "[lidar]");
     let (f0, f1) = section(&furrow, "[furrow]");
-    let e = hedge_error_of(|t| format!("{t}\n{}\n{}", &furrow[l0..l1], &furrow[f0..f1]));
-    assert_field(&e, "edge", "one specialised behaviour");
+    let both = |priority: &str| {
+        let hedge = Source::builtin("hedge-following").unwrap().text;
+        assert!(!hedge.contains("\n[switching]\n"));
+        format!(
+            "{hedge}\n[switching]\n{priority}\n{}\n{}",
+            &furrow[l0..l1],
+            &furrow[f0..f1]
+        )
+    };
+    let setup = |text: String| {
+        Source {
+            origin: "edited.toml".to_owned(),
+            text,
+            base_dir: None,
+        }
+        .setup(&mut SimRng::from_seed(1))
+    };
+    use fieldguide_sim::guidance::pipeline::{EDGE, FURROW};
+    let default = setup(both("")).unwrap();
+    assert_eq!(default.switching.priority, vec![FURROW, EDGE]);
+    let edge_first = setup(both(r#"priority = ["edge", "furrow"]"#)).unwrap();
+    assert_eq!(edge_first.switching.priority, vec![EDGE, FURROW]);
+    for (priority, reason) in [
+        (r#"priority = ["edge", "edge"]"#, "named twice"),
+        (r#"priority = ["edge"]"#, "every configured behaviour"),
+        (
+            r#"priority = ["edge", "furrow", "vines"]"#,
+            "unknown behaviour `vines`",
+        ),
+    ] {
+        let e = setup(both(priority)).unwrap_err();
+        assert_field(&e, "switching.priority", reason);
+    }
+    // A priority naming a behaviour whose section is missing.
+    let e = hedge_error_of(|t| format!("{t}\n[switching]\npriority = [\"furrow\", \"edge\"]\n"));
+    assert_field(&e, "switching.priority", "`furrow` is not configured");
 }
 
 #[test]

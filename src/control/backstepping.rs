@@ -5,16 +5,104 @@
 //! y' = k_y y (eqs. 2-3). Step 2 picks the yaw rate, then the steering angle,
 //! that make e = θ̃ − θ̃_obj obey e' = k_θ e (eqs. 4-6), with the curvature fed
 //! forward at s + vT (eq. 7), and saturates the result.
+//!
+//! # Gain sign convention (`spec/pierre2022.md`, PT-GAINS)
+//!
+//! Gains are written in the *equation form* of the papers: the law imposes
+//! y' = k_y y (Pierre 2022, eq. 2) and e' = k_θ e (eq. 4), where ' is the
+//! derivative with respect to the distance travelled along the path. An error
+//! decays only for a **negative** gain, so convergent gains are negative, and
+//! 1/|k| is the distance over which the error falls by a factor e.
+//!
+//! The papers' tables list positive "proportional gains" g (Table 1: 0.7): a
+//! configuration that takes table values maps them once as k = −g (the
+//! simulator's scenario schema does this). [`Gains::new`] refuses positive or
+//! zero gains, and requires |k_θ| ≥ r |k_y| for a configured minimum ratio r ≥ 1,
+//! which is how the library reads the paper's "k_θ ≫ k_y".
 
 use crate::error::{finite, Precondition};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
-use crate::model::bicycle::{check_denominator, check_heading, check_speed, Sideslip, Wheelbase};
+use crate::model::bicycle::{check_denominator, check_heading, check_speed, Bicycle, Sideslip};
+use crate::model::{Actuation, Command, Saturated};
 
-use super::Gains;
+/// The two convergence gains of the backstepping law, per metre, in equation
+/// form (negative = convergent), validated once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Gains {
+    k_y: f64,
+    k_theta: f64,
+}
+
+impl Gains {
+    /// Gains `k_y` (lateral, eq. 2) and `k_theta` (angular, eq. 4), per metre,
+    /// with `min_ratio` the least accepted |k_θ| / |k_y|.
+    ///
+    /// Errors: `PT-GAINS-SIGN` unless both gains are finite and strictly
+    /// negative; `PT-GAINS-RATIO` unless `min_ratio` is finite and ≥ 1 and
+    /// |k_θ| ≥ `min_ratio` |k_y|.
+    //= spec/pierre2022.md#pt-gains-gain-sign-and-ratio
+    //# Both gains MUST be finite and strictly negative (convergent in equation
+    //# form), and |k_θ| MUST be at least a configured ratio r ≥ 1 times |k_y|;
+    //# other gains MUST be refused at construction.
+    pub fn new(k_y: f64, k_theta: f64, min_ratio: f64) -> Result<Self, Precondition> {
+        let finite_negative = |k: f64| k.is_finite() && k < 0.0;
+        if !(finite_negative(k_y) && finite_negative(k_theta)) {
+            return Err(Precondition::new(
+                "PT-GAINS-SIGN",
+                "gains must be finite and < 0 (equation form: y' = k_y y)",
+            ));
+        }
+        Self::with_ratio(k_y, k_theta, min_ratio)
+    }
+
+    /// Like [`Gains::new`] but without the sign check, so a test can show that
+    /// a wrong sign makes the closed loop diverge. Only with the
+    /// `fault-injection` feature; never in a vehicle.
+    #[cfg(feature = "fault-injection")]
+    pub fn with_unchecked_sign(
+        k_y: f64,
+        k_theta: f64,
+        min_ratio: f64,
+    ) -> Result<Self, Precondition> {
+        if !(k_y.is_finite() && k_theta.is_finite() && k_y != 0.0 && k_theta != 0.0) {
+            return Err(Precondition::new(
+                "PT-GAINS-SIGN",
+                "gains must be finite and non-zero",
+            ));
+        }
+        Self::with_ratio(k_y, k_theta, min_ratio)
+    }
+
+    fn with_ratio(k_y: f64, k_theta: f64, min_ratio: f64) -> Result<Self, Precondition> {
+        let ratio_ok = min_ratio.is_finite()
+            && min_ratio >= 1.0
+            && libm::fabs(k_theta) >= min_ratio * libm::fabs(k_y);
+        if ratio_ok {
+            Ok(Self { k_y, k_theta })
+        } else {
+            Err(Precondition::new(
+                "PT-GAINS-RATIO",
+                "need min_ratio >= 1 and |k_theta| >= min_ratio |k_y|",
+            ))
+        }
+    }
+
+    /// k_y, per metre (negative).
+    #[must_use]
+    pub const fn k_y(&self) -> f64 {
+        self.k_y
+    }
+
+    /// k_θ, per metre (negative).
+    #[must_use]
+    pub const fn k_theta(&self) -> f64 {
+        self.k_theta
+    }
+}
 
 /// Which reading of eq. 6 the steering law implements (see the errata in
-/// `../shared/papers/README.md` and `spec/pierre2022.md`, PT-STEERING).
+/// `spec/pierre2022.md`, PT-STEERING).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Inversion {
     /// The exact inversion of the yaw rate of eq. 1 against eq. 5:
@@ -30,55 +118,13 @@ pub enum Inversion {
     Printed,
 }
 
-/// A steering saturation |δ| ≤ δ_max with 0 < δ_max < π/2.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SteeringLimit(Radians);
-
-impl SteeringLimit {
-    /// A limit of `max` radians; outside (0, π/2) or non-finite is `PT-SATURATION`.
-    pub fn new(max: f64) -> Result<Self, Precondition> {
-        if max.is_finite() && max > 0.0 && max < core::f64::consts::FRAC_PI_2 {
-            Ok(Self(Radians(max)))
-        } else {
-            Err(Precondition::new(
-                "PT-SATURATION",
-                "steering limit must be in (0, pi/2)",
-            ))
-        }
-    }
-
-    /// The limit δ_max.
-    #[must_use]
-    pub const fn get(self) -> Radians {
-        self.0
-    }
-
-    /// δ clamped to [−δ_max, δ_max], and whether it was clamped.
-    //= spec/pierre2022.md#pt-saturation-steering-saturation
-    //# The steering command MUST lie within [−δ_max, δ_max]; a law output
-    //# beyond it MUST be clamped to the nearer bound and reported as saturated.
-    #[must_use]
-    pub fn clamp(self, steering: f64) -> (Radians, bool) {
-        let max = self.0.get();
-        if steering > max {
-            (Radians(max), true)
-        } else if steering < -max {
-            (Radians(-max), true)
-        } else {
-            (Radians(steering), false)
-        }
-    }
-}
-
 /// Everything the steering law needs besides the tracking error, validated once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BacksteppingConfig {
     /// The convergence gains (sign convention in [`Gains`]).
     pub gains: Gains,
-    /// The wheelbase L.
-    pub wheelbase: Wheelbase,
-    /// The steering saturation.
-    pub max_steering: SteeringLimit,
+    /// The vehicle the law steers: its wheelbase L and steering saturation.
+    pub vehicle: Bicycle,
     /// Which reading of eq. 6.
     pub inversion: Inversion,
 }
@@ -205,17 +251,50 @@ pub fn steering_command(
         Inversion::Exact => libm::cos(terms.theta2) / libm::cos(beta_r),
         Inversion::Printed => 1.0,
     };
-    let length = config.wheelbase.get().get();
+    let length = config.vehicle.wheelbase.get().get();
     let tangent = finite(
         libm::tan(beta_r) + length * terms.drive * factor / terms.alpha,
         "steering tangent overflows",
     )?;
     let raw = libm::atan(tangent) - sideslip.front.get();
-    let (steering, saturated) = config.max_steering.clamp(raw);
+    let (steering, saturated) = config.vehicle.max_steering.clamp(raw);
     Ok(SteeringCommand {
         steering,
         saturated,
         target_angular_deviation: terms.target,
         yaw_rate_objective: terms.yaw_rate_objective()?,
     })
+}
+
+//= spec/guidance.md#gd-law-one-trait-for-every-control-law
+//# Backstepping MUST be a control law for the bicycle, reading the sideslip
+//# estimate as its extra input, zero sideslip being its neutral input.
+impl super::ControlLaw for BacksteppingConfig {
+    type Extra = Sideslip;
+
+    const NEUTRAL: Sideslip = Sideslip::ZERO;
+
+    fn actuation(&self) -> Actuation {
+        Actuation::Bicycle
+    }
+
+    fn check_extra(extra: &Sideslip) -> Result<(), Precondition> {
+        extra.check()
+    }
+
+    fn command(
+        &self,
+        error: &TrackingError,
+        extra: &Sideslip,
+        speed: MetersPerSecond,
+    ) -> Result<Saturated, Precondition> {
+        let c = steering_command(self, error, *extra, speed)?;
+        Ok(Saturated {
+            command: Command::Bicycle {
+                speed,
+                steering: c.steering,
+            },
+            saturated: c.saturated,
+        })
+    }
 }

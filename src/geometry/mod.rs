@@ -1,6 +1,7 @@
 //! Geometry: unit types, frames, reference paths with their Frénet projection,
 //! and least-squares fits.
 
+pub mod carry;
 pub mod fit;
 pub mod frame;
 pub mod path;

@@ -38,6 +38,83 @@ impl Wheelbase {
     }
 }
 
+/// A steering saturation |δ| ≤ δ_max with 0 < δ_max < π/2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteeringLimit(Radians);
+
+impl SteeringLimit {
+    /// A limit of `max` radians; outside (0, π/2) or non-finite is `PT-SATURATION`.
+    pub fn new(max: f64) -> Result<Self, Precondition> {
+        if max.is_finite() && max > 0.0 && max < core::f64::consts::FRAC_PI_2 {
+            Ok(Self(Radians(max)))
+        } else {
+            Err(Precondition::new(
+                "PT-SATURATION",
+                "steering limit must be in (0, pi/2)",
+            ))
+        }
+    }
+
+    /// The limit δ_max.
+    #[must_use]
+    pub const fn get(self) -> Radians {
+        self.0
+    }
+
+    /// δ clamped to [−δ_max, δ_max], and whether it was clamped.
+    //= spec/pierre2022.md#pt-saturation-steering-saturation
+    //# The steering command MUST lie within [−δ_max, δ_max]; a law output
+    //# beyond it MUST be clamped to the nearer bound and reported as saturated.
+    #[must_use]
+    pub fn clamp(self, steering: f64) -> (Radians, bool) {
+        let max = self.0.get();
+        if steering > max {
+            (Radians(max), true)
+        } else if steering < -max {
+            (Radians(-max), true)
+        } else {
+            (Radians(steering), false)
+        }
+    }
+}
+
+/// A front-steered vehicle as the bicycle model sees it: its wheelbase and
+/// the limits of its steering actuator (GD-VEHICLE).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bicycle {
+    /// The wheelbase L.
+    pub wheelbase: Wheelbase,
+    /// The steering saturation |δ| ≤ δ_max.
+    pub max_steering: SteeringLimit,
+    /// The steering actuator's rate limit, rad/s, when known (> 0).
+    pub max_steering_rate: Option<RadiansPerSecond>,
+}
+
+impl Bicycle {
+    /// A bicycle of wheelbase L and steering limit, rate `max_steering_rate`
+    /// when known.
+    ///
+    /// # Errors
+    /// `PT-SATURATION` when the rate is not positive.
+    pub fn new(
+        wheelbase: Wheelbase,
+        max_steering: SteeringLimit,
+        max_steering_rate: Option<RadiansPerSecond>,
+    ) -> Result<Self, Precondition> {
+        if max_steering_rate.is_some_and(|r| r.get() <= 0.0) {
+            return Err(Precondition::new(
+                "PT-SATURATION",
+                "steering rate limit must be > 0",
+            ));
+        }
+        Ok(Self {
+            wheelbase,
+            max_steering,
+            max_steering_rate,
+        })
+    }
+}
+
 /// The front and rear sideslip angles β_F and β_R, radians: the angle from each
 /// wheel's orientation to its actual velocity, counter-clockwise positive.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -1,13 +1,16 @@
 //! Detectors: one module per detector, each turning a LiDAR scan into a line or
 //! parabola in the robot frame and a quality verdict for the switching machine.
 //!
-//! Both detectors read the same message, [`Scan`] (LIB-SCAN): a horizontal
-//! LiDAR's for [`edge`], an inclined one's for [`furrow`].
+//! Every detector implements [`Detector`] (GD-DETECTOR) and reads the same
+//! message, [`Scan`] (LIB-SCAN): a horizontal LiDAR's for [`edge`], an
+//! inclined one's for [`furrow`]; [`AnyDetector`] holds either in one slot.
 
+pub mod detector;
 pub mod edge;
 pub mod furrow;
 pub mod scan;
 
+pub use detector::{AnyDetector, AnyDetectorConfig, AnyLine, Detection, Detector, HeldLine};
 pub use scan::{RangeLimits, Scan, MAX_RANGE};
 
 /// A detector's judgement of its own estimate in one tick, as the switching

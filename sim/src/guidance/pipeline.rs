@@ -1,99 +1,114 @@
 //! The core pipeline [`fieldguide::guidance::Guidance`] driving the simulated
 //! robot: detections, switching (Pierre 2022, section 3, with the transit
-//! delays of Tables 1-2), backstepping and command, all in the library. The
-//! simulator only feeds it each tick's scans (on their scan ticks), the GNSS
-//! pose, the odometry pose and the sideslip estimate, and maps its
-//! [`TickOutput`] to the sim's [`Command`] and trace fields. No switching
-//! logic lives in the simulator.
+//! delays of Tables 1-2), laws and command, all in the library. The
+//! simulator only feeds it each tick's scans (on their scan ticks, routed to
+//! their behaviours), the GNSS pose, the odometry pose and the sideslip
+//! estimate, and maps its [`TickOutput`] to the sim's [`Command`] and trace
+//! fields. No switching logic lives in the simulator.
 
+use fieldguide::control::backstepping::BacksteppingConfig;
 use fieldguide::guidance::{
-    ActiveMode, BehaviourStatus, EdgeFollowingParams, FurrowPursuingParams, Guidance as Core,
-    GuidanceConfig, GuidanceParams, PathTrackingParams, PlanCheck, Priority, TickOutput,
+    BehaviourParams, BehaviourStatus, Guidance as Core, GuidanceConfig, GuidanceParams, Mode,
+    PathTrackingParams, RoutedScan, TickOutput,
 };
 use fieldguide::model::bicycle::Sideslip;
+use fieldguide::model::Vehicle;
+use fieldguide::perception::edge::EdgeDetectorConfig;
+use fieldguide::perception::{AnyDetector, AnyDetectorConfig};
 use fieldguide::{Meters, Precondition, Seconds};
 
-use super::{Command, DetectorStatus, Guidance, Mode, TickInput, SEARCH_WINDOW_M};
-use crate::scenario::setup::{Setup, PATH_CAPACITY};
+use super::{Command, DetectorStatus, Guidance, TickInput, SEARCH_WINDOW_M};
+use crate::capacity::{EDGE_CHAIN, EDGE_RAYS, FURROW_RAYS, FURROW_SCANS, PATH_CAPACITY};
+use crate::scenario::setup::Setup;
+pub use crate::scenario::setup::{EDGE, FURROW};
 
-/// Most valid rays of a horizontal scan (a LiDAR with more rays is refused,
-/// naming `horizontal_lidar.rays`).
-pub const EDGE_RAYS: usize = 2048;
+/// Most behaviours a scenario configures.
+pub const BEHAVIOURS: usize = 2;
 
-/// Most chain points (`edge.min_points` at most this).
-pub const EDGE_CHAIN: usize = 256;
-
-/// Most rays of the furrow detector's angular window (a scenario whose window
-/// holds more is refused, naming `furrow.window_half_angle_deg`).
-pub const FURROW_RAYS: usize = 1024;
-
-/// Most selections the furrow detector keeps (`furrow.averaged_scans` at most this).
-pub const FURROW_SCANS: usize = 64;
+/// The detectors at the simulator's capacities.
+pub type SimDetector = AnyDetector<EDGE_RAYS, EDGE_CHAIN, FURROW_RAYS, FURROW_SCANS>;
 
 /// The core pipeline at the simulator's capacities.
-pub type CorePipeline<'p> =
-    Core<'p, PATH_CAPACITY, EDGE_RAYS, EDGE_CHAIN, FURROW_RAYS, FURROW_SCANS>;
+pub type CorePipeline<'p> = Core<'p, PATH_CAPACITY, SimDetector, BacksteppingConfig, BEHAVIOURS>;
+
+/// The core's output of one tick, as the simulator's pipeline holds it.
+pub type CoreOutput = TickOutput<Sideslip, BEHAVIOURS>;
 
 /// The core pipeline as one simulator [`Guidance`].
 #[derive(Debug, Clone)]
 pub struct Pipeline<'p> {
     core: Box<CorePipeline<'p>>,
     period_s: f64,
-    last: Option<TickOutput>,
-    /// The latest command sent (steering, speed, saturated).
-    held: Option<(f64, fieldguide::MetersPerSecond, bool)>,
+    last: Option<CoreOutput>,
+    /// The latest command sent and whether it was saturated.
+    held: Option<(fieldguide::model::Command, bool)>,
 }
 
 /// The pipeline's parameters for `setup`: path tracking from `[control]`,
-/// edge following from `[edge]` with the horizontal LiDAR's mount, furrow
-/// pursuing from `[furrow]`, the transit delays and plan check of
-/// `[switching]`, the control period of `[control]`.
+/// furrow pursuing from `[furrow]`, edge following from `[edge]` with the
+/// horizontal LiDAR's mount, the transit delays, priority and plan check of
+/// `[switching]`, the control period of `[control]`, the vehicle of
+/// `[vehicle]`.
 ///
 /// # Errors
 /// A value the core refuses (named by its requirement).
-pub fn params(setup: &Setup) -> Result<GuidanceParams, Precondition> {
+pub fn params(
+    setup: &Setup,
+) -> Result<GuidanceParams<AnyDetectorConfig, BacksteppingConfig, BEHAVIOURS>, Precondition> {
     let c = &setup.control;
     let sw = &setup.switching;
-    let path = PathTrackingParams {
-        law: c.backstepping,
-        speed: c.speed,
-        horizon: Seconds::new(c.horizon_s)?,
-        sideslip_compensation: c.sideslip_compensation,
-        search_window: Meters::new(SEARCH_WINDOW_M)?,
-    };
-    let edge = match (&setup.edge, &setup.horizontal_lidar) {
-        (Some(e), Some(l)) => Some(EdgeFollowingParams {
-            detector: e.detector,
-            mount: l.lidar.mount(),
-            side: e.side,
-            law: e.backstepping,
-            speed: e.speed,
-            enter_delay: Seconds::new(sw.edge_enter_s)?,
-            exit_delay: Seconds::new(sw.edge_exit_s)?,
-        }),
-        _ => None,
-    };
-    let furrow = match &setup.furrow {
-        Some(f) => Some(FurrowPursuingParams {
-            detector: f.detector,
+    let plan = sw.plan.map(|p| p.tolerance);
+    let mut behaviours = heapless::Vec::new();
+    if let Some(f) = &setup.furrow {
+        let furrow = BehaviourParams {
+            id: FURROW,
+            label: "furrow_pursuing",
+            detector: AnyDetectorConfig::Furrow(f.detector),
             law: f.backstepping,
             speed: f.speed,
             enter_delay: Seconds::new(sw.furrow_enter_s)?,
             exit_delay: Seconds::new(sw.furrow_exit_s)?,
-        }),
-        None => None,
-    };
+            plan,
+        };
+        behaviours
+            .push(furrow)
+            .map_err(|_| Precondition::new("GD-BEHAVIOURS", "more than K behaviours"))?;
+    }
+    if let (Some(e), Some(l)) = (&setup.edge, &setup.horizontal_lidar) {
+        let edge = BehaviourParams {
+            id: EDGE,
+            label: "edge_following",
+            detector: AnyDetectorConfig::Edge(EdgeDetectorConfig {
+                edge: e.detector,
+                mount: l.lidar.mount(),
+                side: e.side,
+            }),
+            law: e.backstepping,
+            speed: e.speed,
+            enter_delay: Seconds::new(sw.edge_enter_s)?,
+            exit_delay: Seconds::new(sw.edge_exit_s)?,
+            plan,
+        };
+        behaviours
+            .push(edge)
+            .map_err(|_| Precondition::new("GD-BEHAVIOURS", "more than K behaviours"))?;
+    }
+    let priority = heapless::Vec::from_slice(&sw.priority)
+        .map_err(|_| Precondition::new("GD-BEHAVIOURS", "more than K behaviours in priority"))?;
     Ok(GuidanceParams {
         period: Seconds::new(c.period_s)?,
-        path,
-        edge,
-        furrow,
-        priority: Priority::FurrowFirst,
+        vehicle: Vehicle::Bicycle(setup.vehicle.bicycle()),
+        path: PathTrackingParams {
+            law: c.backstepping,
+            speed: c.speed,
+            horizon: Seconds::new(c.horizon_s)?,
+            compensation: c.sideslip_compensation,
+            search_window: Meters::new(SEARCH_WINDOW_M)?,
+        },
+        behaviours,
+        priority,
         stop_delay: Seconds::new(sw.stop_delay_s)?,
-        plan: sw.plan.map(|p| PlanCheck {
-            tolerance: p.tolerance,
-            delay: p.delay,
-        }),
+        plan_delay: sw.plan.map(|p| p.delay),
         max_scan_age: Seconds::new(sw.max_scan_age_s)?,
     })
 }
@@ -105,7 +120,7 @@ impl<'p> Pipeline<'p> {
     /// A configuration the core refuses (GD-CONFIG and the detectors'
     /// requirements), named by its requirement ID.
     pub fn new(setup: &'p Setup) -> Result<Self, Precondition> {
-        let config = GuidanceConfig::new(&params(setup)?)?;
+        let config = GuidanceConfig::new::<SimDetector>(&params(setup)?)?;
         Ok(Self {
             core: Box::new(CorePipeline::new(config, &setup.path)?),
             period_s: setup.control.period_s,
@@ -122,92 +137,81 @@ impl<'p> Pipeline<'p> {
 
     /// The core's output of the latest tick.
     #[must_use]
-    pub const fn last(&self) -> Option<&TickOutput> {
+    pub const fn last(&self) -> Option<&CoreOutput> {
         self.last.as_ref()
-    }
-}
-
-/// The sim's mode of the core's.
-#[must_use]
-pub const fn mode_of(mode: ActiveMode) -> Mode {
-    match mode {
-        ActiveMode::PathTracking => Mode::PathTracking,
-        ActiveMode::EdgeFollowing => Mode::EdgeFollowing,
-        ActiveMode::FurrowPursuing => Mode::FurrowPursuing,
-        ActiveMode::Stop => Mode::Stop,
     }
 }
 
 impl Guidance for Pipeline<'_> {
     fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition> {
         let r = input.readings;
-        let inclined = match input.scan {
-            Some(s) => Some(s.as_scan()?),
-            None => None,
-        };
+        let mut routed = heapless::Vec::<RoutedScan<'_>, BEHAVIOURS>::new();
+        if let Some(s) = input.scan {
+            let _ = routed.push(RoutedScan {
+                behaviour: FURROW,
+                scan: s.as_scan()?,
+            });
+        }
+        if let Some(scan) = input.horizontal {
+            let _ = routed.push(RoutedScan {
+                behaviour: EDGE,
+                scan,
+            });
+        }
         let out = self.core.step(&fieldguide::guidance::TickInput {
-            horizontal: input.horizontal,
-            inclined,
+            scans: &routed,
             gnss: r.gnss,
             odometry: r.odometry,
-            sideslip: r.sideslip,
+            extra: r.sideslip,
         })?;
-        self.last = Some(out);
-        let switching_mode = mode_of(out.mode);
-        let mode = match out.source {
-            Some(fieldguide::guidance::Source::PathTracking) => Mode::PathTracking,
-            Some(fieldguide::guidance::Source::EdgeFollowing) => Mode::EdgeFollowing,
-            Some(fieldguide::guidance::Source::FurrowPursuing) => Mode::FurrowPursuing,
-            None => switching_mode,
-        };
+        let mode = out.source.unwrap_or(out.mode);
         // The behaviour whose status is recorded: the one in charge, else the
-        // configured detector (furrow first, as the priority).
-        let status = |b: &BehaviourStatus| -> Option<DetectorStatus> {
-            b.configured.then(|| DetectorStatus {
-                verdict: b.reported,
-                scanned: b.scan_age == Some(0),
-                age_s: b
-                    .scan_age
-                    .map_or(f64::INFINITY, |a| f64::from(a) * self.period_s),
-                quality: None,
-                error: b.error,
-            })
+        // one of highest priority.
+        let status = |b: &BehaviourStatus| DetectorStatus {
+            verdict: b.reported,
+            scanned: b.scan_age == Some(0),
+            age_s: b
+                .scan_age
+                .map_or(f64::INFINITY, |a| f64::from(a) * self.period_s),
+            quality: b.quality,
+            error: b.error,
         };
-        let detector = match out.mode {
-            ActiveMode::EdgeFollowing => status(&out.edge),
-            ActiveMode::FurrowPursuing => status(&out.furrow),
-            _ => status(&out.furrow).or_else(|| status(&out.edge)),
+        let in_charge = match out.mode {
+            Mode::Behaviour(id) => out.behaviour(id),
+            Mode::PathTracking | Mode::Stop => None,
         };
+        let detector = in_charge.or(out.behaviours.first()).map(status);
         let estimated_error = match out.source {
-            Some(fieldguide::guidance::Source::PathTracking) => {
-                out.path.frenet.map(fieldguide::TrackingError::from)
-            }
-            Some(fieldguide::guidance::Source::EdgeFollowing) => out.edge.error,
-            Some(fieldguide::guidance::Source::FurrowPursuing) => out.furrow.error,
-            None => None,
+            Some(Mode::PathTracking) => out.path.frenet.map(fieldguide::TrackingError::from),
+            Some(Mode::Behaviour(id)) => out.behaviour(id).and_then(|b| b.error),
+            Some(Mode::Stop) | None => None,
         };
-        let sideslip_used = if out.source == Some(fieldguide::guidance::Source::PathTracking) {
-            out.path.sideslip_used
+        let sideslip_used = if out.source == Some(Mode::PathTracking) {
+            out.path.extra_used
         } else {
             Sideslip::ZERO
         };
         // A tick without a source outside Stop (GD-COMMAND): the vehicle
         // keeps the previous command.
-        let (steering, speed, saturated) = match (out.command, self.held) {
-            (Some(c), _) => (c.steering.get(), c.speed, c.saturated),
+        let rest = fieldguide::model::Actuation::Bicycle.at_rest();
+        let (drive, saturated) = match (out.command, self.held) {
+            (Some(c), _) => (c.command, c.saturated),
             (None, Some(held)) => held,
-            (None, None) => (0.0, fieldguide::MetersPerSecond::ZERO, false),
+            (None, None) => (rest, false),
         };
-        self.held = Some((steering, speed, saturated));
-        Ok(Command {
-            steering,
-            speed,
+        self.held = Some((drive, saturated));
+        let command = Command {
+            drive,
             mode,
-            switching_mode,
+            label: self.core.label(mode),
+            switching_mode: out.mode,
+            switching_label: self.core.label(out.mode),
             saturated,
             estimated_error,
             sideslip_used,
             detector,
-        })
+        };
+        self.last = Some(out);
+        Ok(command)
     }
 }

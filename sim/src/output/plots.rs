@@ -5,7 +5,9 @@
 
 use fieldguide::{Meters, Pose2, World};
 
-use crate::guidance::Mode;
+use fieldguide::guidance::Mode;
+
+use crate::guidance::colour;
 use crate::runner::{LineTruth, TickRecord};
 use crate::scenario::Setup;
 use crate::world::PlantKind;
@@ -39,7 +41,7 @@ const OFFSET_LINE: Stroke<'static> = Stroke {
 
 /// Consecutive ticks of one mode, each with the first point of the next run
 /// so the coloured pieces join.
-fn runs_by_mode(trace: &[TickRecord]) -> Vec<(Mode, &[TickRecord])> {
+fn runs_by_mode(trace: &[TickRecord]) -> Vec<(&'static str, &[TickRecord])> {
     let mut runs = Vec::new();
     let mut start = 0;
     for i in 1..=trace.len() {
@@ -51,7 +53,7 @@ fn runs_by_mode(trace: &[TickRecord]) -> Vec<(Mode, &[TickRecord])> {
             if let (Some(first), Some(run)) =
                 (trace.get(start), trace.get(start..=i.min(trace.len() - 1)))
             {
-                runs.push((first.mode(), run));
+                runs.push((first.label(), run));
             }
             start = i;
         }
@@ -65,19 +67,20 @@ fn legend_entries<'a>(
     has_patches: bool,
     reference: &'a str,
 ) -> Vec<(Stroke<'a>, bool, &'a str)> {
-    let mut modes: Vec<Mode> = trace.iter().map(TickRecord::mode).collect();
-    modes.sort();
+    let mut modes: Vec<(Mode, &'static str)> =
+        trace.iter().map(|r| (r.mode(), r.label())).collect();
+    modes.sort_unstable();
     modes.dedup();
     let mut entries = vec![(REFERENCE, false, reference)];
-    for m in modes {
+    for (_, label) in modes {
         entries.push((
             Stroke {
-                colour: m.colour(),
+                colour: colour(label),
                 width: 1.6,
                 dash: None,
             },
             false,
-            m.label(),
+            label,
         ));
     }
     if has_patches {
@@ -205,7 +208,7 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             &axes,
             &pts,
             Stroke {
-                colour: mode.colour(),
+                colour: colour(mode),
                 width: 1.6,
                 dash: None,
             },
@@ -389,7 +392,7 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             &axes,
             &pts,
             Stroke {
-                colour: mode.colour(),
+                colour: colour(mode),
                 width: 1.4,
                 dash: None,
             },
@@ -537,14 +540,14 @@ pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
                 .map(|&(s, y)| (s, y + half_tyre))
                 .chain(track.iter().rev().map(|&(s, y)| (s, y - half_tyre)))
                 .collect();
-            svg.polygon(&axes, &band, mode.colour(), 0.3);
+            svg.polygon(&axes, &band, colour(mode), 0.3);
         }
         let centre: Vec<(f64, f64)> = run.iter().map(|r| (r.s_m, r.lateral_error_m)).collect();
         svg.polyline(
             &axes,
             &centre,
             Stroke {
-                colour: mode.colour(),
+                colour: colour(mode),
                 width: 1.0,
                 dash: Some("4 3"),
             },

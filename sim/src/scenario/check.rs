@@ -1,5 +1,7 @@
 //! Range checks that name the field they refuse (`section.field`).
 
+use std::fmt::Display;
+
 use crate::error::ScenarioError;
 
 /// Checks values of one scenario (`origin`: its file or built-in name).
@@ -59,6 +61,27 @@ impl<'a> Checker<'a> {
         } else {
             Err(self.error(field, &format!("must be within [{lo}, {hi}], got {value}")))
         }
+    }
+
+    /// `value` as a count if within `[lo, hi]`.
+    pub fn count(
+        &self,
+        field: &str,
+        value: u32,
+        lo: usize,
+        hi: usize,
+    ) -> Result<usize, ScenarioError> {
+        usize::try_from(value)
+            .ok()
+            .filter(|v| (lo..=hi).contains(v))
+            .ok_or_else(|| self.error(field, &format!("must be within [{lo}, {hi}], got {value}")))
+    }
+
+    /// The error of a value (`what`) that passed the range checks but that
+    /// the core refuses, with the requirement the core names (`reason`).
+    #[must_use]
+    pub fn refused(&self, field: &str, what: &str, reason: &impl Display) -> ScenarioError {
+        self.error(field, &format!("the core refuses the {what}: {reason}"))
     }
 
     /// `value` if finite and strictly within `(lo, hi)`.
@@ -169,5 +192,10 @@ mod tests {
         assert!(c.range("a.b", f64::NAN, 0.0, 5.0).is_err());
         assert!(c.open_range("a.b", 5.0, 0.0, 5.0).is_err());
         assert!(c.finite("a.b", f64::INFINITY).is_err());
+        assert_eq!(c.count("a.n", 4, 4, 256).ok(), Some(4));
+        assert_eq!(
+            c.count("a.n", 3, 4, 256).unwrap_err().to_string(),
+            "demo.toml: field `a.n`: must be within [4, 256], got 3"
+        );
     }
 }

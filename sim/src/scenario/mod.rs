@@ -39,6 +39,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "exp1-hedge",
         include_str!("../../scenarios/exp1-hedge.toml"),
     ),
+    (
+        "exp1-hedge-maize",
+        include_str!("../../scenarios/exp1-hedge-maize.toml"),
+    ),
     ("exp2-acre", include_str!("../../scenarios/exp2-acre.toml")),
     (
         "exp2-acre-no-plan",

@@ -64,9 +64,13 @@ pub struct GnssSection {
 /// `[switching]`: transit delays (Pierre 2022, Tables 1-2), Stop delay,
 /// held-scan age and plan consistency (SW-PLAN-CONSISTENCY, beyond the paper).
 /// Every field is optional; a missing one takes the value in brackets.
-#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SwitchingSection {
+    /// The behaviours from highest to lowest priority, by section name
+    /// (`"furrow"`, `"edge"`): every configured behaviour exactly once
+    /// [`["furrow", "edge"]`: crop rows beat a hedge beside the plot].
+    pub priority: Option<Vec<String>>,
     /// Time to transit to edge following, s [0.4, Table 1].
     pub edge_enter_s: Option<f64>,
     /// Time to transit back to path tracking from edge following, s [0.26, Table 1].

@@ -267,7 +267,7 @@ pub fn scatter_grass(
 }
 
 /// A uniform grid over the plants' footprints, so that a query touches only
-/// the plants near a rectangle (DESIGN.md: "the ray caster uses a spatial index").
+/// the plants near a rectangle (the ray caster uses a spatial index).
 #[derive(Debug, Clone)]
 pub struct PlantIndex {
     plants: Vec<Plant>,

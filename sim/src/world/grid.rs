@@ -1,5 +1,5 @@
 //! A uniform grid over the obstacles of a world, so that a LiDAR ray tests
-//! only the obstacles of the cells it crosses (DESIGN.md: campaigns of
+//! only the obstacles of the cells it crosses (campaigns of
 //! hundreds of runs must take seconds).
 //!
 //! Cells are squares of a chosen size over the obstacles' bounding box; each

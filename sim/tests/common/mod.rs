@@ -2,8 +2,8 @@
 #![allow(dead_code, clippy::unwrap_used, clippy::indexing_slicing)]
 
 use fieldguide::geometry::path::PathConfig;
+use fieldguide::guidance::Mode;
 use fieldguide::{Meters, Point2, Verdict, World};
-use fieldguide_sim::guidance::Mode;
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, TickRecord};
 use fieldguide_sim::scenario::setup::Reference;
@@ -107,7 +107,7 @@ pub fn assert_commands_from_fresh_valid_estimates(
         if d.scanned {
             verdicts[Verdict::ALL.iter().position(|v| *v == d.verdict).unwrap()] += 1;
         }
-        let speed = r.command.speed.get();
+        let speed = r.command.speed().get();
         if r.mode() == behaviour.mode {
             enters = 0;
             assert!(

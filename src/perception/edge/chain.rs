@@ -10,12 +10,11 @@
 //! stopped rotating has no point of the requested side strictly inside it.
 
 use core::cmp::Ordering;
-use core::f64::consts::TAU;
 
 use heapless::Vec;
 
 use super::config::{EdgeConfig, Side};
-use super::search::{cos_below_pi, Half, Limit, Near, Step, CANDIDATES, SEEDS};
+use super::search::{contact_angle, cos_below_pi, Half, Limit, Near, Step, CANDIDATES, SEEDS};
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::{Meters, Radians};
 
@@ -176,21 +175,6 @@ pub fn rotation_contact(
         Radians::new(theta).ok()
     } else {
         None
-    }
-}
-
-/// The contact angle for `u = c − p`, `w = q − p`, `d2 = |w|² ∈ (0, 4r²)`.
-pub(super) fn contact_angle(u: (f64, f64), w: (f64, f64), d2: f64, s: f64, r: f64) -> f64 {
-    let d = libm::sqrt(d2);
-    let alpha = libm::acos((d / (2.0 * r)).min(1.0));
-    // Angle from w to u: atan2(w × u, w · u).
-    let cross_wu = w.0 * u.1 - w.1 * u.0;
-    let dot = w.0 * u.0 + w.1 * u.1;
-    let beta = s * libm::atan2(cross_wu, dot);
-    if beta < 0.0 {
-        (-alpha - beta).max(0.0)
-    } else {
-        TAU - alpha - beta
     }
 }
 
@@ -446,7 +430,7 @@ fn push<const M: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use core::f64::consts::{FRAC_PI_6, PI};
+    use core::f64::consts::{FRAC_PI_6, PI, TAU};
 
     fn pt(x: f64, y: f64) -> Point2<Robot> {
         Point2::new(x, y).unwrap()

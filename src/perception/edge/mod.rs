@@ -14,12 +14,12 @@
 //! return the chain by value. Nothing allocates and nothing panics; invalid
 //! data gives [`Verdict::Absent`] or a [`Precondition`] error.
 
-mod chain;
-mod config;
-mod parabola;
-mod quality;
-mod scan;
-mod search;
+pub mod chain;
+pub mod config;
+pub mod parabola;
+pub mod quality;
+pub mod scan;
+pub mod search;
 
 pub use crate::geometry::fit::ParabolaFit;
 pub use chain::{
@@ -30,10 +30,13 @@ pub use parabola::tracking_error;
 pub use quality::EdgeQuality;
 pub use scan::{scan_into, scan_to_points, ScanPoints, MAX_COORDINATE};
 
-use crate::error::Precondition;
-use crate::geometry::frame::{Point2, Robot, Sensor, Transform2};
+use crate::error::{finite, Precondition};
+use crate::geometry::carry;
+use crate::geometry::frame::{Odom, Point2, Pose2, Robot, Sensor, Transform2};
 use crate::geometry::tracking::TrackingError;
-use crate::perception::{Scan, Verdict};
+use crate::geometry::units::Meters;
+use crate::perception::detector::{Detection, Detector, HeldLine};
+use crate::perception::{QualityThresholds, Scan, Verdict};
 
 /// The robot's abscissa in its own frame, x_r of eq. 11: the controlled point
 /// O is the robot frame's origin.
@@ -78,24 +81,63 @@ impl EdgeOutcome {
     }
 }
 
+/// What an edge detector is configured with: the detector's parameters, the
+/// horizontal LiDAR's mount pose (sensor → robot) and the side of the robot
+/// where the edge is followed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeDetectorConfig {
+    /// The detector (Algorithm 1, eqs. 8-11, eq. 21).
+    pub edge: EdgeConfig,
+    /// The LiDAR's mount pose, sensor → robot.
+    pub mount: Transform2<Sensor, Robot>,
+    /// The side searched.
+    pub side: Side,
+}
+
+/// An edge seen in one scan, as the pipeline holds it between scans: the
+/// chain's parabola and the line at the desired distance beside it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeLine {
+    /// The parabola of the chain, robot frame of the scan (eqs. 8-10).
+    pub parabola: ParabolaFit,
+    /// The side of the robot the edge is on.
+    pub side: Side,
+    /// The desired lateral distance to the edge, m (EDGE-OFFSET).
+    pub offset: Meters,
+}
+
+impl HeldLine for EdgeLine {
+    /// y = y₀(p_x) + p_y cos θ̃₀(p_x), θ̃ = wrap(θ̃₀(p_x) + ψ), with eq. 11's
+    /// error at x_r = p_x (EDGE-ERRORS, EDGE-OFFSET, GD-ODOMETRY).
+    fn error_at(&self, pose: &Pose2<Robot>) -> Result<TrackingError, Precondition> {
+        let at = tracking_error(&self.parabola, self.side, self.offset, pose.position.x())?;
+        let theta = at.angular_deviation.get();
+        carry::straight(
+            finite(
+                at.y.get() + pose.position.y() * libm::cos(theta),
+                "moved edge error overflows",
+            )?,
+            theta + pose.heading.get(),
+        )
+    }
+}
+
 /// An edge detector with its buffers: up to `N` scan points and `M` chain
 /// points, reused every tick (Pierre 2022, section 2.2; EDGE-DETECT).
 #[derive(Debug, Clone)]
 pub struct EdgeDetector<const N: usize, const M: usize> {
-    config: EdgeConfig,
-    mount: Transform2<Sensor, Robot>,
+    config: EdgeDetectorConfig,
     points: ScanPoints<N>,
     chain: Chain<M>,
 }
 
 impl<const N: usize, const M: usize> EdgeDetector<N, M> {
-    /// A detector with a validated configuration and the LiDAR's mount pose
-    /// (sensor → robot).
+    /// A detector with a validated configuration, its LiDAR's mount and the
+    /// side it searches.
     #[must_use]
-    pub const fn new(config: EdgeConfig, mount: Transform2<Sensor, Robot>) -> Self {
+    pub const fn new(config: EdgeDetectorConfig) -> Self {
         Self {
             config,
-            mount,
             points: ScanPoints::new(),
             chain: Chain::empty(ChainEnd::NoEdge),
         }
@@ -103,24 +145,31 @@ impl<const N: usize, const M: usize> EdgeDetector<N, M> {
 
     /// The configuration.
     #[must_use]
-    pub const fn config(&self) -> &EdgeConfig {
+    pub const fn config(&self) -> &EdgeDetectorConfig {
         &self.config
     }
 
-    /// Detects the edge on `side` in `scan`. The points and the chain stay
-    /// in the detector ([`Self::points`], [`Self::chain`]) until the next call.
+    /// Detects the edge in `scan` on the configured side; `odometry` is not
+    /// read (the edge detector keeps nothing between scans) and is taken for
+    /// the same shape as every detector's. The points and the chain stay in
+    /// the detector ([`Self::points`], [`Self::chain`]) until the next call.
     ///
     /// Errors with `EDGE-SCAN` when more than `N` rays are valid or a point
     /// lies beyond [`MAX_COORDINATE`]; the chain is then empty.
-    pub fn detect(&mut self, scan: &Scan<'_>, side: Side) -> Result<EdgeOutcome, Precondition> {
-        if let Err(e) = scan::scan_into(scan, &self.mount, &mut self.points) {
-            build_chain_into(&[], side, &self.config, &mut self.chain);
+    pub fn detect(
+        &mut self,
+        scan: &Scan<'_>,
+        _odometry: &Pose2<Odom>,
+    ) -> Result<EdgeOutcome, Precondition> {
+        let EdgeDetectorConfig { edge, mount, side } = self.config;
+        if let Err(e) = scan::scan_into(scan, &mount, &mut self.points) {
+            build_chain_into(&[], side, &edge, &mut self.chain);
             return Err(e);
         }
         Ok(evaluate(
             self.points.as_slice(),
             side,
-            &self.config,
+            &edge,
             &mut self.chain,
         ))
     }
@@ -242,4 +291,36 @@ fn fit_chain<const M: usize>(chain: &Chain<M>, side: Side, config: &EdgeConfig) 
         quality,
         error,
     })
+}
+
+impl<const N: usize, const M: usize> Detector for EdgeDetector<N, M> {
+    type Config = EdgeDetectorConfig;
+    type Line = EdgeLine;
+
+    fn configure(config: &EdgeDetectorConfig) -> Result<Self, Precondition> {
+        Ok(Self::new(*config))
+    }
+
+    fn thresholds(config: &EdgeDetectorConfig) -> QualityThresholds {
+        config.edge.thresholds()
+    }
+
+    fn observe(
+        &mut self,
+        scan: &Scan<'_>,
+        odometry: &Pose2<Odom>,
+    ) -> Result<Detection<EdgeLine>, Precondition> {
+        let outcome = self.detect(scan, odometry)?;
+        let (side, offset) = (self.config.side, self.config.edge.offset());
+        Ok(Detection {
+            verdict: outcome.verdict,
+            error: outcome.fit.map(|f| f.error),
+            quality: outcome.fit.map(|f| f.quality.residual_std.get()),
+            line: outcome.fit.map(|f| EdgeLine {
+                parabola: f.parabola,
+                side,
+                offset,
+            }),
+        })
+    }
 }

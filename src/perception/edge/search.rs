@@ -3,9 +3,8 @@
 //! with bounds that reject most points without trigonometry.
 
 use core::cmp::Ordering;
-use core::f64::consts::{FRAC_PI_2, PI};
+use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use super::chain::contact_angle;
 use crate::geometry::frame::{Point2, Robot};
 
 /// The best contact so far: the point's index, its angle and its squared
@@ -222,5 +221,20 @@ pub(super) fn cos_below_pi(theta: f64) -> f64 {
         libm::cos(theta)
     } else {
         -2.0
+    }
+}
+
+/// The contact angle for `u = c − p`, `w = q − p`, `d2 = |w|² ∈ (0, 4r²)`.
+pub(super) fn contact_angle(u: (f64, f64), w: (f64, f64), d2: f64, s: f64, r: f64) -> f64 {
+    let d = libm::sqrt(d2);
+    let alpha = libm::acos((d / (2.0 * r)).min(1.0));
+    // Angle from w to u: atan2(w × u, w · u).
+    let cross_wu = w.0 * u.1 - w.1 * u.0;
+    let dot = w.0 * u.0 + w.1 * u.1;
+    let beta = s * libm::atan2(cross_wu, dot);
+    if beta < 0.0 {
+        (-alpha - beta).max(0.0)
+    } else {
+        TAU - alpha - beta
     }
 }

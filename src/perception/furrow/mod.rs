@@ -3,7 +3,7 @@
 //! with the criteria of section 3, eq. 22 and Table 2; `spec/pierre2022.md`,
 //! section "Section 2.3 — Furrow pursuing").
 //!
-//! One tick of [`FurrowDetector::step`]:
+//! One tick of [`FurrowDetector::detect`]:
 //!
 //! 1. [`scan`]: the rays of a [`Scan`] (the shared LiDAR message, LIB-SCAN)
 //!    in an angular window become robot-frame 3D points through the mount
@@ -41,9 +41,11 @@ use self::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing, MAX_MAXIMA,
 };
 use crate::error::Precondition;
+use crate::geometry::carry::{moved_lateral, moved_line_error, straight};
 use crate::geometry::frame::{Odom, Point2, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, Radians};
+use crate::perception::detector::{Detection, Detector, HeldLine};
 use crate::perception::{Better, QualityThresholds, Scan, Verdict};
 
 /// How many rows the detector follows (Pierre 2022, sections 2.3.1 and 2.3.2).
@@ -268,6 +270,24 @@ pub enum RowLines {
     Two(Pair<RowLine>),
 }
 
+impl HeldLine for RowLines {
+    /// One row as [`moved_line_error`]; two rows, the mean of both moved
+    /// errors, the angles averaged before ψ is added (FUR-ERRORS,
+    /// FUR-TWO-ROWS, GD-ODOMETRY).
+    fn error_at(&self, pose: &Pose2<Robot>) -> Result<TrackingError, Precondition> {
+        match self {
+            Self::One(line) => moved_line_error(&tracking_error(line)?, pose),
+            Self::Two(Pair { left, right }) => {
+                let l = tracking_error(left)?;
+                let r = tracking_error(right)?;
+                let y = 0.5 * moved_lateral(&l, pose)? + 0.5 * moved_lateral(&r, pose)?;
+                let theta = 0.5 * l.angular_deviation.get() + 0.5 * r.angular_deviation.get();
+                straight(y, theta + pose.heading.get())
+            }
+        }
+    }
+}
+
 /// What one tick of the furrow detector found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FurrowDetection {
@@ -374,7 +394,7 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     /// Errors with `FUR-SCAN` when the scan's angles do not grow with the ray
     /// index (increment ≤ 0) or its window holds more than `RAYS` rays (the
     /// state is then left as it was); `LIB-FINITE` only on overflow of a transformed point.
-    pub fn step(
+    pub fn detect(
         &mut self,
         scan: &Scan<'_>,
         odom: &Pose2<Odom>,
@@ -461,5 +481,32 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         } else {
             None
         }
+    }
+}
+
+impl<const RAYS: usize, const SCANS: usize> Detector for FurrowDetector<RAYS, SCANS> {
+    type Config = FurrowConfig;
+    type Line = RowLines;
+
+    fn configure(config: &FurrowConfig) -> Result<Self, Precondition> {
+        Self::new(*config)
+    }
+
+    fn thresholds(config: &FurrowConfig) -> QualityThresholds {
+        *config.thresholds()
+    }
+
+    fn observe(
+        &mut self,
+        scan: &Scan<'_>,
+        odometry: &Pose2<Odom>,
+    ) -> Result<Detection<RowLines>, Precondition> {
+        let d = self.detect(scan, odometry)?;
+        Ok(Detection {
+            verdict: d.verdict,
+            error: d.error,
+            quality: d.quality,
+            line: d.lines,
+        })
     }
 }

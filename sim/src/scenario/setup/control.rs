@@ -1,0 +1,104 @@
+//! Validates `[control]`, the path-tracking law, and holds what the laws of
+//! `[edge]` and `[furrow]` share with it: forward speed and table gains.
+
+use fieldguide::control::backstepping::{BacksteppingConfig, Gains, Inversion};
+use fieldguide::{Meters, MetersPerSecond};
+
+use crate::error::ScenarioError;
+use crate::plant::VehicleParams;
+use crate::scenario::check::Checker;
+use crate::scenario::schema::{InversionName, ScenarioFile};
+
+/// The guidance settings, typed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ControlSetup {
+    /// The backstepping law's configuration (gains in equation form, k = −g).
+    pub backstepping: BacksteppingConfig,
+    /// Forward speed v.
+    pub speed: MetersPerSecond,
+    /// Control period, seconds.
+    pub period_s: f64,
+    /// Prediction horizon T, seconds.
+    pub horizon_s: f64,
+    /// Curvature look-ahead distance v T.
+    pub lookahead: Meters,
+    /// Whether the law uses the observer's sideslip estimate.
+    pub sideslip_compensation: bool,
+}
+
+/// The path-tracking law of `[control]` on `vehicle`.
+pub(super) fn control(
+    file: &ScenarioFile,
+    check: &Checker<'_>,
+    vehicle: VehicleParams,
+) -> Result<ControlSetup, ScenarioError> {
+    let c = &file.control;
+    let speed = forward_speed(check, "control", c.speed_m_s)?;
+    let period_s = check.open_range("control.period_s", c.period_s, 0.0, 1.0)?;
+    let gains = gains(
+        check,
+        "control",
+        c.lateral_gain,
+        c.heading_gain,
+        c.min_gain_ratio,
+    )?;
+    let horizon_s = check.range("control.horizon_s", c.horizon_s, 0.0, 10.0)?;
+    let lookahead = Meters::new(speed.get() * horizon_s)
+        .map_err(|e| check.error("control.horizon_s", &e.to_string()))?;
+    let inversion = match c.inversion {
+        InversionName::Exact => Inversion::Exact,
+        InversionName::Printed => Inversion::Printed,
+    };
+    Ok(ControlSetup {
+        backstepping: BacksteppingConfig {
+            gains,
+            vehicle: vehicle.bicycle(),
+            inversion,
+        },
+        speed,
+        period_s,
+        horizon_s,
+        lookahead,
+        sideslip_compensation: c.sideslip_compensation,
+    })
+}
+
+/// The forward speed `section.speed_m_s` of a behaviour: within (0, 20) m/s.
+pub(super) fn forward_speed(
+    check: &Checker<'_>,
+    section: &str,
+    speed_m_s: f64,
+) -> Result<MetersPerSecond, ScenarioError> {
+    let field = format!("{section}.speed_m_s");
+    let speed = check.open_range(&field, speed_m_s, 0.0, 20.0)?;
+    MetersPerSecond::new(speed).map_err(|e| check.error(&field, &e.to_string()))
+}
+
+/// The law's gains from the table gains `section.lateral_gain` and
+/// `section.heading_gain` (positive, as printed; the law's equation-form
+/// gains are k = −g) and their least ratio `section.min_gain_ratio`.
+pub(super) fn gains(
+    check: &Checker<'_>,
+    section: &str,
+    lateral_gain: f64,
+    heading_gain: f64,
+    min_gain_ratio: f64,
+) -> Result<Gains, ScenarioError> {
+    let g_y = check.positive(&format!("{section}.lateral_gain"), lateral_gain)?;
+    let g_theta = check.positive(&format!("{section}.heading_gain"), heading_gain)?;
+    let ratio = check.range(
+        &format!("{section}.min_gain_ratio"),
+        min_gain_ratio,
+        1.0,
+        1e6,
+    )?;
+    Gains::new(-g_y, -g_theta, ratio).map_err(|e| {
+        check.error(
+            &format!("{section}.heading_gain"),
+            &format!(
+                "heading_gain / lateral_gain = {} is below {section}.min_gain_ratio = {ratio} ({e})",
+                g_theta / g_y
+            ),
+        )
+    })
+}

@@ -1,0 +1,155 @@
+//! Validates `[switching]`: the transit delays of the switching machine and
+//! its plan consistency check.
+
+use fieldguide::guidance::BehaviourId;
+use fieldguide::supervisor::switching::PlanTolerance;
+use fieldguide::{Meters, Radians, Seconds};
+
+use crate::error::ScenarioError;
+use crate::scenario::check::Checker;
+use crate::scenario::schema::ScenarioFile;
+
+/// The id of furrow pursuing, the `[furrow]` section (`"furrow"` in
+/// `switching.priority`).
+pub const FURROW: BehaviourId = fieldguide::presets::FURROW;
+
+/// The id of edge following, the `[edge]` section (`"edge"` in
+/// `switching.priority`).
+pub const EDGE: BehaviourId = fieldguide::presets::EDGE;
+
+/// Plan consistency (SW-PLAN-CONSISTENCY) as configured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanSetup {
+    /// Largest offset and heading difference of a consistent line.
+    pub tolerance: PlanTolerance,
+    /// How long a line may disagree before its behaviour is left.
+    pub delay: Seconds,
+}
+
+/// `[switching]`, typed (defaults: Tables 1-2 and the library's GD-CONFIG).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwitchingSetup {
+    /// The configured behaviours from highest to lowest priority (GD-BEHAVIOURS).
+    pub priority: Vec<BehaviourId>,
+    /// Time to transit to edge following, s.
+    pub edge_enter_s: f64,
+    /// Time to transit back from edge following, s.
+    pub edge_exit_s: f64,
+    /// Time to transit to furrow pursuing, s.
+    pub furrow_enter_s: f64,
+    /// Time to transit back from furrow pursuing, s.
+    pub furrow_exit_s: f64,
+    /// Stop after this long without a source, s.
+    pub stop_delay_s: f64,
+    /// Largest age of a held detection, s.
+    pub max_scan_age_s: f64,
+    /// Plan consistency, when on.
+    pub plan: Option<PlanSetup>,
+}
+
+/// The switching settings of `[switching]`, each default taken when a field is absent.
+pub(super) fn switching(
+    file: &ScenarioFile,
+    configured: &[BehaviourId],
+    check: &Checker<'_>,
+) -> Result<SwitchingSetup, ScenarioError> {
+    let s = file.switching.clone().unwrap_or_default();
+    let pos = |field: &str, v: Option<f64>, default: f64| -> Result<f64, ScenarioError> {
+        check.positive(&format!("switching.{field}"), v.unwrap_or(default))
+    };
+    let plan = match s.plan_max_offset_m {
+        None => {
+            if s.plan_max_heading_deg.is_some()
+                || s.plan_delay_s.is_some()
+                || s.plan_lookahead_m.is_some()
+            {
+                return Err(check.error(
+                    "switching.plan_max_offset_m",
+                    "plan consistency needs its offset when its heading, delay or look-ahead is set",
+                ));
+            }
+            None
+        }
+        Some(offset) => {
+            let offset = check.positive("switching.plan_max_offset_m", offset)?;
+            let heading = check.range(
+                "switching.plan_max_heading_deg",
+                s.plan_max_heading_deg.unwrap_or(20.0),
+                0.0,
+                180.0,
+            )?;
+            let delay = pos("plan_delay_s", s.plan_delay_s, 0.3)?;
+            let lookahead = check.non_negative(
+                "switching.plan_lookahead_m",
+                s.plan_lookahead_m.unwrap_or(0.0),
+            )?;
+            let err =
+                |f: &'static str| move |e: fieldguide::Precondition| check.error(f, &e.to_string());
+            Some(PlanSetup {
+                tolerance: PlanTolerance::new(
+                    Meters::new(offset).map_err(err("switching.plan_max_offset_m"))?,
+                    Radians::new(heading.to_radians())
+                        .map_err(err("switching.plan_max_heading_deg"))?,
+                )
+                .map_err(err("switching.plan_max_offset_m"))?
+                .with_lookahead(Meters::new(lookahead).map_err(err("switching.plan_lookahead_m"))?)
+                .map_err(err("switching.plan_lookahead_m"))?,
+                delay: Seconds::new(delay).map_err(err("switching.plan_delay_s"))?,
+            })
+        }
+    };
+    Ok(SwitchingSetup {
+        priority: priority(s.priority.as_deref(), configured, check)?,
+        edge_enter_s: pos("edge_enter_s", s.edge_enter_s, 0.4)?,
+        edge_exit_s: pos("edge_exit_s", s.edge_exit_s, 0.26)?,
+        furrow_enter_s: pos("furrow_enter_s", s.furrow_enter_s, 0.5)?,
+        furrow_exit_s: pos("furrow_exit_s", s.furrow_exit_s, 0.3)?,
+        stop_delay_s: pos("stop_delay_s", s.stop_delay_s, 0.5)?,
+        max_scan_age_s: pos("max_scan_age_s", s.max_scan_age_s, 0.1)?,
+        plan,
+    })
+}
+
+/// `switching.priority`: the ids of the named behaviours in order, each a
+/// configured one, each once, all of them; absent, `configured` as it is
+/// (furrow first).
+fn priority(
+    names: Option<&[String]>,
+    configured: &[BehaviourId],
+    check: &Checker<'_>,
+) -> Result<Vec<BehaviourId>, ScenarioError> {
+    let Some(names) = names else {
+        return Ok(configured.to_vec());
+    };
+    let field = "switching.priority";
+    let mut ids = Vec::new();
+    for name in names {
+        let id = match name.as_str() {
+            "furrow" => FURROW,
+            "edge" => EDGE,
+            other => {
+                return Err(check.error(
+                    field,
+                    &format!("unknown behaviour `{other}`: expected `furrow` or `edge`"),
+                ))
+            }
+        };
+        if !configured.contains(&id) {
+            return Err(check.error(
+                field,
+                &format!("`{name}` is not configured: its section is missing"),
+            ));
+        }
+        if ids.contains(&id) {
+            return Err(check.error(field, &format!("`{name}` is named twice")));
+        }
+        ids.push(id);
+    }
+    if ids.len() != configured.len() {
+        return Err(check.error(
+            field,
+            "must name every configured behaviour (`furrow` and `edge`)",
+        ));
+    }
+    Ok(ids)
+}
