@@ -7,12 +7,10 @@
 
 pub mod pipeline;
 
-use fieldguide::guidance::Mode;
+use fieldguide::guidance::{Mode, RoutedScan};
 use fieldguide::model::bicycle::Sideslip;
-use fieldguide::perception::Scan as HorizontalScan;
 use fieldguide::{MetersPerSecond, Precondition, TrackingError, Verdict};
 
-use crate::lidar::inclined::InclinedScan;
 use crate::sensors::Readings;
 
 /// What the guidance sees at one tick.
@@ -22,12 +20,9 @@ pub struct TickInput<'a> {
     pub time_s: f64,
     /// The sensors' readings (never the ground truth).
     pub readings: &'a Readings,
-    /// The inclined LiDAR's scan, on the ticks it scans (`None` in between
-    /// and without a LiDAR).
-    pub scan: Option<&'a InclinedScan>,
-    /// The horizontal LiDAR's scan as the core's edge detector reads it, on
-    /// the ticks it scans (`None` in between and without a horizontal LiDAR).
-    pub horizontal: Option<HorizontalScan<'a>>,
+    /// The scans of the LiDARs that scanned in this tick, each routed to
+    /// its behaviour.
+    pub scans: &'a [RoutedScan<'a>],
 }
 
 /// What the guidance sends to the vehicle at one tick.

@@ -323,12 +323,14 @@ mod tests {
                 polygon: vec![[-10.0, -10.0], [10.0, -10.0], [10.0, 10.0], [-10.0, 10.0]],
                 sideslip: Sideslip::new(-beta_r, beta_r).unwrap(),
             }],
+            ..Terrain::default()
         };
         // Steering straight, β_F = −β_R: tan(β_F) − tan(β_R) = 2 tan|β| gives
         // a yaw rate; with β_F = β_R the yaw rate is zero and O crabs at β_R.
         let crab = Terrain {
             base: Sideslip::new(beta_r, beta_r).unwrap(),
             patches: vec![],
+            ..Terrain::default()
         };
         let v = MetersPerSecond::new(1.0).unwrap();
         let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &crab);

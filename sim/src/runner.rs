@@ -6,8 +6,8 @@
 //!    lines (ground truth: the errors recorded and scored are these, never
 //!    the robot's estimate);
 //! 2. the sensors read the true state (with noise, from the run's generator),
-//!    and on scan ticks the inclined LiDAR scans the plants and the
-//!    horizontal LiDAR the hedges, from the true pose;
+//!    and on its scan ticks each mounted LiDAR scans the one world (ground,
+//!    plants, hedges) from the true pose, its scan routed to its behaviour;
 //! 3. the guidance turns the readings into a command;
 //! 4. the tick is recorded, crop plants under the wheels are counted, and the
 //!    run stops at the end of the path, at the duration, or on a core error;
@@ -19,13 +19,15 @@ use fieldguide::{Meters, Pose2, Precondition, World};
 use crate::error::ScenarioError;
 use crate::guidance::pipeline::Pipeline;
 use crate::guidance::{Command, Guidance, TickInput, SEARCH_WINDOW_M};
-use crate::lidar::inclined::{InclinedLidar, InclinedScan};
+use crate::lidar::inclined::InclinedScan;
+use crate::lidar::{Mounted, MountedLidar};
 use crate::plant::{Plant, VehicleState};
 use crate::rng::SimRng;
 use crate::scenario::{Setup, Source};
 use crate::sensors::{Readings, Sensors};
 use crate::world::crops::PlantIndex;
 use crate::world::grid::Grid;
+use crate::world::scene::Scene;
 use crate::world::PlantKind;
 use fieldguide::guidance::Mode;
 
@@ -180,10 +182,12 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     let mut state = VehicleState::at(setup.initial, terrain);
     let mut sensors = Sensors::new(setup.noise, &state);
     let index = PlantIndex::new(setup.world.plants.clone(), PLANT_INDEX_CELL_M);
-    let mut horizontal = match setup.horizontal_lidar {
-        None => None,
-        Some(_) => match Grid::new(setup.world.obstacles.clone(), OBSTACLE_GRID_CELL_M) {
-            Ok(grid) => Some((grid, Vec::new())),
+    let obstacles = &setup.world.obstacles;
+    let grid = if obstacles.segments.is_empty() && obstacles.circles.is_empty() {
+        None
+    } else {
+        match Grid::new(obstacles.clone(), OBSTACLE_GRID_CELL_M) {
+            Ok(grid) => Some(grid),
             Err(e) => {
                 return RunOutput {
                     trace: Vec::new(),
@@ -191,8 +195,16 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
                     plants_crushed: 0,
                 }
             }
-        },
+        }
     };
+    let scene = Scene {
+        ground: &terrain.ground,
+        plants: &index,
+        obstacles: grid.as_ref(),
+        obstacle_height: setup.world.obstacle_height,
+    };
+    let lidars = setup.lidars();
+    let mut buffers: Vec<Option<Reading>> = vec![None; lidars.len()];
     let mut crushed = vec![false; setup.world.plants.len()];
     let mut near = Vec::new();
     let mut trace = Vec::with_capacity(usize::try_from(max_ticks.min(1 << 20)).unwrap_or(0));
@@ -200,19 +212,6 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     let mut end = RunEnd::Duration;
     for k in 0..=max_ticks {
         let t_s = k as f64 * period;
-        let scans = setup
-            .lidar
-            .filter(|l| k % l.scan_every == 0)
-            .map(|l| (l.lidar, &index));
-        let horizontal_scan = setup
-            .horizontal_lidar
-            .filter(|l| k % l.scan_every == 0)
-            .zip(horizontal.as_mut())
-            .map(|(l, (grid, ranges))| HorizontalScanning {
-                lidar: l.lidar,
-                grid,
-                ranges,
-            });
         match tick(
             setup,
             guidance,
@@ -220,7 +219,7 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
             &mut sensors,
             &mut truth_hint,
             t_s,
-            (scans, horizontal_scan),
+            (&scene, &lidars, k, &mut buffers),
             rng,
         ) {
             Ok((record, past_end)) => {
@@ -257,16 +256,27 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     }
 }
 
-/// The horizontal LiDAR, the obstacles it sees and its range buffer, on scan ticks.
-struct HorizontalScanning<'a> {
-    lidar: crate::lidar::horizontal::HorizontalLidar,
-    grid: &'a Grid,
-    ranges: &'a mut Vec<f64>,
+/// One LiDAR's latest scan, kept between ticks (the horizontal LiDAR's
+/// buffer is reused).
+#[derive(Debug, Clone)]
+enum Reading {
+    /// An inclined LiDAR's scan.
+    Inclined(InclinedScan),
+    /// A horizontal LiDAR's ranges.
+    Horizontal(Vec<f64>),
 }
 
-/// Steps 1-3 of a tick (`lidars`: the inclined LiDAR and the plants, the
-/// horizontal LiDAR and the obstacles, each on its scan ticks); returns the
-/// record and whether the true projection is past the end.
+/// The world, the mounted LiDARs, the tick's index and each LiDAR's reading.
+type Scanning<'a, 'w> = (
+    &'a Scene<'w>,
+    &'a [MountedLidar],
+    u64,
+    &'a mut [Option<Reading>],
+);
+
+/// Steps 1-3 of a tick (`lidars`: the world, the mounted LiDARs, each
+/// scanning on its scan ticks, and their buffers); returns the record and
+/// whether the true projection is past the end.
 #[allow(
     clippy::too_many_arguments,
     reason = "one tick reads the whole loop state; a struct would only rename it"
@@ -278,13 +288,10 @@ fn tick(
     sensors: &mut Sensors,
     truth_hint: &mut Option<Meters>,
     t_s: f64,
-    lidars: (
-        Option<(InclinedLidar, &PlantIndex)>,
-        Option<HorizontalScanning<'_>>,
-    ),
+    lidars: Scanning<'_, '_>,
     rng: &mut SimRng,
 ) -> Result<(TickRecord, bool), Precondition> {
-    let (lidar, horizontal) = lidars;
+    let (scene, mounted, k, buffers) = lidars;
     let path = &setup.path;
     let truth = match *truth_hint {
         None => path.project(&state.pose, Meters::ZERO)?,
@@ -298,23 +305,45 @@ fn tick(
     *truth_hint = Some(truth.s);
     let fix = setup.gnss_outages.has_fix(t_s);
     let readings = sensors.read(state, setup.control.period_s, fix, rng)?;
-    let scan: Option<InclinedScan> = lidar.map(|(l, index)| l.scan(&state.pose, index, rng));
-    let ranges: Option<&[f64]> = match horizontal {
-        None => None,
-        Some(h) => {
-            h.lidar.scan(&state.pose, h.grid, rng, h.ranges)?;
-            Some(h.ranges)
+    // Each LiDAR in turn, on its scan ticks (the generator's draws in the
+    // order of the list).
+    let mut fresh = vec![false; mounted.len()];
+    for ((lidar, reading), new) in mounted.iter().zip(buffers.iter_mut()).zip(&mut fresh) {
+        if k % lidar.scan_every != 0 {
+            continue;
         }
-    };
-    let horizontal_view = match (ranges, setup.horizontal_lidar) {
-        (Some(r), Some(l)) => Some(l.lidar.scan_view(r)?),
-        _ => None,
-    };
+        *new = true;
+        match &lidar.sensor {
+            Mounted::Inclined(l) => {
+                *reading = Some(Reading::Inclined(l.scan(&state.pose, scene, rng)))
+            }
+            Mounted::Horizontal(l) => {
+                let mut ranges = match reading.take() {
+                    Some(Reading::Horizontal(r)) => r,
+                    _ => Vec::new(),
+                };
+                l.scan(&state.pose, scene, rng, &mut ranges)?;
+                *reading = Some(Reading::Horizontal(ranges));
+            }
+        }
+    }
+    let mut scans = Vec::with_capacity(mounted.len());
+    for ((lidar, reading), new) in mounted.iter().zip(buffers.iter()).zip(&fresh) {
+        let scan = match (&lidar.sensor, reading, new) {
+            (_, _, false) | (_, None, _) => continue,
+            (Mounted::Inclined(_), Some(Reading::Inclined(s)), true) => s.as_scan()?,
+            (Mounted::Horizontal(l), Some(Reading::Horizontal(r)), true) => l.scan_view(r)?,
+            _ => continue,
+        };
+        scans.push(fieldguide::guidance::RoutedScan {
+            behaviour: lidar.route,
+            scan,
+        });
+    }
     let command = guidance.step(&TickInput {
         time_s: t_s,
         readings: &readings,
-        scan: scan.as_ref(),
-        horizontal: horizontal_view,
+        scans: &scans,
     })?;
     let (x, y) = (state.pose.position.x(), state.pose.position.y());
     let heading = state.pose.heading.get();

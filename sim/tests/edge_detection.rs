@@ -9,8 +9,11 @@
 use fieldguide::perception::edge::{detect, EdgeConfig, Side};
 use fieldguide::{Pose2, World};
 use fieldguide_sim::lidar::horizontal::{HorizontalLidar, HorizontalLidarSpec};
+use fieldguide_sim::world::crops::PlantIndex;
 use fieldguide_sim::world::grid::Grid;
 use fieldguide_sim::world::hedge::{HedgeSpec, Obstacles};
+use fieldguide_sim::world::scene::Scene;
+use fieldguide_sim::world::terrain::Ground;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -50,12 +53,19 @@ fn run(seeds: u64, poses: usize) -> Tally {
             )
             .unwrap();
         let grid = Grid::new(obstacles, 0.5).unwrap();
+        let (ground, plants) = (Ground::default(), PlantIndex::new(Vec::new(), 0.5));
+        let world = Scene {
+            ground: &ground,
+            plants: &plants,
+            obstacles: Some(&grid),
+            obstacle_height: 2.0,
+        };
         for _ in 0..poses {
             let x = rng.random_range(3.0..19.0);
             let y = rng.random_range(-0.3..0.3);
             let heading: f64 = rng.random_range(-0.25..0.25);
             let pose = Pose2::<World>::new(x, y, heading).unwrap();
-            lidar.scan(&pose, &grid, &mut rng, &mut ranges).unwrap();
+            lidar.scan(&pose, &world, &mut rng, &mut ranges).unwrap();
             let scan = lidar.scan_view(&ranges).unwrap();
             let det = detect::<512, 256>(&scan, &lidar.mount(), Side::Left, &config).unwrap();
             // The line to follow is y = 0 (1.4 m from the nominal face):

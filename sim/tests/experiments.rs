@@ -492,3 +492,48 @@ fn exp1_with_maize_follows_the_hedge_then_pursues_the_rows() {
         assert_eq!(out.plants_crushed, 0, "seed {seed}");
     }
 }
+
+/// In the one world every LiDAR sees, the inclined LiDAR beside the hedge
+/// of `exp1-hedge-maize` sees the hedge (rays to the left end on it, short
+/// of the ground), and the horizontal LiDAR, 1 m up, passes over the maize.
+#[test]
+fn in_the_shared_world_the_inclined_lidar_sees_the_hedge() {
+    use fieldguide::{Pose2, World};
+    use fieldguide_sim::lidar::Mounted;
+    use fieldguide_sim::world::crops::PlantIndex;
+    use fieldguide_sim::world::grid::Grid;
+    use fieldguide_sim::world::scene::Scene;
+    let (setup, _) = common::prepare_seed("exp1-hedge-maize", 2022);
+    let grid = Grid::new(setup.world.obstacles.clone(), 0.5).unwrap();
+    let plants = PlantIndex::new(setup.world.plants.clone(), 0.5);
+    let with = Scene {
+        ground: &setup.world.terrain.ground,
+        plants: &plants,
+        obstacles: Some(&grid),
+        obstacle_height: setup.world.obstacle_height,
+    };
+    let without = Scene {
+        obstacles: None,
+        ..with
+    };
+    let lidars = setup.lidars();
+    let (Mounted::Inclined(inclined), Mounted::Horizontal(horizontal)) =
+        (&lidars[0].sensor, &lidars[1].sensor)
+    else {
+        panic!("{lidars:?}");
+    };
+    // Beside the hedge, on the path.
+    let beside = Pose2::<World>::new(25.0, 0.965, 0.0).unwrap();
+    let seen = inclined.scan_exhaustive(&beside, &with);
+    let bare = inclined.scan_exhaustive(&beside, &without);
+    let on_hedge = seen.iter().zip(&bare).filter(|(s, b)| s < b).count();
+    assert!(on_hedge > 20, "{on_hedge} rays on the hedge");
+    // In the maize: the level scan at 1 m sees nothing of 0.5 m plants.
+    let mut rng = fieldguide_sim::rng::SimRng::from_seed(1);
+    let mut ranges = Vec::new();
+    let in_maize = Pose2::<World>::new(45.0, 0.965, 0.0).unwrap();
+    horizontal
+        .scan(&in_maize, &without, &mut rng, &mut ranges)
+        .unwrap();
+    assert!(ranges.iter().all(|r| r.is_infinite()), "{ranges:?}");
+}

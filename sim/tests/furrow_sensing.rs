@@ -11,6 +11,8 @@ use fieldguide::{Point2, Pose2, Verdict, World};
 use fieldguide_sim::lidar::inclined::InclinedLidar;
 use fieldguide_sim::odometry::{OdometryErrors, WheelOdometry};
 use fieldguide_sim::world::crops::{scatter_grass, PlantIndex, PlotSpec, Spread};
+use fieldguide_sim::world::scene::Scene;
+use fieldguide_sim::world::terrain::Ground;
 use fieldguide_sim::world::Plant;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
@@ -33,6 +35,13 @@ struct Tick {
 fn drive(plants: Vec<Plant>, y0: f64, psi: f64, distance: f64, seed: u64) -> Vec<Tick> {
     let mut rng = StdRng::seed_from_u64(seed);
     let index = PlantIndex::new(plants, 0.5);
+    let ground = Ground::default();
+    let world = Scene {
+        ground: &ground,
+        plants: &index,
+        obstacles: None,
+        obstacle_height: 2.0,
+    };
     let lidar = InclinedLidar::furrow_default();
     let mut det =
         FurrowDetector::<256, 32>::new(FurrowConfig::new(&FurrowParams::table2()).unwrap())
@@ -42,7 +51,7 @@ fn drive(plants: Vec<Plant>, y0: f64, psi: f64, distance: f64, seed: u64) -> Vec
     let mut pose = Pose2::<World>::new(0.0, y0, psi).unwrap();
     let mut ticks = Vec::new();
     while pose.position.x() < distance {
-        let scan = lidar.scan(&pose, &index, &mut rng);
+        let scan = lidar.scan(&pose, &world, &mut rng);
         let d = det.detect(&scan.as_scan().unwrap(), &odo.pose()).unwrap();
         ticks.push(Tick {
             x: pose.position.x(),

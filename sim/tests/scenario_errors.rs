@@ -946,3 +946,55 @@ fn a_segment_along_a_missing_plot_is_named() {
     });
     assert_field(&e, "path.segments[0].along_plot", "no plot 0");
 }
+
+#[test]
+fn lidars_without_their_behaviour_and_bad_ground_are_named() {
+    // A LiDAR whose behaviour is missing: its scans would go nowhere.
+    let furrow = Source::builtin("furrow-pursuing").unwrap().text;
+    let without = |t: &str, name: &str| {
+        let start = t.find(name).unwrap();
+        let end = t[start + 1..]
+            .find("\n[")
+            .map_or(t.len(), |i| start + 1 + i);
+        format!("{}{}", &t[..start], &t[end..])
+    };
+    let e = edited_error_of(furrow.clone(), |t| without(&t, "[furrow]"));
+    assert_field(&e, "lidar", "needs a `[furrow]` section");
+    let e = hedge_error_of(|t| without(&t, "[edge]"));
+    assert_field(&e, "horizontal_lidar", "needs an `[edge]` section");
+    // The ground's shape and the obstacles' height.
+    let terrain = |extra: &'static str| {
+        move |t: String| t.replacen("[terrain]\n", &format!("[terrain]\n{extra}\n"), 1)
+    };
+    for (extra, field, reason) in [
+        ("slope_x_percent = 150.0", "terrain.slope_x_percent", ""),
+        (
+            "undulation_amplitude_m = 0.1",
+            "terrain.undulation_wavelength_m",
+            "needed",
+        ),
+        (
+            "undulation_wavelength_m = 5.0",
+            "terrain.undulation_wavelength_m",
+            "amplitude",
+        ),
+        (
+            "undulation_amplitude_m = 0.1\nundulation_wavelength_m = 0.1",
+            "terrain.undulation_wavelength_m",
+            "",
+        ),
+    ] {
+        let e = edited_error_of(furrow.clone(), terrain(extra));
+        assert_field(&e, field, reason);
+    }
+    let e = hedge_error_of(|t| t.replacen("[world]\n", "[world]\nobstacle_height_m = -1.0\n", 1));
+    assert_field(&e, "world.obstacle_height_m", "");
+    let e = hedge_error_of(|t| {
+        t.replacen(
+            "[horizontal_lidar]\n",
+            "[horizontal_lidar]\nmount_height_m = 99.0\n",
+            1,
+        )
+    });
+    assert_field(&e, "horizontal_lidar.mount_height_m", "");
+}

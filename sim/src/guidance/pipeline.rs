@@ -9,7 +9,7 @@
 use fieldguide::control::backstepping::BacksteppingConfig;
 use fieldguide::guidance::{
     BehaviourParams, BehaviourStatus, Guidance as Core, GuidanceConfig, GuidanceParams, Mode,
-    PathTrackingParams, RoutedScan, TickOutput,
+    PathTrackingParams, TickOutput,
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::model::Vehicle;
@@ -145,21 +145,8 @@ impl<'p> Pipeline<'p> {
 impl Guidance for Pipeline<'_> {
     fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition> {
         let r = input.readings;
-        let mut routed = heapless::Vec::<RoutedScan<'_>, BEHAVIOURS>::new();
-        if let Some(s) = input.scan {
-            let _ = routed.push(RoutedScan {
-                behaviour: FURROW,
-                scan: s.as_scan()?,
-            });
-        }
-        if let Some(scan) = input.horizontal {
-            let _ = routed.push(RoutedScan {
-                behaviour: EDGE,
-                scan,
-            });
-        }
         let out = self.core.step(&fieldguide::guidance::TickInput {
-            scans: &routed,
+            scans: input.scans,
             gnss: r.gnss,
             odometry: r.odometry,
             extra: r.sideslip,

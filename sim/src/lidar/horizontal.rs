@@ -1,6 +1,8 @@
-//! A horizontal 2D LiDAR ray-cast through the world's grid against hedges,
-//! walls and posts (Pierre 2022, section 2.2, Fig. 3): mount pose on the
-//! robot, field of view, ray count, range limits and Gaussian range noise.
+//! A horizontal 2D LiDAR ray-cast in the one world of every sensor
+//! ([`Scene`]: hedges, walls and posts through the obstacle grid, plants
+//! taller than the sensor, rising ground) (Pierre 2022, section 2.2, Fig. 3):
+//! mount pose and height on the robot, field of view, ray count, range limits
+//! and Gaussian range noise.
 //!
 //! Its scans are what `fieldguide::perception::edge` consumes: the ranges
 //! here, the `fieldguide::perception::Scan` over them by
@@ -13,8 +15,8 @@ use fieldguide::{Meters, Pose2, Precondition, Radians, Robot, Sensor, Transform2
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::world::grid::Grid;
 use crate::world::hedge::InvalidSpec;
+use crate::world::scene::Scene;
 
 /// The parameters of a horizontal LiDAR.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -23,6 +25,8 @@ pub struct HorizontalLidarSpec {
     pub mount_xy: [f64; 2],
     /// Mount heading on the robot, radians (0: facing forward).
     pub mount_heading: f64,
+    /// Sensor height above the ground under the robot, metres, ≥ 0.
+    pub mount_height: f64,
     /// Field of view, radians, in (0, 2π], centred on the sensor's x axis.
     pub field_of_view: f64,
     /// Number of rays, ≥ 2.
@@ -41,6 +45,7 @@ impl HorizontalLidarSpec {
     pub const DEFAULT: Self = Self {
         mount_xy: [1.2, 0.0],
         mount_heading: 0.0,
+        mount_height: 1.0,
         field_of_view: TAU,
         rays: 360,
         range_min: 0.05,
@@ -71,6 +76,9 @@ impl HorizontalLidar {
     pub fn new(spec: HorizontalLidarSpec) -> Result<Self, InvalidSpec> {
         let mount = Transform2::new(spec.mount_xy[0], spec.mount_xy[1], spec.mount_heading)
             .map_err(|_| invalid("mount", "must be finite"))?;
+        if !(spec.mount_height.is_finite() && spec.mount_height >= 0.0) {
+            return Err(invalid("mount_height", "must be finite and >= 0"));
+        }
         if !(spec.field_of_view > 0.0 && spec.field_of_view <= TAU) {
             return Err(invalid("field_of_view", "must be in (0, 2 pi]"));
         }
@@ -123,13 +131,15 @@ impl HorizontalLidar {
         self.start + k as f64 * self.increment
     }
 
-    /// Ray-casts one scan from a robot at `pose` into `out` (cleared first,
-    /// one range per ray, metres): the true distance to the nearest obstacle
-    /// plus Gaussian noise, or +∞ when nothing is hit within `range_max`.
+    /// Ray-casts one scan from a robot at `pose` in `scene` into `out`
+    /// (cleared first, one range per ray, metres): the true distance to the
+    /// nearest hit plus Gaussian noise, or +∞ when nothing is hit within
+    /// `range_max`. The rays are level, `mount_height` above the ground
+    /// under the robot.
     pub fn scan(
         &self,
         pose: &Pose2<World>,
-        world: &Grid,
+        scene: &Scene<'_>,
         rng: &mut impl Rng,
         out: &mut Vec<f64>,
     ) -> Result<(), Precondition> {
@@ -139,12 +149,31 @@ impl HorizontalLidar {
             position: self.mount.apply(fieldguide::Point2::origin())?,
             heading: self.mount.angle(),
         })?;
-        let origin = [sensor_pose.position.x(), sensor_pose.position.y()];
+        let ground = if scene.ground.is_flat() {
+            0.0
+        } else {
+            scene.ground.height(pose.position.x(), pose.position.y())
+        };
+        let origin = [
+            sensor_pose.position.x(),
+            sensor_pose.position.y(),
+            ground + self.spec.mount_height,
+        ];
         let heading = sensor_pose.heading.get();
+        // The plants near the scan, only when one is tall enough to be seen.
+        let mut near = Vec::new();
+        if scene.plants_reach(origin[2]) {
+            let reach = self.spec.range_max + scene.plants.max_radius();
+            scene.plants.query(
+                (origin[0] - reach, origin[1] - reach),
+                (origin[0] + reach, origin[1] + reach),
+                &mut near,
+            );
+        }
         for k in 0..self.spec.rays {
             let a = heading + self.ray_angle(k);
-            let dir = [a.cos(), a.sin()];
-            let range = match world.cast(origin, dir, self.spec.range_max) {
+            let dir = [a.cos(), a.sin(), 0.0];
+            let range = match scene.cast(origin, dir, self.spec.range_max, &near) {
                 Some(t) => t + self.noise.map_or(0.0, |n| n.sample(rng)),
                 None => f64::INFINITY,
             };
@@ -167,11 +196,34 @@ impl HorizontalLidar {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::world::crops::PlantIndex;
+    use crate::world::grid::Grid;
     use crate::world::hedge::{HedgeSpec, Obstacles};
+    use crate::world::terrain::Ground;
     use fieldguide::perception::edge::{detect, EdgeConfig, Side};
     use fieldguide::Verdict;
     use rand::rngs::StdRng;
     use rand::SeedableRng;
+
+    const FLAT: Ground = Ground {
+        slope: [0.0, 0.0],
+        undulation: None,
+    };
+
+    /// No plants.
+    fn none() -> PlantIndex {
+        PlantIndex::new(Vec::new(), 0.5)
+    }
+
+    /// The flat world of `grid`'s obstacles and `plants`.
+    fn scene<'a>(grid: &'a Grid, plants: &'a PlantIndex) -> Scene<'a> {
+        Scene {
+            ground: &FLAT,
+            plants,
+            obstacles: Some(grid),
+            obstacle_height: 2.0,
+        }
+    }
 
     fn wall_world(y: f64) -> Grid {
         let mut o = Obstacles::default();
@@ -193,7 +245,7 @@ mod tests {
         lidar
             .scan(
                 &pose,
-                &wall_world(5.0),
+                &scene(&wall_world(5.0), &none()),
                 &mut StdRng::seed_from_u64(0),
                 &mut ranges,
             )
@@ -217,7 +269,9 @@ mod tests {
         let mut ranges = Vec::new();
         let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
         for _ in 0..400 {
-            lidar.scan(&pose, &grid, &mut rng, &mut ranges).unwrap();
+            lidar
+                .scan(&pose, &scene(&grid, &none()), &mut rng, &mut ranges)
+                .unwrap();
             let e = ranges[180] - 3.8;
             n += 1.0;
             sum += e;
@@ -300,7 +354,9 @@ mod tests {
         let lidar = HorizontalLidar::new(HorizontalLidarSpec::DEFAULT).unwrap();
         let pose = Pose2::<World>::new(0.0, 0.0, 0.0).unwrap();
         let mut ranges = Vec::new();
-        lidar.scan(&pose, &grid, &mut rng, &mut ranges).unwrap();
+        lidar
+            .scan(&pose, &scene(&grid, &none()), &mut rng, &mut ranges)
+            .unwrap();
         let config = EdgeConfig::pierre2022().unwrap();
         let det = detect::<512, 256>(
             &lidar.scan_view(&ranges).unwrap(),

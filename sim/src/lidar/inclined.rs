@@ -4,19 +4,20 @@
 //! The scan plane is the sensor's x-y plane pitched down by `pitch` about the
 //! robot's y axis, as the core's `perception::furrow::scan::MountPose`
 //! describes it: ray `j` at in-plane angle `a_j` has the robot-frame
-//! direction `(cos a cos p, sin a, −cos a sin p)`. Rays hit the flat ground
-//! z = 0 or plants modelled as vertical cylinders (side wall or top disk).
-//! A scan first takes from the plant index the plants inside the bounding box
-//! of its ground footprint (the sensor and every ray's end), so a ray is only
-//! tested against the plants near the scan.
+//! direction `(cos a cos p, sin a, −cos a sin p)`. Rays are cast in the one
+//! world of every sensor ([`Scene`]): the ground (flat, sloping or
+//! undulating), plants modelled as vertical cylinders (side wall or top
+//! disk), hedges and walls. The sensor stands `height` above the ground
+//! under the robot. A scan first takes from the plant index the plants
+//! inside the bounding box of its footprint (the sensor and every ray's
+//! end), so a ray is only tested against the plants near the scan.
 
 use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::{Meters, Pose2, Precondition, Radians, World};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::world::crops::PlantIndex;
-use crate::world::Plant;
+use crate::world::scene::Scene;
 
 /// An inclined 2D LiDAR and its mount on the robot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,15 +73,16 @@ impl InclinedLidar {
         self.field_of_view / (self.rays.max(2) as f64 - 1.0)
     }
 
-    /// The sensor origin and the world direction of ray angle `a` from `pose`.
-    fn ray(&self, pose: &Pose2<World>, a: f64) -> ([f64; 3], [f64; 3]) {
+    /// The sensor origin and the world direction of ray angle `a` from
+    /// `pose`, the sensor `height` above the ground at `ground_z`.
+    fn ray(&self, pose: &Pose2<World>, ground_z: f64, a: f64) -> ([f64; 3], [f64; 3]) {
         let psi = pose.heading.get();
         let (c, s) = (psi.cos(), psi.sin());
         let (px, py) = (pose.position.x(), pose.position.y());
         let origin = [
             px + c * self.mount_x - s * self.mount_y,
             py + s * self.mount_x + c * self.mount_y,
-            self.height,
+            ground_z + self.height,
         ];
         let (dx, dy, dz) = (
             a.cos() * self.pitch.cos(),
@@ -90,32 +92,34 @@ impl InclinedLidar {
         (origin, [c * dx - s * dy, s * dx + c * dy, dz])
     }
 
-    /// The noiseless range of ray angle `a` from `pose` among `plants`
-    /// (indices into `all`): the first of the ground and the plants, or
-    /// infinity when nothing lies within `range_max`.
-    fn cast(&self, pose: &Pose2<World>, a: f64, all: &[Plant], plants: &[usize]) -> f64 {
-        let (o, d) = self.ray(pose, a);
-        let mut best = if d[2] < 0.0 {
-            o[2] / -d[2]
+    /// The height of the ground under the robot at `pose`, m.
+    fn ground_z(pose: &Pose2<World>, scene: &Scene<'_>) -> f64 {
+        if scene.ground.is_flat() {
+            0.0
         } else {
-            f64::INFINITY
-        };
-        for p in plants.iter().filter_map(|&i| all.get(i)) {
-            if let Some(r) = hit_cylinder(o, d, p) {
-                best = best.min(r);
-            }
+            scene.ground.height(pose.position.x(), pose.position.y())
         }
-        if best <= self.range_max {
-            best
-        } else {
-            f64::INFINITY
-        }
+    }
+
+    /// The noiseless range of ray angle `a` from `pose` in `scene`, among
+    /// the plants `near`: the first hit, or infinity when nothing lies
+    /// within `range_max`.
+    fn cast(&self, pose: &Pose2<World>, a: f64, scene: &Scene<'_>, near: &[usize]) -> f64 {
+        let (o, d) = self.ray(pose, Self::ground_z(pose, scene), a);
+        scene
+            .cast(o, d, self.range_max, near)
+            .unwrap_or(f64::INFINITY)
     }
 
     /// The world bounding box of the scan's footprint from `pose`: the
     /// sensor and the end of every ray (its ground hit, or its end at
     /// `range_max`), widened by `margin`.
-    fn footprint(&self, pose: &Pose2<World>, margin: f64) -> ((f64, f64), (f64, f64)) {
+    fn footprint(
+        &self,
+        pose: &Pose2<World>,
+        scene: &Scene<'_>,
+        margin: f64,
+    ) -> ((f64, f64), (f64, f64)) {
         let (mut x0, mut y0, mut x1, mut y1) = (
             f64::INFINITY,
             f64::INFINITY,
@@ -130,9 +134,11 @@ impl InclinedLidar {
         };
         for j in 0..self.rays {
             let a = self.angle_min() + j as f64 * self.angle_increment();
-            let (o, d) = self.ray(pose, a);
+            let (o, d) = self.ray(pose, Self::ground_z(pose, scene), a);
             grow(o[0], o[1]);
-            let end = if d[2] < 0.0 {
+            // On uneven ground a ray may reach past the plane's hit: its end
+            // at `range_max` bounds it.
+            let end = if d[2] < 0.0 && scene.ground.is_flat() {
                 (o[2] / -d[2]).min(self.range_max)
             } else {
                 self.range_max
@@ -142,23 +148,18 @@ impl InclinedLidar {
         ((x0 - margin, y0 - margin), (x1 + margin, y1 + margin))
     }
 
-    /// One scan from `pose` in the world of `index`, with Gaussian range
-    /// noise drawn from `rng`. Rays with no return read `f64::INFINITY`;
-    /// noisy ranges are clamped to `[range_min, range_max]`.
-    pub fn scan(
-        &self,
-        pose: &Pose2<World>,
-        index: &PlantIndex,
-        rng: &mut impl Rng,
-    ) -> InclinedScan {
-        let (lo, hi) = self.footprint(pose, index.max_radius());
+    /// One scan from `pose` in `scene`, with Gaussian range noise drawn
+    /// from `rng`. Rays with no return read `f64::INFINITY`; noisy ranges are
+    /// clamped to `[range_min, range_max]`.
+    pub fn scan(&self, pose: &Pose2<World>, scene: &Scene<'_>, rng: &mut impl Rng) -> InclinedScan {
+        let (lo, hi) = self.footprint(pose, scene, scene.plants.max_radius());
         let mut near = Vec::new();
-        index.query(lo, hi, &mut near);
+        scene.plants.query(lo, hi, &mut near);
         let noise = Normal::new(0.0, self.range_noise).ok();
         let ranges = (0..self.rays)
             .map(|j| {
                 let a = self.angle_min() + j as f64 * self.angle_increment();
-                let r = self.cast(pose, a, index.plants(), &near);
+                let r = self.cast(pose, a, scene, &near);
                 match (&noise, r.is_finite()) {
                     (Some(n), true) => (r + n.sample(rng)).clamp(self.range_min, self.range_max),
                     _ => r,
@@ -174,61 +175,22 @@ impl InclinedLidar {
         }
     }
 
-    /// The same scan without the index: every plant tested, no noise (the
-    /// reference the prefiltered scan is tested against).
+    /// The same scan without the index's prefilter: every plant tested, no
+    /// noise (the reference the prefiltered scan is tested against).
     #[must_use]
-    pub fn scan_exhaustive(&self, pose: &Pose2<World>, plants: &[Plant]) -> Vec<f64> {
-        let all: Vec<usize> = (0..plants.len()).collect();
+    pub fn scan_exhaustive(&self, pose: &Pose2<World>, scene: &Scene<'_>) -> Vec<f64> {
+        let all: Vec<usize> = (0..scene.plants.plants().len()).collect();
         (0..self.rays)
             .map(|j| {
                 self.cast(
                     pose,
                     self.angle_min() + j as f64 * self.angle_increment(),
-                    plants,
+                    scene,
                     &all,
                 )
             })
             .collect()
     }
-}
-
-/// The range at which the ray from `o` along the unit direction `d` first
-/// meets the cylinder of `plant` (its side wall between the ground and its
-/// top, or its top disk), if it does at `r ≥ 0` above the ground.
-#[must_use]
-pub fn hit_cylinder(o: [f64; 3], d: [f64; 3], plant: &Plant) -> Option<f64> {
-    let (cx, cy) = (plant.position.x(), plant.position.y());
-    let (ox, oy) = (o[0] - cx, o[1] - cy);
-    // |(ox, oy) + r (dx, dy)|² = R²  ⇒  A r² + 2 B r + C = 0.
-    let a = d[0] * d[0] + d[1] * d[1];
-    let b = ox * d[0] + oy * d[1];
-    let c = ox * ox + oy * oy - plant.radius * plant.radius;
-    if a <= 0.0 {
-        return None;
-    }
-    let disc = b * b - a * c;
-    if disc < 0.0 {
-        return None;
-    }
-    let root = disc.sqrt();
-    let (r_in, r_out) = ((-b - root) / a, (-b + root) / a);
-    if r_out < 0.0 {
-        return None;
-    }
-    let r_in = r_in.max(0.0);
-    let z = |r: f64| o[2] + r * d[2];
-    let z_in = z(r_in);
-    if (0.0..=plant.height).contains(&z_in) {
-        return Some(r_in);
-    }
-    if z_in > plant.height && d[2] < 0.0 {
-        // Above the top when it enters the wall: it may come down through the top disk.
-        let r_top = (o[2] - plant.height) / -d[2];
-        if r_top >= r_in && r_top <= r_out {
-            return Some(r_top);
-        }
-    }
-    None
 }
 
 /// A simulated inclined scan: ranges in metres (infinity for no return),
@@ -263,7 +225,24 @@ impl InclinedScan {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::world::PlantKind;
+    use crate::world::crops::PlantIndex;
+    use crate::world::terrain::Ground;
+    use crate::world::{Plant, PlantKind};
+
+    const FLAT: Ground = Ground {
+        slope: [0.0, 0.0],
+        undulation: None,
+    };
+
+    /// The flat world of `index`, without obstacles.
+    fn flat(index: &PlantIndex) -> Scene<'_> {
+        Scene {
+            ground: &FLAT,
+            plants: index,
+            obstacles: None,
+            obstacle_height: 2.0,
+        }
+    }
     use fieldguide::perception::furrow::scan::{scan_to_points, MountPose, ScanWindow};
     use fieldguide::Point2;
     use rand::rngs::StdRng;
@@ -294,7 +273,7 @@ mod tests {
         };
         let pose = Pose2::<World>::new(2.0, -1.0, 0.7).unwrap();
         let index = PlantIndex::new(Vec::new(), 0.5);
-        let scan = lidar.scan(&pose, &index, &mut StdRng::seed_from_u64(1));
+        let scan = lidar.scan(&pose, &flat(&index), &mut StdRng::seed_from_u64(1));
         // Centre ray: h / sin p. Side rays at ±0.5 rad: h / (cos 0.5 sin p).
         let p: f64 = 0.38;
         assert!((scan.ranges[1] - 1.0 / p.sin()).abs() < 1e-12);
@@ -306,7 +285,7 @@ mod tests {
             ..lidar
         };
         assert!(up
-            .scan_exhaustive(&pose, &[])
+            .scan_exhaustive(&pose, &flat(&PlantIndex::new(Vec::new(), 0.5)))
             .iter()
             .all(|r| r.is_infinite()));
     }
@@ -320,8 +299,8 @@ mod tests {
         let plants = vec![plant(x_top + 0.05, 0.0, 0.1, 0.3)];
         let index = PlantIndex::new(plants.clone(), 0.5);
         let pose = Pose2::<World>::new(0.0, 0.0, 0.0).unwrap();
-        let scan = lidar.scan(&pose, &index, &mut StdRng::seed_from_u64(1));
-        assert_eq!(scan.ranges, lidar.scan_exhaustive(&pose, &plants));
+        let scan = lidar.scan(&pose, &flat(&index), &mut StdRng::seed_from_u64(1));
+        assert_eq!(scan.ranges, lidar.scan_exhaustive(&pose, &flat(&index)));
         let mount = MountPose::new(
             Meters::new(1.5).unwrap(),
             Meters::ZERO,
@@ -365,8 +344,8 @@ mod tests {
             (3.0, 1.5, 1.57),
         ] {
             let pose = Pose2::<World>::new(pose.0, pose.1, pose.2).unwrap();
-            let fast = lidar.scan(&pose, &index, &mut rng);
-            assert_eq!(fast.ranges, lidar.scan_exhaustive(&pose, &plants));
+            let fast = lidar.scan(&pose, &flat(&index), &mut rng);
+            assert_eq!(fast.ranges, lidar.scan_exhaustive(&pose, &flat(&index)));
         }
     }
 
@@ -378,12 +357,12 @@ mod tests {
         };
         let pose = Pose2::<World>::new(0.0, 0.0, 0.0).unwrap();
         let index = PlantIndex::new(Vec::new(), 0.5);
-        let clean = lidar.scan_exhaustive(&pose, &[]);
+        let clean = lidar.scan_exhaustive(&pose, &flat(&index));
         let mut rng = StdRng::seed_from_u64(4);
         let mut sq = 0.0;
         let mut n = 0.0;
         for _ in 0..20 {
-            let s = lidar.scan(&pose, &index, &mut rng);
+            let s = lidar.scan(&pose, &flat(&index), &mut rng);
             for (a, b) in s.ranges.iter().zip(&clean) {
                 sq += (a - b) * (a - b);
                 n += 1.0;

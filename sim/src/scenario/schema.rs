@@ -230,6 +230,20 @@ pub struct TerrainSection {
     /// Patches of ground with their own sideslip (`[[terrain.patches]]`); the first that contains the rear-axle midpoint applies.
     #[serde(default)]
     pub patches: Vec<PatchSection>,
+    /// Slope of the ground along x (east), percent (default 0).
+    #[serde(default)]
+    pub slope_x_percent: f64,
+    /// Slope of the ground along y (north), percent (default 0).
+    #[serde(default)]
+    pub slope_y_percent: f64,
+    /// Half the crest-to-trough height of the ground's undulation, metres (default 0: none).
+    #[serde(default)]
+    pub undulation_amplitude_m: f64,
+    /// Distance between the undulation's crests, metres (needed with an amplitude).
+    pub undulation_wavelength_m: Option<f64>,
+    /// Direction in which the undulation's height varies, degrees from east (default 0).
+    #[serde(default)]
+    pub undulation_heading_deg: f64,
 }
 
 /// `[[terrain.patches]]`: a polygon of ground with its own sideslip angles.
@@ -318,6 +332,8 @@ pub struct WorldSection {
     /// Hedges (`[[world.hedges]]`), in the order the robot meets them.
     #[serde(default)]
     pub hedges: Vec<HedgeSection>,
+    /// Height of the hedges and walls above the ground, metres (default 2.0).
+    pub obstacle_height_m: Option<f64>,
 }
 
 /// `[[world.hedges]]`: a straight hedge with ragged faces and gaps.
@@ -477,6 +493,8 @@ pub struct HorizontalLidarSection {
     pub mount_y_m: f64,
     /// Sensor heading on the robot, degrees, counter-clockwise (0: forward).
     pub mount_heading_deg: f64,
+    /// Sensor height above the ground, metres (default 1.0: above the crops).
+    pub mount_height_m: Option<f64>,
     /// Field of view centred on the sensor's x axis, degrees (360: all round).
     pub field_of_view_deg: f64,
     /// Number of rays.

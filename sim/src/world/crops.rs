@@ -277,6 +277,7 @@ pub struct PlantIndex {
     rows: usize,
     cells: Vec<Vec<u32>>,
     max_radius: f64,
+    max_height: f64,
 }
 
 impl PlantIndex {
@@ -295,12 +296,14 @@ impl PlantIndex {
             f64::NEG_INFINITY,
         );
         let mut max_radius: f64 = 0.0;
+        let mut max_height: f64 = 0.0;
         for p in &plants {
             x0 = x0.min(p.position.x());
             y0 = y0.min(p.position.y());
             x1 = x1.max(p.position.x());
             y1 = y1.max(p.position.y());
             max_radius = max_radius.max(p.radius);
+            max_height = max_height.max(p.height);
         }
         if plants.is_empty() {
             (x0, y0, x1, y1) = (0.0, 0.0, 0.0, 0.0);
@@ -323,6 +326,7 @@ impl PlantIndex {
             rows,
             cells,
             max_radius,
+            max_height,
         }
     }
 
@@ -336,6 +340,12 @@ impl PlantIndex {
     #[must_use]
     pub fn max_radius(&self) -> f64 {
         self.max_radius
+    }
+
+    /// The tallest plant's height, m (0 without plants).
+    #[must_use]
+    pub fn max_height(&self) -> f64 {
+        self.max_height
     }
 
     /// The plants whose stem lies in `[x0, x1] × [y0, y1]`, written to `out` (cleared first).

@@ -8,6 +8,7 @@
 pub mod crops;
 pub mod grid;
 pub mod hedge;
+pub mod scene;
 pub mod terrain;
 
 use fieldguide::{Point2, World as WorldFrame};
@@ -54,8 +55,11 @@ pub struct World {
     /// The hedges (their nominal faces are the ground truth of edge
     /// following), in the order the robot meets them.
     pub hedges: Vec<Hedge>,
-    /// What a horizontal LiDAR can hit: the hedges' generated outlines.
+    /// What a LiDAR can hit besides the ground and the plants: the hedges'
+    /// generated outlines.
     pub obstacles: Obstacles,
+    /// The obstacles' height above the ground, m (`[world] obstacle_height_m`).
+    pub obstacle_height: f64,
 }
 
 /// A named hedge.

@@ -93,6 +93,12 @@ pub(super) fn horizontal_lidar(
                 180.0,
             )?
             .to_radians(),
+        mount_height: check.range(
+            "horizontal_lidar.mount_height_m",
+            l.mount_height_m.unwrap_or(1.0),
+            0.0,
+            20.0,
+        )?,
         field_of_view: fov.to_radians(),
         rays,
         range_min,

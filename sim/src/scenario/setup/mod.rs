@@ -42,6 +42,7 @@ pub use self::run::{MetricsSpec, RunLimits};
 pub use self::sensors::GnssOutages;
 pub use self::switching::{PlanSetup, SwitchingSetup, EDGE, FURROW};
 pub use crate::capacity::{Reference, PATH_CAPACITY};
+use crate::lidar::{Mounted, MountedLidar};
 
 /// Everything a run needs, validated and typed.
 #[derive(Debug, Clone)]
@@ -86,6 +87,26 @@ pub struct Setup {
     pub gnss_outages: GnssOutages,
 }
 
+impl Setup {
+    /// The LiDARs on the robot, in the order they scan in a tick: the
+    /// inclined one of `[lidar]`, its scans routed to furrow pursuing, then
+    /// the horizontal one of `[horizontal_lidar]`, routed to edge following.
+    #[must_use]
+    pub fn lidars(&self) -> Vec<MountedLidar> {
+        let inclined = self.lidar.map(|l| MountedLidar {
+            sensor: Mounted::Inclined(l.lidar),
+            route: FURROW,
+            scan_every: l.scan_every,
+        });
+        let horizontal = self.horizontal_lidar.map(|l| MountedLidar {
+            sensor: Mounted::Horizontal(l.lidar),
+            route: EDGE,
+            scan_every: l.scan_every,
+        });
+        inclined.into_iter().chain(horizontal).collect()
+    }
+}
+
 /// Builds the setup of `file` (called `origin` in messages; `base_dir` resolves
 /// a waypoint CSV). Draws the path's recording noise from `rng`, the run's generator.
 pub fn build(
@@ -112,6 +133,7 @@ pub fn build(
         plots,
         hedges,
         obstacles,
+        obstacle_height: world::obstacle_height(file.world.as_ref(), &check)?,
     };
     let noise = sensors::noise(file, &check)?;
     let gnss_outages = sensors::gnss_outages(file, &check)?;
@@ -147,6 +169,19 @@ pub fn build(
             Some(edge::edge(e, l, &control.backstepping, &check)?)
         }
     };
+    // Every LiDAR's scans go to a configured behaviour (GD-INPUT).
+    if lidar.is_some() && furrow.is_none() {
+        return Err(check.error(
+            "lidar",
+            "its scans go to furrow pursuing: needs a `[furrow]` section",
+        ));
+    }
+    if horizontal_lidar.is_some() && edge.is_none() {
+        return Err(check.error(
+            "horizontal_lidar",
+            "its scans go to edge following: needs an `[edge]` section",
+        ));
+    }
     let configured: Vec<_> = [
         furrow.map(|_| switching::FURROW),
         edge.map(|_| switching::EDGE),

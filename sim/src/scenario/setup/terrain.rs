@@ -5,7 +5,7 @@ use fieldguide::model::bicycle::Sideslip;
 use crate::error::ScenarioError;
 use crate::scenario::check::Checker;
 use crate::scenario::schema::ScenarioFile;
-use crate::world::terrain::{SlipPatch, Terrain};
+use crate::world::terrain::{Ground, SlipPatch, Terrain, Undulation};
 
 /// The front and rear sideslip angles `{prefix}front_sideslip_deg` and
 /// `{prefix}rear_sideslip_deg`, each within ±45°.
@@ -46,5 +46,52 @@ pub(super) fn terrain(file: &ScenarioFile, check: &Checker<'_>) -> Result<Terrai
             sideslip: sideslip(check, &prefix, p.front_sideslip_deg, p.rear_sideslip_deg)?,
         });
     }
-    Ok(Terrain { base, patches })
+    Ok(Terrain {
+        base,
+        patches,
+        ground: ground(file, check)?,
+    })
+}
+
+/// The ground's shape of `[terrain]`: slopes within ±100 %, an undulation
+/// of amplitude below 5 m and a wavelength of at least 1 m.
+fn ground(file: &ScenarioFile, check: &Checker<'_>) -> Result<Ground, ScenarioError> {
+    let t = &file.terrain;
+    let slope = [
+        check.range("terrain.slope_x_percent", t.slope_x_percent, -100.0, 100.0)? / 100.0,
+        check.range("terrain.slope_y_percent", t.slope_y_percent, -100.0, 100.0)? / 100.0,
+    ];
+    let amplitude = check.range(
+        "terrain.undulation_amplitude_m",
+        t.undulation_amplitude_m,
+        0.0,
+        5.0,
+    )?;
+    let heading = check.range(
+        "terrain.undulation_heading_deg",
+        t.undulation_heading_deg,
+        -360.0,
+        360.0,
+    )?;
+    let undulation = match (amplitude > 0.0, t.undulation_wavelength_m) {
+        (false, None) => None,
+        (false, Some(_)) => {
+            return Err(check.error(
+                "terrain.undulation_wavelength_m",
+                "an undulation needs undulation_amplitude_m > 0",
+            ))
+        }
+        (true, None) => {
+            return Err(check.error(
+                "terrain.undulation_wavelength_m",
+                "needed with undulation_amplitude_m",
+            ))
+        }
+        (true, Some(w)) => Some(Undulation {
+            amplitude,
+            wavelength: check.range("terrain.undulation_wavelength_m", w, 1.0, 1e4)?,
+            heading: heading.to_radians(),
+        }),
+    };
+    Ok(Ground { slope, undulation })
 }

@@ -215,3 +215,13 @@ fn stretch(
     }
     Ok([from, to])
 }
+
+/// The obstacles' height of `[world] obstacle_height_m`: within (0, 50) m,
+/// 2 m when absent.
+pub(super) fn obstacle_height(
+    world: Option<&WorldSection>,
+    check: &Checker<'_>,
+) -> Result<f64, ScenarioError> {
+    let h = world.and_then(|w| w.obstacle_height_m).unwrap_or(2.0);
+    check.open_range("world.obstacle_height_m", h, 0.0, 50.0)
+}
