@@ -23,7 +23,6 @@ use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, RoutedScan, TickInput
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::Side;
 use fieldguide::perception::furrow::FurrowParams;
-use fieldguide::perception::AnyDetector;
 use fieldguide::presets::{pierre2022_both, Pierre2022, EDGE, FURROW};
 use fieldguide::supervisor::switching::PlanTolerance;
 use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Seconds, World};
@@ -50,7 +49,7 @@ fn guidance(c: &mut Criterion) {
         behaviour.plan = Some(tolerance);
     }
     params.plan_delay = Some(Seconds::new(1.0).unwrap());
-    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    let config = GuidanceConfig::new(&params).unwrap();
     let mut pipeline: Pierre2022<'_, 512> = Guidance::new(config, &path).unwrap();
     let mut x = 0.0;
     let tick = |pipeline: &mut Pierre2022<'_, 512>, x: f64| {

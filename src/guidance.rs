@@ -44,7 +44,7 @@
 //! # fn main() -> Result<(), fieldguide::Precondition> {
 //! let waypoints = [Point2::<World>::new(0.0, 0.0)?, Point2::new(50.0, 0.0)?];
 //! let path = ReferencePath::<16>::from_waypoints(&waypoints, PathConfig::default())?;
-//! let config = GuidanceConfig::new::<fieldguide::perception::AnyDetector>(&pierre2022_furrow()?)?;
+//! let config = GuidanceConfig::new(&pierre2022_furrow()?)?;
 //! let mut guidance: Pierre2022<'_, 16> = Guidance::new(config, &path)?;
 //! let tick = guidance.step(&TickInput {
 //!     scans: &[], // no scan in this tick

@@ -214,7 +214,7 @@ fn status(out: &Out, id: BehaviourId) -> &BehaviourStatus {
 }
 
 fn pipeline<'p>(params: &Params, path: &'p ReferencePath<PATH_N>) -> Pipeline<'p> {
-    Guidance::new(GuidanceConfig::new::<AnyDetector>(params).unwrap(), path).unwrap()
+    Guidance::new(GuidanceConfig::new(params).unwrap(), path).unwrap()
 }
 
 /// A tick with only poses: no scan.
@@ -534,7 +534,7 @@ fn furrow_scans_at_10_hz_are_held_and_entered_after_50_enter_ticks() {
 fn a_held_edge_detection_expires_after_the_maximal_age_and_a_refused_scan_drops_it() {
     let path = straight_path();
     let params = edge_params();
-    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    let config = GuidanceConfig::new(&params).unwrap();
     assert_eq!(config.max_scan_age_ticks(), 10); // 0.1 s at 0.01 s
     let mut g = pipeline(&params, &path);
     let pose = (0.0, 0.0, 0.0);
@@ -563,11 +563,8 @@ fn a_held_edge_detection_expires_after_the_maximal_age_and_a_refused_scan_drops_
 
     // A detector with room for 200 points takes the wall (about 177 valid
     // rays), then refuses a scan of 360 valid rays: the held wall is dropped.
-    let mut small: Guidance<'_, PATH_N, AnyDetector<200>, BacksteppingConfig, 2> = Guidance::new(
-        GuidanceConfig::new::<AnyDetector<200>>(&params).unwrap(),
-        &path,
-    )
-    .unwrap();
+    let mut small: Guidance<'_, PATH_N, AnyDetector<200>, BacksteppingConfig, 2> =
+        Guidance::new(GuidanceConfig::new(&params).unwrap(), &path).unwrap();
     small
         .step(&TickInput {
             scans: &scans,
@@ -908,11 +905,7 @@ fn both_detectors_at_once_follow_the_priority_order() {
 //# `GD-BEHAVIOURS`.
 #[test]
 fn behaviour_ids_and_the_priority_are_validated() {
-    let refused = |p: &Params| {
-        GuidanceConfig::new::<AnyDetector>(p)
-            .unwrap_err()
-            .requirement
-    };
+    let refused = |p: &Params| GuidanceConfig::new(p).unwrap_err().requirement;
     // Two behaviours of one id, with or without a priority.
     let mut p = both_params(FURROW_FIRST);
     behaviour_mut(&mut p, EDGE).id = FURROW;
@@ -937,7 +930,7 @@ fn behaviour_ids_and_the_priority_are_validated() {
     // The configuration holds the behaviours in priority order; an empty
     // priority keeps the order of the list.
     let ids = |p: &Params| -> Vec<BehaviourId> {
-        let config = GuidanceConfig::new::<AnyDetector>(p).unwrap();
+        let config = GuidanceConfig::new(p).unwrap();
         assert!(config.params().priority.is_empty());
         config.behaviours().iter().map(|b| b.id).collect()
     };
@@ -949,10 +942,11 @@ fn behaviour_ids_and_the_priority_are_validated() {
     listed.priority = heapless::Vec::from_slice(&FURROW_FIRST).unwrap();
     assert_eq!(ids(&listed), FURROW_FIRST);
     assert_eq!(ids(&pierre2022_path().unwrap()), []);
-    // The machine's behaviour 0 is the first in priority: edge's thresholds.
-    let config = GuidanceConfig::new::<AnyDetector>(&both_params(EDGE_FIRST)).unwrap();
-    let b = config.switching().behaviour(0).unwrap().thresholds();
-    assert_eq!((b.enter(), b.exit()), (0.15, 0.5));
+    // The machine's behaviour 0 is the first in priority: edge's delays
+    // (0.4 s / 0.26 s, in ticks at 100 Hz).
+    let config = GuidanceConfig::new(&both_params(EDGE_FIRST)).unwrap();
+    let t = config.switching().ticks(0).unwrap();
+    assert_eq!((t.enter, t.exit), (40, 26));
     // Each slot has its label.
     let path = straight_path();
     let g = pipeline(&both_params(EDGE_FIRST), &path);
@@ -1241,7 +1235,7 @@ fn v(x: f64) -> MetersPerSecond {
 #[test]
 fn each_bad_parameter_is_refused_naming_its_requirement() {
     let good = both_params(FURROW_FIRST);
-    assert!(GuidanceConfig::new::<AnyDetector>(&good).is_ok());
+    assert!(GuidanceConfig::new(&good).is_ok());
     type Change = Box<dyn Fn(&mut Params)>;
     let tolerance = PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap();
     let cases: Vec<(Change, &str)> = vec![
@@ -1287,9 +1281,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
         let mut p = good.clone();
         change(&mut p);
         assert_eq!(
-            GuidanceConfig::new::<AnyDetector>(&p)
-                .unwrap_err()
-                .requirement,
+            GuidanceConfig::new(&p).unwrap_err().requirement,
             requirement
         );
     }
@@ -1306,16 +1298,11 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
             max_scan_age: s(age),
             ..good.clone()
         };
-        assert_eq!(
-            GuidanceConfig::new::<AnyDetector>(&p)
-                .unwrap()
-                .max_scan_age_ticks(),
-            ticks
-        );
+        assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
     }
     // The furrow detector's storage is checked when the pipeline is built.
     let path = straight_path();
-    let config = GuidanceConfig::new::<AnyDetector<512, 64, 512, 8>>(&good).unwrap();
+    let config = GuidanceConfig::new(&good).unwrap();
     let small = Guidance::<'_, PATH_N, AnyDetector<512, 64, 512, 8>, BacksteppingConfig, 2>::new(
         config, &path,
     );
@@ -1347,9 +1334,7 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
         ..edge_params()
     };
     assert_eq!(
-        GuidanceConfig::new::<AnyDetector>(&too_long)
-            .unwrap_err()
-            .requirement,
+        GuidanceConfig::new(&too_long).unwrap_err().requirement,
         "GD-SCAN-AGE"
     );
     // 655.34 s is 65 534 ticks: accepted.
@@ -1357,7 +1342,7 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
         max_scan_age: s(655.34),
         ..edge_params()
     };
-    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    let config = GuidanceConfig::new(&params).unwrap();
     assert_eq!(config.max_scan_age_ticks(), 65_534);
     assert_eq!(config.max_scan_age_ticks(), MAX_SCAN_AGE_TICKS);
     let path = straight_path();
@@ -1430,7 +1415,7 @@ fn the_presets_are_tables_1_and_2() {
     assert!([p.path.law, e.law, f.law]
         .iter()
         .all(|l| l.vehicle == vehicle));
-    let config = GuidanceConfig::new::<AnyDetector>(&p).unwrap();
+    let config = GuidanceConfig::new(&p).unwrap();
     assert_eq!(config.lookahead().get(), 0.8);
     // Priority furrow first: behaviour 0 is furrow (0.5 s / 0.3 s), 1 is edge
     // (0.4 s / 0.26 s), in ticks at 100 Hz.
@@ -1438,11 +1423,6 @@ fn the_presets_are_tables_1_and_2() {
     assert_eq!((ticks[0].enter, ticks[0].exit), (50, 30));
     assert_eq!((ticks[1].enter, ticks[1].exit), (40, 26));
     assert_eq!(config.switching().stop_ticks(), 50);
-    // The machine's thresholds are the detectors'.
-    let b = config.switching().behaviour(1).unwrap().thresholds();
-    assert_eq!((b.enter(), b.exit()), (0.15, 0.5));
-    let b = config.switching().behaviour(0).unwrap().thresholds();
-    assert_eq!((b.enter(), b.exit()), (0.4, 0.2));
     let path = straight_path();
     let g = pipeline(&p, &path);
     assert_eq!(g.label(Mode::Behaviour(FURROW)), "furrow_pursuing");
@@ -1546,9 +1526,7 @@ fn a_law_for_another_actuation_than_the_vehicles_is_refused() {
     for (path, behaviour) in [(true, None), (false, Some(EDGE)), (false, Some(FURROW))] {
         let p = declared(&params, path, behaviour);
         assert_eq!(
-            GuidanceConfig::new::<AnyDetector>(&p)
-                .unwrap_err()
-                .requirement,
+            GuidanceConfig::new(&p).unwrap_err().requirement,
             "GD-VEHICLE",
             "{path} {behaviour:?}"
         );
@@ -1558,7 +1536,7 @@ fn a_law_for_another_actuation_than_the_vehicles_is_refused() {
     let p = declared(&params, false, None);
     let path = straight_path();
     let mut g: Guidance<'_, PATH_N, AnyDetector, Declared, 2> =
-        Guidance::new(GuidanceConfig::new::<AnyDetector>(&p).unwrap(), &path).unwrap();
+        Guidance::new(GuidanceConfig::new(&p).unwrap(), &path).unwrap();
     let mut reference = pipeline(&params, &path);
     for k in 0..20 {
         let tick = bare((0.1 * f64::from(k), 0.3, 0.05), true);

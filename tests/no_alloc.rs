@@ -20,7 +20,7 @@ use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, RoutedScan, TickInput
 use fieldguide::model::bicycle::{world_rates, Bicycle, Sideslip, SteeringLimit, Wheelbase};
 use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, EdgeDetectorConfig, Side};
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
-use fieldguide::perception::{AnyDetector, RangeLimits, Scan};
+use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::presets::{pierre2022_both, Pierre2022, EDGE, FURROW};
 use fieldguide::supervisor::switching::{
     BehaviourConfig, Input, Report, Switching, SwitchingConfig,
@@ -272,7 +272,7 @@ fn guidance_pipeline_does_not_allocate() {
     )
     .unwrap();
     params.priority = heapless::Vec::from_slice(&[EDGE, FURROW]).unwrap();
-    let config = GuidanceConfig::new::<AnyDetector>(&params).unwrap();
+    let config = GuidanceConfig::new(&params).unwrap();
     let mut guidance: Pierre2022<'_, 256> = Guidance::new(config, &path).unwrap();
     let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
     let furrow_limits =

@@ -442,3 +442,25 @@ fn backstepping_is_the_bicycle_law_with_sideslip_as_extra_input() {
     })
     .is_err());
 }
+
+/// A pipeline with no behaviour slot at all (K = 0) is refused at
+/// construction, naming the requirement (SW-MODES); path tracking alone is
+/// K ≥ 1 slots with none configured.
+#[test]
+fn a_pipeline_without_behaviour_slots_is_refused() {
+    use fieldguide::guidance::{GuidanceConfig, GuidanceParams};
+    let two = fieldguide::presets::pierre2022_path().unwrap();
+    let none: GuidanceParams<AnyDetectorConfig, BacksteppingConfig, 0> = GuidanceParams {
+        period: two.period,
+        vehicle: two.vehicle,
+        path: two.path,
+        behaviours: heapless::Vec::new(),
+        priority: heapless::Vec::new(),
+        stop_delay: two.stop_delay,
+        plan_delay: None,
+        max_scan_age: two.max_scan_age,
+    };
+    let e = GuidanceConfig::new(&none).unwrap_err();
+    assert_eq!(e.requirement, "SW-MODES");
+    assert!(GuidanceConfig::new(&two).is_ok());
+}

@@ -146,7 +146,7 @@ proptest! {
             Report::consistent(quality.map_or(Verdict::Absent, |q| thresholds.classify(q)))
         };
         let inputs = ticks.iter().map(|&(sigma, correlation, localisation_valid)| Input {
-            behaviours: [grade(edge.thresholds(), sigma), grade(furrow.thresholds(), correlation)],
+            behaviours: [grade(&edge_thresholds(), sigma), grade(&furrow_thresholds(), correlation)],
             localisation_valid,
         });
         let result = check_run(config, &spec, inputs);
@@ -154,17 +154,31 @@ proptest! {
     }
 }
 
+/// The edge detector's thresholds of Table 1 (`EdgeConfig::pierre2022`).
+fn edge_thresholds() -> QualityThresholds {
+    fieldguide::perception::edge::EdgeConfig::pierre2022()
+        .unwrap()
+        .thresholds()
+}
+
+/// The furrow detector's thresholds of Table 2 (`FurrowParams::table2`).
+fn furrow_thresholds() -> QualityThresholds {
+    use fieldguide::perception::furrow::{FurrowConfig, FurrowParams};
+    *FurrowConfig::new(&FurrowParams::table2())
+        .unwrap()
+        .thresholds()
+}
+
 #[test]
 fn the_tables_classify_as_the_paper_reads() {
-    let edge = BehaviourConfig::edge_following().unwrap();
-    let furrow = BehaviourConfig::furrow_pursuing().unwrap();
+    let (edge, furrow) = (edge_thresholds(), furrow_thresholds());
     // Table 1: enter below σ_edge = 0.15 m, leave above σ_path = 0.5 m.
-    assert_eq!(edge.thresholds().classify(0.10), Verdict::Enter);
-    assert_eq!(edge.thresholds().classify(0.15), Verdict::Hold);
-    assert_eq!(edge.thresholds().classify(0.30), Verdict::Hold);
-    assert_eq!(edge.thresholds().classify(0.51), Verdict::Exit);
+    assert_eq!(edge.classify(0.10), Verdict::Enter);
+    assert_eq!(edge.classify(0.15), Verdict::Hold);
+    assert_eq!(edge.classify(0.30), Verdict::Hold);
+    assert_eq!(edge.classify(0.51), Verdict::Exit);
     // Table 2 (eq. 22 as in the errata): enter above 0.4, leave below 0.2.
-    assert_eq!(furrow.thresholds().classify(0.45), Verdict::Enter);
-    assert_eq!(furrow.thresholds().classify(0.30), Verdict::Hold);
-    assert_eq!(furrow.thresholds().classify(0.19), Verdict::Exit);
+    assert_eq!(furrow.classify(0.45), Verdict::Enter);
+    assert_eq!(furrow.classify(0.30), Verdict::Hold);
+    assert_eq!(furrow.classify(0.19), Verdict::Exit);
 }

@@ -304,7 +304,6 @@ fn misordered_thresholds_are_refused() {
 fn bad_configurations_are_refused_naming_the_requirement() {
     let s = |v: f64| Seconds::new(v).unwrap();
     let edge = BehaviourConfig::edge_following().unwrap();
-    let thresholds = *edge.thresholds();
     let requirement =
         |r: Result<SwitchingConfig<1>, fieldguide::Precondition>| r.unwrap_err().requirement;
 
@@ -331,19 +330,19 @@ fn bad_configurations_are_refused_naming_the_requirement() {
         );
     }
     for delay in [0.0, -0.4] {
-        let e = BehaviourConfig::new(thresholds, s(delay), s(0.26)).unwrap_err();
+        let e = BehaviourConfig::new(s(delay), s(0.26)).unwrap_err();
         assert_eq!(
             (e.requirement, e.violated),
             ("SW-DELAYS", "enter_delay must be positive")
         );
-        let e = BehaviourConfig::new(thresholds, s(0.4), s(delay)).unwrap_err();
+        let e = BehaviourConfig::new(s(0.4), s(delay)).unwrap_err();
         assert_eq!(
             (e.requirement, e.violated),
             ("SW-DELAYS", "exit_delay must be positive")
         );
     }
     // 1000 s at 1 kHz is 10⁶ ticks: too long; a tiny period likewise.
-    let slow = BehaviourConfig::new(thresholds, s(1000.0), s(0.26)).unwrap();
+    let slow = BehaviourConfig::new(s(1000.0), s(0.26)).unwrap();
     assert_eq!(
         requirement(SwitchingConfig::new(s(0.001), [slow], s(0.2), None)),
         "SW-DELAYS"

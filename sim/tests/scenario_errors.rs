@@ -987,6 +987,13 @@ fn lidars_without_their_behaviour_and_bad_ground_are_named() {
         let e = edited_error_of(furrow.clone(), terrain(extra));
         assert_field(&e, field, reason);
     }
+    // A sensor mounted at a non-finite pose.
+    let e = hedge_error_of(|t| t.replacen("mount_x_m = 1.2", "mount_x_m = nan", 1));
+    assert_field(&e, "horizontal_lidar.mount_x_m", "");
+    let e = edited_error_of(furrow.clone(), |t| {
+        t.replacen("pitch_deg = 21.8", "pitch_deg = inf", 1)
+    });
+    assert_field(&e, "lidar.pitch_deg", "");
     let e = hedge_error_of(|t| t.replacen("[world]\n", "[world]\nobstacle_height_m = -1.0\n", 1));
     assert_field(&e, "world.obstacle_height_m", "");
     let e = hedge_error_of(|t| {

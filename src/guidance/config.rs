@@ -8,7 +8,6 @@ use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
 use crate::geometry::units::{Meters, MetersPerSecond, Seconds};
 use crate::model::Vehicle;
-use crate::perception::{Better, Detector, QualityThresholds};
 use crate::supervisor::switching::{delay_ticks, BehaviourConfig, PlanTolerance, SwitchingConfig};
 
 /// Relative slack of the scan-age conversion, as in SW-DELAYS: a quotient
@@ -49,8 +48,8 @@ pub struct BehaviourParams<C, L> {
     pub id: BehaviourId,
     /// A label for logs, traces and plots (for example `"edge_following"`).
     pub label: &'static str,
-    /// The detector's configuration; its thresholds are the switching
-    /// machine's for this behaviour.
+    /// The detector's configuration, with the thresholds that grade its
+    /// verdicts.
     pub detector: C,
     /// The control law of this behaviour, on its straight line.
     pub law: L,
@@ -197,7 +196,7 @@ fn in_priority_order<C: Copy, L: Copy, const K: usize>(
 }
 
 impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
-    /// Validates `params` once, for detectors of type `D`.
+    /// Validates `params` once.
     ///
     /// # Errors
     /// - `SW-MODES` when `K` is 0 (no behaviour slot) or more than 8;
@@ -221,9 +220,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     //# that is not positive (`GD-LOCALISATION`), a maximal scan age that is negative
     //# or longer than 65 534 ticks (`GD-SCAN-AGE`), or a delay of the switching
     //# machine (`SW-DELAYS`, `SW-STOP`, `SW-PLAN-CONSISTENCY`).
-    pub fn new<D: Detector<Config = C>>(
-        params: &GuidanceParams<C, L, K>,
-    ) -> Result<Self, Precondition> {
+    pub fn new(params: &GuidanceParams<C, L, K>) -> Result<Self, Precondition> {
         let ordered = in_priority_order(params)?;
         //= spec/guidance.md#gd-vehicle-one-vehicle-one-command-type
         //# A configuration whose path-tracking law or any behaviour's law commands
@@ -245,22 +242,16 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             ));
         }
         // Slots beyond the configured behaviours report Absent every tick;
-        // they take the thresholds and delays of the highest-priority
-        // behaviour (or placeholders and the Stop delay), which they never use.
+        // they take the delays of the highest-priority behaviour (or the Stop
+        // delay), which they never use.
         let filler = match ordered.first() {
-            Some(b) => {
-                BehaviourConfig::new(D::thresholds(&b.detector), b.enter_delay, b.exit_delay)?
-            }
-            None => BehaviourConfig::new(
-                QualityThresholds::new(1.0, 0.0, Better::Higher)?,
-                params.stop_delay,
-                params.stop_delay,
-            )
-            .map_err(|_| Precondition::new("SW-STOP", "stop_delay must be positive"))?,
+            Some(b) => BehaviourConfig::new(b.enter_delay, b.exit_delay)?,
+            None => BehaviourConfig::new(params.stop_delay, params.stop_delay)
+                .map_err(|_| Precondition::new("SW-STOP", "stop_delay must be positive"))?,
         };
         let mut behaviours = [filler; K];
         for (slot, b) in behaviours.iter_mut().zip(ordered.iter()) {
-            *slot = BehaviourConfig::new(D::thresholds(&b.detector), b.enter_delay, b.exit_delay)?;
+            *slot = BehaviourConfig::new(b.enter_delay, b.exit_delay)?;
         }
         let switching = SwitchingConfig::new(
             params.period,

@@ -15,7 +15,7 @@ use crate::geometry::frame::{Odom, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::perception::edge::{EdgeDetector, EdgeDetectorConfig, EdgeLine};
 use crate::perception::furrow::{FurrowConfig, FurrowDetector, RowLines};
-use crate::perception::{QualityThresholds, Scan, Verdict};
+use crate::perception::{Scan, Verdict};
 
 /// A detected line, held between scans: it gives the robot's tracking error
 /// to itself from any pose in the robot frame of the scan it was seen in
@@ -65,10 +65,6 @@ pub trait Detector: Sized {
     /// The requirement the configuration breaks (for example a capacity too
     /// small for it).
     fn configure(config: &Self::Config) -> Result<Self, Precondition>;
-
-    /// The hysteresis thresholds the verdicts of `config` are graded with
-    /// (the switching machine's, SW-THRESHOLDS).
-    fn thresholds(config: &Self::Config) -> QualityThresholds;
 
     /// Detects in one scan taken at odometry pose `odometry`.
     ///
@@ -163,13 +159,6 @@ impl<const EP: usize, const EC: usize, const FR: usize, const FS: usize> Detecto
             AnyDetectorConfig::Edge(c) => Self::Edge(EdgeDetector::configure(c)?),
             AnyDetectorConfig::Furrow(c) => Self::Furrow(FurrowDetector::configure(c)?),
         })
-    }
-
-    fn thresholds(config: &AnyDetectorConfig) -> QualityThresholds {
-        match config {
-            AnyDetectorConfig::Edge(c) => EdgeDetector::<EP, EC>::thresholds(c),
-            AnyDetectorConfig::Furrow(c) => FurrowDetector::<FR, FS>::thresholds(c),
-        }
     }
 
     fn observe(

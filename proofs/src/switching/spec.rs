@@ -76,7 +76,7 @@ pub fn config_from_millis<const K: usize>(
     let edge = BehaviourConfig::edge_following()?;
     let mut built = [edge; K];
     for (slot, (enter, exit)) in built.iter_mut().zip(behaviours) {
-        *slot = BehaviourConfig::new(*edge.thresholds(), seconds(enter)?, seconds(exit)?)?;
+        *slot = BehaviourConfig::new(seconds(enter)?, seconds(exit)?)?;
     }
     let plan = match plan_ms {
         Some(ms) => Some(seconds(ms)?),

@@ -120,7 +120,7 @@ impl<'p> Pipeline<'p> {
     /// A configuration the core refuses (GD-CONFIG and the detectors'
     /// requirements), named by its requirement ID.
     pub fn new(setup: &'p Setup) -> Result<Self, Precondition> {
-        let config = GuidanceConfig::new::<SimDetector>(&params(setup)?)?;
+        let config = GuidanceConfig::new(&params(setup)?)?;
         Ok(Self {
             core: Box::new(CorePipeline::new(config, &setup.path)?),
             period_s: setup.control.period_s,

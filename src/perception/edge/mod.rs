@@ -36,7 +36,7 @@ use crate::geometry::frame::{Odom, Point2, Pose2, Robot, Sensor, Transform2};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::Meters;
 use crate::perception::detector::{Detection, Detector, HeldLine};
-use crate::perception::{QualityThresholds, Scan, Verdict};
+use crate::perception::{Scan, Verdict};
 
 /// The robot's abscissa in its own frame, x_r of eq. 11: the controlled point
 /// O is the robot frame's origin.
@@ -299,10 +299,6 @@ impl<const N: usize, const M: usize> Detector for EdgeDetector<N, M> {
 
     fn configure(config: &EdgeDetectorConfig) -> Result<Self, Precondition> {
         Ok(Self::new(*config))
-    }
-
-    fn thresholds(config: &EdgeDetectorConfig) -> QualityThresholds {
-        config.edge.thresholds()
     }
 
     fn observe(

@@ -492,10 +492,6 @@ impl<const RAYS: usize, const SCANS: usize> Detector for FurrowDetector<RAYS, SC
         Self::new(*config)
     }
 
-    fn thresholds(config: &FurrowConfig) -> QualityThresholds {
-        *config.thresholds()
-    }
-
     fn observe(
         &mut self,
         scan: &Scan<'_>,

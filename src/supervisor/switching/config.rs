@@ -6,7 +6,6 @@
 
 use crate::error::Precondition;
 use crate::geometry::units::Seconds;
-use crate::perception::{Better, QualityThresholds};
 
 /// The largest number of specialised behaviours a machine may have (SW-MODES).
 pub const MAX_BEHAVIOURS: usize = 8;
@@ -71,29 +70,23 @@ pub fn delay_ticks(
     Ok(low)
 }
 
-/// One specialised behaviour as the switching machine sees it: the hysteresis
-/// thresholds of its detector's quality and its two transit delays
-/// (Pierre 2022, Tables 1-2; SW-THRESHOLDS, SW-DELAYS).
+/// One specialised behaviour as the switching machine sees it: its two
+/// transit delays (Pierre 2022, Tables 1-2; SW-DELAYS). The machine reads
+/// verdicts only; the hysteresis thresholds that grade a quality into a
+/// verdict belong to the behaviour's detector (SW-THRESHOLDS, SW-CLASSIFY).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BehaviourConfig {
-    thresholds: QualityThresholds,
     enter_delay: Seconds,
     exit_delay: Seconds,
 }
 
 impl BehaviourConfig {
-    /// A behaviour whose detector grades its quality with `thresholds`, whose
-    /// mode is entered after `enter_delay` of Enter verdicts and left after
-    /// `exit_delay` of Exit or Absent verdicts.
+    /// A behaviour whose mode is entered after `enter_delay` of Enter
+    /// verdicts and left after `exit_delay` of Exit or Absent verdicts.
     ///
     /// # Errors
-    /// `SW-DELAYS` when a delay is not positive. Misordered thresholds are
-    /// refused earlier, by [`QualityThresholds::new`] (`SW-THRESHOLDS`).
-    pub fn new(
-        thresholds: QualityThresholds,
-        enter_delay: Seconds,
-        exit_delay: Seconds,
-    ) -> Result<Self, Precondition> {
+    /// `SW-DELAYS` when a delay is not positive.
+    pub fn new(enter_delay: Seconds, exit_delay: Seconds) -> Result<Self, Precondition> {
         if enter_delay.get() <= 0.0 {
             return Err(Precondition::new(
                 "SW-DELAYS",
@@ -107,44 +100,27 @@ impl BehaviourConfig {
             ));
         }
         Ok(Self {
-            thresholds,
             enter_delay,
             exit_delay,
         })
     }
 
-    /// Edge following as in Pierre 2022, Table 1: enter below a residual
-    /// standard deviation σ_edge = 0.15 m, leave above σ_path = 0.5 m; 0.4 s to
-    /// enter, 0.26 s to leave.
+    /// Edge following as in Pierre 2022, Table 1: 0.4 s to enter, 0.26 s to
+    /// leave.
     ///
     /// # Errors
     /// None in practice: the table's values satisfy every precondition.
     pub fn edge_following() -> Result<Self, Precondition> {
-        Self::new(
-            QualityThresholds::new(0.15, 0.5, Better::Lower)?,
-            Seconds(0.4),
-            Seconds(0.26),
-        )
+        Self::new(Seconds(0.4), Seconds(0.26))
     }
 
-    /// Furrow pursuing as in Pierre 2022, Table 2 (eq. 22 read as in the
-    /// errata): enter above a correlation of 0.4, leave below 0.2; 0.5 s to
-    /// enter, 0.3 s to leave.
+    /// Furrow pursuing as in Pierre 2022, Table 2: 0.5 s to enter, 0.3 s to
+    /// leave.
     ///
     /// # Errors
     /// None in practice: the table's values satisfy every precondition.
     pub fn furrow_pursuing() -> Result<Self, Precondition> {
-        Self::new(
-            QualityThresholds::new(0.4, 0.2, Better::Higher)?,
-            Seconds(0.5),
-            Seconds(0.3),
-        )
-    }
-
-    /// The hysteresis thresholds of the detector's quality (SW-CLASSIFY).
-    #[must_use]
-    pub const fn thresholds(&self) -> &QualityThresholds {
-        &self.thresholds
+        Self::new(Seconds(0.5), Seconds(0.3))
     }
 
     /// The delay to enter the mode, seconds.
