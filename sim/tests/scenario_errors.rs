@@ -1005,3 +1005,68 @@ fn lidars_without_their_behaviour_and_bad_ground_are_named() {
     });
     assert_field(&e, "horizontal_lidar.mount_height_m", "");
 }
+
+/// Files the loader would once accept but the run could not hold (memory:
+/// vertices, samples, trace rows) or would refuse only at its first tick
+/// are refused at load, naming the field and the limit.
+#[test]
+fn counts_the_file_implies_are_bounded_and_delays_named_at_load() {
+    let hedge = |from: &'static str, to: &'static str| {
+        move |t: String| {
+            assert!(t.contains(from), "{from}");
+            t.replacen(from, to, 1)
+        }
+    };
+    let cases: [(&str, &str, &str, &str, &str); 6] = [
+        (
+            "hedge-following",
+            "vertex_spacing_m = 0.2",
+            "vertex_spacing_m = 1e-9",
+            "world.hedges[0].vertex_spacing_m",
+            "vertices per face",
+        ),
+        (
+            "furrow-pursuing",
+            "sample_step_m = 0.1",
+            "sample_step_m = 1e-9",
+            "path.sample_step_m",
+            "waypoints",
+        ),
+        (
+            "hedge-following",
+            "duration_s = 250.0",
+            "duration_s = 999999.0",
+            "run.duration_s",
+            "control ticks",
+        ),
+        (
+            "hedge-following",
+            "period_s = 0.01",
+            "period_s = 1e-9",
+            "control.period_s",
+            "",
+        ),
+        (
+            "hedge-following",
+            "recording_noise_m = 0.005",
+            "recording_noise_m = 1e308",
+            "path.recording_noise_m",
+            "",
+        ),
+        (
+            "exp1-hedge",
+            "edge_enter_s = 0.4",
+            "edge_enter_s = 1000.0",
+            "switching.edge_enter_s",
+            "control ticks",
+        ),
+    ];
+    for (name, from, to, field, reason) in cases {
+        let text = Source::builtin(name).unwrap().text;
+        let e = edited_error_of(text, hedge(from, to));
+        assert_field(&e, field, reason);
+    }
+    // A Stop delay of 700 s is 70 000 ticks at 100 Hz.
+    let e = hedge_error_of(|t| format!("{t}\n[switching]\nstop_delay_s = 700.0\n"));
+    assert_field(&e, "switching.stop_delay_s", "control ticks");
+}

@@ -73,7 +73,12 @@ pub fn waypoints(
     rng: &mut SimRng,
 ) -> Result<Waypoints, ScenarioError> {
     let step = check.positive("path.sample_step_m", section.sample_step_m)?;
-    let noise = check.non_negative("path.recording_noise_m", section.recording_noise_m)?;
+    let noise = check.range(
+        "path.recording_noise_m",
+        section.recording_noise_m,
+        0.0,
+        1.0,
+    )?;
     let mut w = match (&section.segments, &section.csv, &section.along_plots) {
         (Some(segments), None, None) => {
             let Some(start) = section.start else {
@@ -135,18 +140,30 @@ fn sample_along_plots(
     let mut points: Vec<[f64; 2]> = Vec::new();
     let mut pieces = Vec::new();
     let mut s_total = 0.0;
-    // Appends the straight from the last point to `to` (or starts at `to`).
+    let too_many = || {
+        check.error(
+            "path.sample_step_m",
+            &format!(
+                "the plots need more than {capacity} waypoints at this spacing; use a larger step"
+            ),
+        )
+    };
+    // Appends the straight from the last point to `to` (or starts at `to`);
+    // `false` when its samples would pass the capacity (nothing appended).
     let straight =
         |points: &mut Vec<[f64; 2]>, pieces: &mut Vec<Piece>, s: &mut f64, to: [f64; 2]| {
             let Some(&from) = points.last() else {
                 points.push(to);
-                return;
+                return true;
             };
             let length = (to[0] - from[0]).hypot(to[1] - from[1]);
             if length <= 0.0 {
-                return;
+                return true;
             }
             let n = samples_for(length, step);
+            if points.len().saturating_add(n as usize) > capacity {
+                return false;
+            }
             for k in 1..=n {
                 let t = f64::from(k) / f64::from(n);
                 points.push([
@@ -162,14 +179,17 @@ fn sample_along_plots(
                 end: to,
             });
             *s += length;
+            true
         };
     let (x0, y0, h0) = first.centre_line(0.0);
-    straight(
+    if !straight(
         &mut points,
         &mut pieces,
         &mut s_total,
         [x0 - lead_in * h0.cos(), y0 - lead_in * h0.sin()],
-    );
+    ) {
+        return Err(too_many());
+    }
     for (i, plot) in plots.iter().enumerate() {
         let (x, y, _) = plot.centre_line(0.0);
         if let Some(&prev) = points.last() {
@@ -182,8 +202,13 @@ fn sample_along_plots(
                 ));
             }
         }
-        straight(&mut points, &mut pieces, &mut s_total, [x, y]);
+        if !straight(&mut points, &mut pieces, &mut s_total, [x, y]) {
+            return Err(too_many());
+        }
         let n = samples_for(plot.length, step);
+        if points.len().saturating_add(n as usize) > capacity {
+            return Err(too_many());
+        }
         let s_start = s_total;
         let mut previous = [x, y];
         for k in 1..=n {
@@ -199,24 +224,15 @@ fn sample_along_plots(
             start: [x, y],
             end: previous,
         });
-        if points.len() > capacity {
-            break;
-        }
     }
     let (xe, ye, he) = last.centre_line(last.length);
-    straight(
+    if !straight(
         &mut points,
         &mut pieces,
         &mut s_total,
         [xe + run_out * he.cos(), ye + run_out * he.sin()],
-    );
-    if points.len() > capacity {
-        return Err(check.error(
-            "path.sample_step_m",
-            &format!(
-                "the plots need more than {capacity} waypoints at this spacing; use a larger step"
-            ),
-        ));
+    ) {
+        return Err(too_many());
     }
     if points.len() < 2 {
         return Err(check.error("path.along_plots", "the path needs at least two waypoints"));

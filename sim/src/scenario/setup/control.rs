@@ -34,7 +34,9 @@ pub(super) fn control(
 ) -> Result<ControlSetup, ScenarioError> {
     let c = &file.control;
     let speed = forward_speed(check, "control", c.speed_m_s)?;
-    let period_s = check.open_range("control.period_s", c.period_s, 0.0, 1.0)?;
+    // At most 10 kHz: every delay of the switching machine, counted in
+    // ticks, stays far inside its 16-bit counter.
+    let period_s = check.range("control.period_s", c.period_s, 1e-4, 1.0)?;
     let gains = gains(
         check,
         "control",

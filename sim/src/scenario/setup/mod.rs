@@ -189,8 +189,8 @@ pub fn build(
     .into_iter()
     .flatten()
     .collect();
-    let switching = switching::switching(file, &configured, &check)?;
-    let run = run::run(file, &check)?;
+    let switching = switching::switching(file, &configured, control.period_s, &check)?;
+    let run = run::run(file, control.period_s, &check)?;
     let metrics = run::metrics(file, &check)?;
     Ok(Setup {
         name: file.name.clone(),

@@ -37,9 +37,26 @@ pub struct MetricsSpec {
     pub along_hedge_max_abs_m: Option<f64>,
 }
 
-/// The run limits of `[run]`.
-pub(super) fn run(file: &ScenarioFile, check: &Checker<'_>) -> Result<RunLimits, ScenarioError> {
+/// The most control ticks of a run: the trace holds one record per tick
+/// (about 3 h at 100 Hz).
+pub const MAX_TICKS: f64 = 1_000_000.0;
+
+/// The run limits of `[run]` at a control period of `period_s`.
+pub(super) fn run(
+    file: &ScenarioFile,
+    period_s: f64,
+    check: &Checker<'_>,
+) -> Result<RunLimits, ScenarioError> {
     let duration_s = check.open_range("run.duration_s", file.run.duration_s, 0.0, 1e6)?;
+    if duration_s / period_s > MAX_TICKS {
+        return Err(check.error(
+            "run.duration_s",
+            &format!(
+                "more than {MAX_TICKS} control ticks (run.duration_s / control.period_s = {:.0})",
+                duration_s / period_s
+            ),
+        ));
+    }
     check.count("run.substeps", file.run.substeps, 1, 1000)?;
     Ok(RunLimits {
         duration_s,

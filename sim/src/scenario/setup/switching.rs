@@ -1,8 +1,8 @@
 //! Validates `[switching]`: the transit delays of the switching machine and
 //! its plan consistency check.
 
-use fieldguide::guidance::BehaviourId;
-use fieldguide::supervisor::switching::PlanTolerance;
+use fieldguide::guidance::{BehaviourId, MAX_SCAN_AGE_TICKS};
+use fieldguide::supervisor::switching::{PlanTolerance, MAX_DELAY_TICKS};
 use fieldguide::{Meters, Radians, Seconds};
 
 use crate::error::ScenarioError;
@@ -51,11 +51,27 @@ pub struct SwitchingSetup {
 pub(super) fn switching(
     file: &ScenarioFile,
     configured: &[BehaviourId],
+    period_s: f64,
     check: &Checker<'_>,
 ) -> Result<SwitchingSetup, ScenarioError> {
     let s = file.switching.clone().unwrap_or_default();
+    // A positive delay that its tick counter can hold at `period_s`
+    // (SW-DELAYS), named here rather than at the run's first tick.
     let pos = |field: &str, v: Option<f64>, default: f64| -> Result<f64, ScenarioError> {
-        check.positive(&format!("switching.{field}"), v.unwrap_or(default))
+        let name = format!("switching.{field}");
+        let v = check.positive(&name, v.unwrap_or(default))?;
+        let longest = if field == "max_scan_age_s" {
+            f64::from(MAX_SCAN_AGE_TICKS)
+        } else {
+            f64::from(MAX_DELAY_TICKS)
+        };
+        if v / period_s > longest {
+            return Err(check.error(
+                &name,
+                &format!("longer than {longest} control ticks of control.period_s = {period_s} s"),
+            ));
+        }
+        Ok(v)
     };
     let plan = match s.plan_max_offset_m {
         None => {

@@ -4,6 +4,9 @@
 use fieldguide::{Point2, World};
 
 use crate::error::ScenarioError;
+
+/// The most vertices a hedge face may have (a 1 km hedge at 1 cm).
+const MAX_HEDGE_VERTICES: f64 = 100_000.0;
 use crate::rng::SimRng;
 use crate::scenario::check::Checker;
 use crate::scenario::schema::{CropName, StartPose, WorldSection};
@@ -154,6 +157,16 @@ pub(super) fn hedges(
         }
         let spacing =
             check.open_range(&field("vertex_spacing_m"), h.vertex_spacing_m, 0.0, 100.0)?;
+        // Two faces of `length / spacing` vertices each: bounded, so that a
+        // file the loader accepts cannot exhaust the memory.
+        if length / spacing > MAX_HEDGE_VERTICES {
+            return Err(check.error(
+                &field("vertex_spacing_m"),
+                &format!(
+                    "gives more than {MAX_HEDGE_VERTICES} vertices per face (length_m / vertex_spacing_m); use a larger spacing"
+                ),
+            ));
+        }
         let mut gaps = Vec::with_capacity(h.gaps_m.len());
         for (k, g) in h.gaps_m.iter().enumerate() {
             gaps.push(stretch(check, &field(&format!("gaps_m[{k}]")), *g, length)?);
