@@ -19,7 +19,7 @@ use fieldguide::geometry::path::{
     FrenetError, PathConfig, PathPosition, ReferencePath, MIN_WAYPOINT_SPACING,
 };
 use fieldguide::geometry::units::wrap_angle;
-use fieldguide::{Meters, Point2, Pose2, Transform2, World};
+use fieldguide::{Meters, Point2, Pose2, Radians, Transform2, World};
 use proptest::prelude::*;
 
 const CAP: usize = 2048;
@@ -47,7 +47,7 @@ fn path_w(points: &[Point2<World>], w: f64) -> Path {
 
 /// |wrap(a − b)|: the distance between two angles.
 fn angle_diff(a: f64, b: f64) -> f64 {
-    wrap_angle(a - b).abs()
+    wrap_angle(Radians::new(a - b).unwrap()).get().abs()
 }
 
 /// Waypoints every `step` metres on the straight line from `(x0, y0)` with heading `phi`.
@@ -831,13 +831,13 @@ proptest! {
         let q = pose(qx, qy, 0.0);
         let e = p.project(&q, m(0.0)).unwrap();
         let foot = p.point_at(e.s).unwrap();
-        let d = foot.distance_to(q.position);
+        let d = foot.distance_to(q.position).unwrap().get();
         prop_assert!((d - e.y.get().abs()).abs() < 1e-9 * (1.0 + d));
         let l = p.length().get();
         for i in 0..=400 {
             let s = -20.0 + (l + 40.0) * f64::from(i) / 400.0;
             let other = p.point_at(m(s)).unwrap();
-            prop_assert!(d <= other.distance_to(q.position) + 1e-9);
+            prop_assert!(d <= other.distance_to(q.position).unwrap().get() + 1e-9);
         }
         // The local search with a window covering everything agrees.
         let near = p.project_near(&q, m(0.0), m(0.5 * l), m(l + 1e6)).unwrap();
@@ -864,7 +864,7 @@ proptest! {
         for i in 0..=100 {
             let s = hint - window + 2.0 * window * f64::from(i) / 100.0;
             let other = p.point_at(m(s)).unwrap();
-            prop_assert!(d <= other.distance_to(q.position) + 1e-9);
+            prop_assert!(d <= other.distance_to(q.position).unwrap().get() + 1e-9);
         }
     }
 

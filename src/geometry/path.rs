@@ -18,7 +18,7 @@ use heapless::Vec;
 
 use super::frame::{Point2, Pose2, World};
 use super::tracking::TrackingError;
-use super::units::{wrap_angle, Curvature, Meters, Radians};
+use super::units::{wrap_raw, Curvature, Meters, Radians};
 use crate::error::{finite, Precondition};
 
 /// Consecutive waypoints closer than this (metres) are duplicates and dropped
@@ -204,7 +204,7 @@ impl<const N: usize> ReferencePath<N> {
             let s = match last {
                 None => 0.0,
                 Some((q, s_q)) => {
-                    let d = q.distance_to(p);
+                    let d = q.distance_to(p)?.get();
                     if d < MIN_WAYPOINT_SPACING {
                         continue;
                     }
@@ -484,7 +484,7 @@ impl<const N: usize> ReferencePath<N> {
         let s = Meters::new(c.s)?;
         let y = Meters::new(y)?;
         let path_heading = self.heading_at(s);
-        let angular_deviation = Radians::new(wrap_angle(pose.heading.get() - path_heading.get()))?;
+        let angular_deviation = Radians::new(wrap_raw(pose.heading.get() - path_heading.get()))?;
         let curvature = self.curvature_at(s);
         let ahead = Meters::new(s.get() + lookahead.get())?;
         let curvature_ahead = self.curvature_at(ahead);
@@ -570,7 +570,7 @@ impl<const N: usize> ReferencePath<N> {
                 sb.position.x() - sa.position.x(),
             )
         };
-        Radians::new(wrap_angle(angle)).unwrap_or(Radians::ZERO)
+        Radians::new(wrap_raw(angle)).unwrap_or(Radians::ZERO)
     }
 
     /// Midpoint of the clipped window around `x`: the abscissa whose tangent the
@@ -598,7 +598,7 @@ impl<const N: usize> ReferencePath<N> {
         if arc < MIN_CHORD {
             return Curvature::ZERO;
         }
-        let turn = wrap_angle(self.smoothed_heading(b).get() - self.smoothed_heading(a).get());
+        let turn = wrap_raw(self.smoothed_heading(b).get() - self.smoothed_heading(a).get());
         Curvature::new(turn / arc).unwrap_or(Curvature::ZERO)
     }
 }
