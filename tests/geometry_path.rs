@@ -16,7 +16,8 @@
 use core::f64::consts::{FRAC_PI_2, PI};
 
 use fieldguide::geometry::path::{
-    FrenetError, PathConfig, PathPosition, ReferencePath, MIN_WAYPOINT_SPACING,
+    FrenetError, PathConfig, PathPosition, ReferencePath, MAX_PATH_COORDINATE, MAX_PATH_LENGTH,
+    MIN_WAYPOINT_SPACING,
 };
 use fieldguide::geometry::units::wrap_angle;
 use fieldguide::{Meters, Point2, Pose2, Radians, Transform2, World};
@@ -225,6 +226,148 @@ fn arc_length_is_the_polyline_length() {
     assert!((q.x() - 1.5).abs() < 1e-12 && (q.y() - 2.0).abs() < 1e-12);
 }
 
+/// The next `f64` above a positive `x`.
+fn next_up(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() + 1)
+}
+
+/// A serpentine between x = −1e7 and x = 1e7, 1 m between its rows, whose
+/// last row is shortened so that the length is exactly `length` (an integer
+/// number of metres, computed exactly in `f64`).
+fn serpentine(length: f64) -> Vec<Point2<World>> {
+    let (half, row) = (MAX_PATH_COORDINATE, 2.0 * MAX_PATH_COORDINATE);
+    let mut points = vec![pt(-half, 0.0)];
+    let (mut x, mut y, mut total) = (-half, 0.0, 0.0);
+    loop {
+        let rest = length - total;
+        let direction = if x < 0.0 { 1.0 } else { -1.0 };
+        if rest <= row {
+            points.push(pt(x + direction * rest, y));
+            return points;
+        }
+        x += direction * row;
+        points.push(pt(x, y));
+        y += 1.0;
+        points.push(pt(x, y));
+        total += row + 1.0;
+    }
+}
+
+//= spec/geometry.md#path-range-coordinates-and-length-within-range
+//= type=test
+//# A path MUST be refused with the `PATH-RANGE` error when a waypoint has a
+//# coordinate of magnitude above `MAX_PATH_COORDINATE` (1e7 m) or when its
+//# length L exceeds `MAX_PATH_LENGTH` (1e9 m).
+#[test]
+fn coordinates_and_lengths_beyond_the_range_are_refused_at_the_boundary() {
+    let (c, above) = (MAX_PATH_COORDINATE, next_up(MAX_PATH_COORDINATE));
+    assert_eq!(c, 1e7);
+    assert_eq!(MAX_PATH_LENGTH, 1e9);
+    for (a, b) in [(c, 0.0), (0.0, c), (-c, 0.0), (0.0, -c)] {
+        assert!(Path::from_waypoints(&[pt(0.0, 0.0), pt(a, b)], PathConfig::default()).is_ok());
+    }
+    for (a, b) in [(above, 0.0), (0.0, above), (-above, 0.0), (0.0, -above)] {
+        for points in [[pt(0.0, 0.0), pt(a, b)], [pt(a, b), pt(0.0, 0.0)]] {
+            let e = Path::from_waypoints(&points, PathConfig::default()).unwrap_err();
+            assert_eq!(e.requirement, "PATH-RANGE", "{a} {b}");
+        }
+    }
+    // A duplicate, dropped by PATH-WAYPOINTS, is checked too.
+    let dup = [pt(c, 0.0), pt(above, 0.0), pt(0.0, 0.0)];
+    assert_eq!(
+        Path::from_waypoints(&dup, PathConfig::default())
+            .unwrap_err()
+            .requirement,
+        "PATH-RANGE"
+    );
+    // The audit's case: waypoints 3.4e17 m apart, where s stopped growing.
+    let far = [
+        pt(0.0, 0.0),
+        pt(3.4e17, 0.0),
+        pt(3.4e17, 0.01),
+        pt(3.4e17, 0.02),
+    ];
+    assert_eq!(
+        Path::from_waypoints(&far, PathConfig::default())
+            .unwrap_err()
+            .requirement,
+        "PATH-RANGE"
+    );
+    // Exactly 1e9 m is a path; one metre more is not.
+    let longest =
+        ReferencePath::<128>::from_waypoints(&serpentine(1e9), PathConfig::default()).unwrap();
+    assert_eq!(longest.length().get(), 1e9);
+    let too_long =
+        ReferencePath::<128>::from_waypoints(&serpentine(1e9 + 1.0), PathConfig::default())
+            .unwrap_err();
+    assert_eq!(too_long.requirement, "PATH-RANGE");
+}
+
+//= spec/geometry.md#path-range-coordinates-and-length-within-range
+//= type=test
+//# The abscissae of consecutive vertices of a path MUST increase strictly.
+#[test]
+fn millimetre_steps_at_the_longest_length_still_advance_s() {
+    // 1e9 − 1 m of serpentine, then steps just above 1 mm: each is kept and
+    // each adds to s, where f64's spacing is 1.2e−7 m.
+    let mut points = serpentine(1e9 - 1.0);
+    let last = *points.last().unwrap();
+    for k in 1..=100 {
+        points.push(pt(last.x(), last.y() + 1.0001e-3 * k as f64));
+    }
+    let p = ReferencePath::<256>::from_waypoints(&points, PathConfig::default()).unwrap();
+    assert_eq!(p.vertices().len(), points.len());
+    for w in p.vertices().windows(2) {
+        assert!(w[1].s.get() - w[0].s.get() >= MIN_WAYPOINT_SPACING - 1.2e-7);
+    }
+}
+
+/// A coordinate offset of any scale, 1 mm to 1e300 m, either sign.
+fn any_scale() -> impl Strategy<Value = f64> {
+    (-3.0_f64..300.0, any::<bool>()).prop_map(|(e, negative)| {
+        let v = 10f64.powf(e);
+        if negative {
+            -v
+        } else {
+            v
+        }
+    })
+}
+
+proptest! {
+    //= spec/geometry.md#path-range-coordinates-and-length-within-range
+    //= type=test
+    //# The abscissae of consecutive vertices of a path MUST increase strictly.
+    #[test]
+    fn abscissae_increase_strictly_on_every_path_accepted(
+        start in (any_scale(), any_scale()),
+        steps in prop::collection::vec((any_scale(), any_scale()), 1..40),
+    ) {
+        let mut points = vec![Point2::<World>::new(start.0, start.1)];
+        let (mut x, mut y) = start;
+        for (dx, dy) in steps {
+            x += dx;
+            y += dy;
+            points.push(Point2::new(x, y));
+        }
+        let Some(points) = points.into_iter().collect::<Result<Vec<_>, _>>().ok() else {
+            return Ok(());
+        };
+        match Path::from_waypoints(&points, PathConfig::default()) {
+            Ok(p) => {
+                for w in p.vertices().windows(2) {
+                    prop_assert!(w[1].s.get() > w[0].s.get(), "{:?}", w);
+                }
+                prop_assert!(p.length().get() <= MAX_PATH_LENGTH);
+            }
+            Err(e) => prop_assert!(
+                ["PATH-RANGE", "PATH-WAYPOINTS"].contains(&e.requirement),
+                "{e}"
+            ),
+        }
+    }
+}
+
 // ---------------------------------------------------------------- heading, curvature
 
 //= spec/geometry.md#path-heading-smoothed-heading
@@ -419,10 +562,13 @@ fn path_continues_straight_beyond_its_ends() {
         assert!((q.x() - (last.x() + d * h_end.cos())).abs() < 1e-9);
         assert!((q.y() - (last.y() + d * h_end.sin())).abs() < 1e-9);
     }
-    // Far out the point overflows: an error, not an infinity.
-    let far = path(&[pt(1e308, 0.0), pt(1.5e308, 0.0)]);
-    let e = far.point_at(m(f64::MAX)).unwrap_err();
-    assert_eq!(e.requirement, "LIB-FINITE");
+    // Far out the point is still finite: waypoints lie within 1e7 m of the
+    // origin (PATH-RANGE), so a point at any finite s never overflows.
+    let far = path(&[pt(1e7, 1e7), pt(-1e7, -1e7)]);
+    for s in [f64::MAX, -f64::MAX] {
+        let q = far.point_at(m(s)).unwrap();
+        assert!(q.x().is_finite() && q.y().is_finite());
+    }
 }
 
 // ---------------------------------------------------------------- projection

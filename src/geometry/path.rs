@@ -19,12 +19,22 @@ use heapless::Vec;
 use super::frame::{Point2, Pose2, World};
 use super::tracking::TrackingError;
 use super::units::{wrap_raw, Curvature, Meters, Radians};
-use crate::error::{finite, Precondition};
+use crate::error::Precondition;
 
 /// Consecutive waypoints closer than this (metres) are duplicates and dropped
 /// (`spec/geometry.md`, PATH-WAYPOINTS). One millimetre is well below the
 /// precision of RTK GNSS (about 1.5 cm), so dropping such points loses nothing.
 pub const MIN_WAYPOINT_SPACING: f64 = 1e-3;
+
+/// The largest magnitude of a waypoint coordinate, metres (`spec/geometry.md`,
+/// PATH-RANGE): a local tangent plane 20 000 km across. Differences of such
+/// coordinates are exact to 2e−9 m, far below [`MIN_WAYPOINT_SPACING`].
+pub const MAX_PATH_COORDINATE: f64 = 1e7;
+
+/// The longest path, metres (PATH-RANGE). Below it the spacing of `f64` is at
+/// most 1.2e−7 m, so each kept waypoint, at least [`MIN_WAYPOINT_SPACING`]
+/// from the last one, adds to s and s increases strictly along the path.
+pub const MAX_PATH_LENGTH: f64 = 1e9;
 
 /// A chord shorter than this (metres) has no usable direction; the heading
 /// then falls back to the direction of the polyline segment at s.
@@ -140,7 +150,9 @@ impl From<FrenetError> for TrackingError {
 /// waypoints (Pierre 2022, section 2.1; `spec/geometry.md`).
 ///
 /// Invariants: at least 2 vertices, consecutive vertices at least
-/// [`MIN_WAYPOINT_SPACING`] apart, s strictly increasing from 0 to L.
+/// [`MIN_WAYPOINT_SPACING`] apart, coordinates within
+/// [`MAX_PATH_COORDINATE`], L at most [`MAX_PATH_LENGTH`], s strictly
+/// increasing from 0 to L.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReferencePath<const N: usize> {
     vertices: Vec<PathVertex, N>,
@@ -178,9 +190,10 @@ impl<const N: usize> ReferencePath<N> {
     ///
     /// Consecutive waypoints closer than [`MIN_WAYPOINT_SPACING`] to the last
     /// kept one are dropped. Errors: a smoothing window ≤ 0 (`PATH-CONFIG`),
-    /// fewer than 2 distinct waypoints (`PATH-WAYPOINTS`), more than `N`
-    /// distinct waypoints (`PATH-CAPACITY`), an arc length that overflows
-    /// (`LIB-FINITE`).
+    /// a waypoint coordinate beyond ±[`MAX_PATH_COORDINATE`] or a length
+    /// beyond [`MAX_PATH_LENGTH`] (`PATH-RANGE`), fewer than 2 distinct
+    /// waypoints (`PATH-WAYPOINTS`), more than `N` distinct waypoints
+    /// (`PATH-CAPACITY`).
     //= spec/geometry.md#path-waypoints-distinct-waypoints
     //# A waypoint closer than `MIN_WAYPOINT_SPACING` (1 mm) to the last kept
     //# waypoint MUST be dropped, not reported as an error.
@@ -193,6 +206,12 @@ impl<const N: usize> ReferencePath<N> {
     //= spec/geometry.md#path-arc-length-curvilinear-abscissa
     //# The curvilinear abscissa s of a vertex MUST be the length of the polyline
     //# through the kept waypoints from the first one to that vertex.
+    //= spec/geometry.md#path-range-coordinates-and-length-within-range
+    //# A path MUST be refused with the `PATH-RANGE` error when a waypoint has a
+    //# coordinate of magnitude above `MAX_PATH_COORDINATE` (1e7 m) or when its
+    //# length L exceeds `MAX_PATH_LENGTH` (1e9 m).
+    //= spec/geometry.md#path-range-coordinates-and-length-within-range
+    //# The abscissae of consecutive vertices of a path MUST increase strictly.
     pub fn from_waypoints(
         points: &[Point2<World>],
         config: PathConfig,
@@ -201,14 +220,25 @@ impl<const N: usize> ReferencePath<N> {
         let mut vertices: Vec<PathVertex, N> = Vec::new();
         let mut last: Option<(Point2<World>, f64)> = None;
         for &p in points {
+            if libm::fabs(p.x()) > MAX_PATH_COORDINATE || libm::fabs(p.y()) > MAX_PATH_COORDINATE {
+                return Err(Precondition::new(
+                    "PATH-RANGE",
+                    "waypoint coordinate beyond 1e7 m",
+                ));
+            }
             let s = match last {
                 None => 0.0,
                 Some((q, s_q)) => {
+                    // Within the coordinate range: at most 2.9e7 m, never overflows.
                     let d = q.distance_to(p)?.get();
                     if d < MIN_WAYPOINT_SPACING {
                         continue;
                     }
-                    finite(s_q + d, "path arc length overflows")?
+                    let s = s_q + d;
+                    if s > MAX_PATH_LENGTH {
+                        return Err(Precondition::new("PATH-RANGE", "path length beyond 1e9 m"));
+                    }
+                    s
                 }
             };
             let vertex = PathVertex {
