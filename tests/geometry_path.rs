@@ -15,12 +15,16 @@
 
 use core::f64::consts::{FRAC_PI_2, PI};
 
+use fieldguide::control::backstepping::steering_command;
 use fieldguide::geometry::path::{
     FrenetError, PathConfig, PathPosition, ReferencePath, MAX_PATH_COORDINATE, MAX_PATH_LENGTH,
     MIN_WAYPOINT_SPACING,
 };
 use fieldguide::geometry::units::wrap_angle;
-use fieldguide::{Meters, Point2, Pose2, Radians, Transform2, World};
+use fieldguide::model::bicycle::Sideslip;
+use fieldguide::{
+    Meters, MetersPerSecond, Point2, Pose2, Radians, TrackingError, Transform2, World,
+};
 use proptest::prelude::*;
 
 const CAP: usize = 2048;
@@ -837,8 +841,13 @@ fn negative_window_is_refused() {
 
 //= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
 //= type=test
-//# The Frénet error MUST carry c(s) and c(s + lookahead), both evaluated by
-//# the path's smoothed curvature, zero beyond the ends.
+//# The Frénet error MUST carry c(s), the path's smoothed curvature at s, zero
+//# beyond the ends.
+//= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+//= type=test
+//# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+//# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+//# the nearer end when s + lookahead lies beyond an end.
 #[test]
 fn curvature_here_and_ahead_on_the_u_turn() {
     let p = path(&u_turn_points());
@@ -854,15 +863,124 @@ fn curvature_here_and_ahead_on_the_u_turn() {
     let e = p.project(&pose(q.x(), q.y(), FRAC_PI_2), m(-2.0)).unwrap();
     assert!((e.curvature.get() - 1.0 / 3.0).abs() < 1e-3);
     assert!((e.curvature_ahead.get() - 1.0 / 3.0).abs() < 1e-3);
-    // Near the end, looking past it: zero.
+    // Near the end, looking past it: the curvature of the end, a straight one.
     let e = p.project(&pose(1.0, 6.0, PI), m(5.0)).unwrap();
     assert!(e.s.get() > l - 1.5);
-    assert_eq!(e.curvature_ahead.get(), 0.0);
-    // Overflowing lookahead: an error, not an infinity.
-    let err = p
-        .project(&pose(1.0, 6.0, PI), m(f64::MAX))
-        .map(|e| e.curvature_ahead);
-    assert!(err.is_ok() || err.unwrap_err().requirement == "LIB-FINITE");
+    assert_eq!(e.curvature_ahead, p.curvature_at(m(l)));
+    assert!(e.curvature_ahead.get().abs() < 1e-9);
+    // A look-ahead that overflows lies beyond the end: no error.
+    for far in [f64::MAX, -f64::MAX] {
+        let e = p.project(&pose(1.0, 6.0, PI), m(far)).unwrap();
+        let end = if far > 0.0 { l } else { 0.0 };
+        assert_eq!(e.curvature_ahead, p.curvature_at(m(end)));
+    }
+}
+
+/// 10 m east along y = 0, then 5 m of a left arc of radius 5 m (c = 0.2 1/m):
+/// a path that ends in a curve. Mirrored end for end (`reversed`), it starts
+/// with the curve.
+fn ending_on_an_arc(reversed: bool) -> Path {
+    let mut points = line_points(0.0, 0.0, 0.0, 100, 0.1);
+    for q in arc_points(5.0, -FRAC_PI_2, 1.0, 0.1) {
+        points.push(pt(q.x() + 10.0, q.y() + 5.0));
+    }
+    if reversed {
+        points.reverse();
+    }
+    path(&points)
+}
+
+/// The curvature ahead for a robot on the (extended) path at abscissa `s`,
+/// heading along it, with look-ahead `lookahead`.
+fn curvature_ahead_at(p: &Path, s: f64, lookahead: f64) -> f64 {
+    let q = p.point_at(m(s)).unwrap();
+    let h = p.heading_at(m(s)).get();
+    p.project(&pose(q.x(), q.y(), h), m(lookahead))
+        .unwrap()
+        .curvature_ahead
+        .get()
+}
+
+//= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+//= type=test
+//# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+//# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+//# the nearer end when s + lookahead lies beyond an end.
+#[test]
+fn curvature_ahead_does_not_jump_where_the_look_ahead_crosses_an_end() {
+    let v_t = 0.8;
+    for reversed in [false, true] {
+        let p = ending_on_an_arc(reversed);
+        let l = p.length().get();
+        // The curved end: c = ±0.2 there (the arc is exact up to the ends).
+        let (curved_end, straight_end) = if reversed { (0.0, l) } else { (l, 0.0) };
+        assert!((p.curvature_at(m(curved_end)).get().abs() - 0.2).abs() < 1e-3);
+        assert!(p.curvature_at(m(straight_end)).get().abs() < 1e-9);
+        // The robot where s + lookahead crosses each end, looking either way.
+        for (end, lookahead) in [(l, v_t), (l, -v_t), (0.0, v_t), (0.0, -v_t)] {
+            let held = p.curvature_at(m(end)).get();
+            let crossing = end - lookahead;
+            let mut previous = curvature_ahead_at(&p, crossing - 0.05, lookahead);
+            for i in -499..=500 {
+                let s = crossing + 1e-4 * f64::from(i);
+                let c = curvature_ahead_at(&p, s, lookahead);
+                assert!(
+                    (c - previous).abs() < 1e-3,
+                    "reversed {reversed}, end {end}, lookahead {lookahead}: c(s + vT) jumps from {previous} to {c} at s = {s}"
+                );
+                previous = c;
+            }
+            // Beyond the end the curvature of the end is held.
+            let past = if end > 0.0 { 0.5 } else { -0.5 };
+            let beyond = curvature_ahead_at(&p, crossing + past, lookahead);
+            assert_eq!(beyond, held);
+        }
+    }
+}
+
+//= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+//= type=test
+//# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+//# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+//# the nearer end when s + lookahead lies beyond an end.
+#[test]
+fn steering_does_not_jump_where_the_look_ahead_reaches_the_end_of_an_arc() {
+    // Pierre 2022's path tracking (0.8 m/s, T = 1 s, 2 m wheelbase) on a path
+    // ending in an arc of radius 5 m: the feed-forward alone is
+    // atan(2 m · 0.2 1/m) = 0.38 rad, which a zero curvature past the end
+    // dropped within one millimetre of travel.
+    let law = fieldguide::presets::path_tracking().unwrap();
+    let (v, v_t) = (MetersPerSecond::new(0.8).unwrap(), 0.8);
+    let p = ending_on_an_arc(false);
+    let l = p.length().get();
+    let steer = |s: f64| {
+        // 5 cm left of the path, heading along it.
+        let q = p.point_at(m(s)).unwrap();
+        let h = p.heading_at(m(s)).get();
+        let e = p
+            .project(
+                &pose(q.x() - 0.05 * h.sin(), q.y() + 0.05 * h.cos(), h),
+                m(v_t),
+            )
+            .unwrap();
+        steering_command(&law.law, &TrackingError::from(e), Sideslip::ZERO, v)
+            .unwrap()
+            .steering
+            .get()
+    };
+    let crossing = l - v_t;
+    let mut previous = steer(crossing - 0.05);
+    for i in -499..=500 {
+        let s = crossing + 1e-4 * f64::from(i);
+        let delta = steer(s);
+        // At most 0.01 rad per 0.1 mm of travel (the polyline's vertices
+        // every 0.1 m, seen through y and θ̃, move it by about 1e-3 rad).
+        assert!(
+            (delta - previous).abs() < 0.01,
+            "steering jumps from {previous} to {delta} rad at s = {s}"
+        );
+        previous = delta;
+    }
 }
 
 // ---------------------------------------------------------------- properties

@@ -12,7 +12,9 @@
 //! - heading and curvature are smoothed over a window `w` (default 1 m) so that
 //!   c(s) stays meaningful when waypoints carry centimetre GNSS noise;
 //! - before s = 0 and after s = L the path continues straight along its end
-//!   tangents, with zero curvature.
+//!   tangents, with zero curvature; the curvature ahead of the robot,
+//!   c(s + v T), holds the curvature of the nearer end there, so that it does
+//!   not jump when s + v T crosses an end (FRENET-CURVATURE).
 
 use heapless::Vec;
 
@@ -337,8 +339,10 @@ impl<const N: usize> ReferencePath<N> {
 
     /// The Frénet error of `pose` at the globally closest point of the path
     /// (Pierre 2022, section 2.1; FRENET-CLOSEST). `lookahead` (metres, any
-    /// sign, usually v T) gives `curvature_ahead = c(s + lookahead)`.
-    /// O(N). Errors with `LIB-FINITE` when a distance or abscissa overflows.
+    /// sign, usually v T) gives `curvature_ahead = c(s + lookahead)`, held at
+    /// the curvature of the nearer end when s + lookahead lies beyond it
+    /// (FRENET-CURVATURE). O(N). Errors with `LIB-FINITE` when a distance or
+    /// abscissa overflows.
     //= spec/geometry.md#frenet-closest-closest-point
     //# `project` MUST return the abscissa s of a point of the extended path
     //# (the polyline and its two end extensions) closest to the robot position.
@@ -491,8 +495,12 @@ impl<const N: usize> ReferencePath<N> {
     //# The angular deviation MUST be θ̃ = θ − θ_Γ(s), the robot heading minus
     //# the smoothed path heading at s, wrapped to (−π, π].
     //= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
-    //# The Frénet error MUST carry c(s) and c(s + lookahead), both evaluated by
-    //# the path's smoothed curvature, zero beyond the ends.
+    //# The Frénet error MUST carry c(s), the path's smoothed curvature at s, zero
+    //# beyond the ends.
+    //= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+    //# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+    //# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+    //# the nearer end when s + lookahead lies beyond an end.
     //= spec/geometry.md#frenet-ends-before-the-start-and-past-the-end
     //# The position MUST be `BeforeStart` when s < 0, `PastEnd` when s > L and
     //# `Within` otherwise.
@@ -516,8 +524,9 @@ impl<const N: usize> ReferencePath<N> {
         let path_heading = self.heading_at(s);
         let angular_deviation = Radians::new(wrap_raw(pose.heading.get() - path_heading.get()))?;
         let curvature = self.curvature_at(s);
-        let ahead = Meters::new(s.get() + lookahead.get())?;
-        let curvature_ahead = self.curvature_at(ahead);
+        // An abscissa that overflows lies beyond an end: the clamp takes it there.
+        let ahead = clamp(s.get() + lookahead.get(), 0.0, self.length);
+        let curvature_ahead = self.curvature_at(Meters(ahead));
         let position = if s.get() < 0.0 {
             PathPosition::BeforeStart
         } else if s.get() > self.length {
