@@ -527,9 +527,12 @@ where
         input: &TickInput<'_, L::Extra>,
     ) -> Result<TickOutput<L::Extra, K>, Precondition> {
         self.check_input(input)?;
-        let travelled = self
-            .last_odometry
-            .map_or(0.0, |p| p.position.distance_to(input.odometry.position));
+        let travelled = self.last_odometry.map_or(0.0, |p| {
+            // A distance that overflows is an absurd jump: the whole path is searched.
+            p.position
+                .distance_to(input.odometry.position)
+                .map_or(f64::INFINITY, Meters::get)
+        });
         self.last_odometry = Some(input.odometry);
 
         // 1. Detections, or the held ones aged and moved (GD-SCAN-AGE).

@@ -447,8 +447,9 @@ proptest! {
         let rates = fieldguide::model::bicycle::world_rates(&pose, speed(v), steer, slip, wheelbase)
             .unwrap();
         let course = rates.y_dot.atan2(rates.x_dot);
-        let wanted = fieldguide::geometry::units::wrap_angle(heading + beta_r);
-        prop_assert!(fieldguide::geometry::units::wrap_angle(course - wanted).abs() < 1e-12);
+        let wrap = |a: f64| fieldguide::geometry::units::wrap_angle(Radians::new(a).unwrap()).get();
+        let wanted = wrap(heading + beta_r);
+        prop_assert!(wrap(course - wanted).abs() < 1e-12);
         prop_assert!((rates.x_dot.hypot(rates.y_dot) - v).abs() < 1e-12);
         prop_assert!((rates.heading_dot - yaw_rate(speed(v), steer, slip, wheelbase).unwrap().get())
             .abs() < 1e-15);

@@ -60,13 +60,13 @@ fn check_invariants(points: &[Point2<Robot>], side: Side, config: &EdgeConfig, c
     // Each circle position touches its point(s) and holds no point strictly inside.
     for (k, c) in chain.centers().iter().enumerate() {
         let tol = 1e-9 * (1.0 + c.x().abs() + c.y().abs());
-        assert!((c.distance_to(chain.points()[k]) - r).abs() < tol);
+        assert!((c.distance_to(chain.points()[k]).unwrap().get() - r).abs() < tol);
         if k > 0 {
-            assert!((c.distance_to(chain.points()[k - 1]) - r).abs() < tol);
+            assert!((c.distance_to(chain.points()[k - 1]).unwrap().get() - r).abs() < tol);
         }
         for q in points.iter().filter(|q| s * q.y() > 0.0) {
             assert!(
-                c.distance_to(*q) >= r - tol,
+                c.distance_to(*q).unwrap().get() >= r - tol,
                 "point {q:?} inside circle {k} at {c:?}"
             );
         }
@@ -74,7 +74,7 @@ fn check_invariants(points: &[Point2<Robot>], side: Side, config: &EdgeConfig, c
     // Links are shorter than 2r; the length is their sum and is bounded.
     let mut length = 0.0;
     for w in chain.points().windows(2) {
-        let d = w[0].distance_to(w[1]);
+        let d = w[0].distance_to(w[1]).unwrap().get();
         assert!(d > 0.0 && d < 2.0 * r);
         length += d;
     }
@@ -85,7 +85,7 @@ fn check_invariants(points: &[Point2<Robot>], side: Side, config: &EdgeConfig, c
     // more than φ_turn (EDGE-CORNER).
     let pts = chain.points();
     for k in 1..pts.len() {
-        assert!(pts[k - 1].distance_to(pts[k]) <= config.max_link().get());
+        assert!(pts[k - 1].distance_to(pts[k]).unwrap().get() <= config.max_link().get());
         if k >= 2 {
             assert!(turn(pts[0], pts[k - 1], pts[k]) <= config.max_turn().get() + 1e-9);
         }
@@ -127,7 +127,7 @@ fn refused_contact(
         .filter(|(i, q)| *i != chain.indices()[k] && side.sign() * q.y() > 0.0)
         .filter_map(|(i, q)| {
             rotation_contact(p, c, *q, side, config.radius())
-                .map(|t| (t.get(), p.distance_to(*q), i, *q))
+                .map(|t| (t.get(), p.distance_to(*q).unwrap().get(), i, *q))
         })
         .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
         .map(|(_, _, i, q)| (i, q))
@@ -214,12 +214,12 @@ fn check_stop_at_gap_or_corner(
             )
             .unwrap();
             assert!(theta.get() < config.max_rotation().get());
-            assert!(chain.points()[last].distance_to(q) > config.max_link().get());
+            assert!(chain.points()[last].distance_to(q).unwrap().get() > config.max_link().get());
         }
         ChainEnd::Corner => {
             let (_, q) = refused.unwrap();
             assert!(chain.len() >= 2, "the first link cannot turn");
-            assert!(chain.points()[last].distance_to(q) <= config.max_link().get());
+            assert!(chain.points()[last].distance_to(q).unwrap().get() <= config.max_link().get());
             assert!(
                 turn(chain.points()[0], chain.points()[last], q) > config.max_turn().get() - 1e-9
             );
@@ -302,8 +302,8 @@ proptest! {
         let p = pt(0.3, 0.7);
         let c = pt(0.3 + r * phi.cos(), 0.7 + r * phi.sin());
         let q = pt(qx, qy);
-        let d = p.distance_to(q);
-        let inside_now = c.distance_to(q) < r;
+        let d = p.distance_to(q).unwrap().get();
+        let inside_now = c.distance_to(q).unwrap().get() < r;
         match rotation_contact(p, c, q, side, fieldguide::Meters::new(r).unwrap()) {
             None => prop_assert!(d >= 2.0 * r || d == 0.0),
             Some(theta) if !inside_now => {
@@ -315,15 +315,15 @@ proptest! {
                     pt(p.x() + cs * ux - sn * uy, p.y() + sn * ux + cs * uy)
                 };
                 // On the circle at θ, outside just before, inside just after.
-                prop_assert!((at(th).distance_to(q) - r).abs() < 1e-9);
+                prop_assert!((at(th).distance_to(q).unwrap().get() - r).abs() < 1e-9);
                 if th > 1e-6 {
-                    prop_assert!(at(th - 1e-6).distance_to(q) > r);
+                    prop_assert!(at(th - 1e-6).distance_to(q).unwrap().get() > r);
                     // Never inside between 0 and θ.
                     for k in 1..50 {
-                        prop_assert!(at(th * f64::from(k) / 50.0).distance_to(q) >= r - 1e-12);
+                        prop_assert!(at(th * f64::from(k) / 50.0).distance_to(q).unwrap().get() >= r - 1e-12);
                     }
                 }
-                prop_assert!(at(th + 1e-6).distance_to(q) < r);
+                prop_assert!(at(th + 1e-6).distance_to(q).unwrap().get() < r);
             }
             Some(_) => {}
         }

@@ -12,7 +12,7 @@
 )]
 
 use fieldguide::perception::furrow::correlation::{
-    correlate, correlate_direct, height_signal, Template, MAX_SAMPLE,
+    correlate, correlate_direct, height_signal, Template, MAX_SAMPLE, SAMPLE_QUANTUM,
 };
 use fieldguide::Meters;
 use proptest::prelude::*;
@@ -164,6 +164,108 @@ fn template_wider_than_the_window_scores_nothing_and_short_output_is_refused() {
     assert!(correlate(&[], &t, &mut out).is_ok());
 }
 
+//= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
+//= type=test
+//# Each sample z_a MUST be read as the nearest multiple of `SAMPLE_QUANTUM`
+//# (2⁻²⁴ m), and the running sums MUST equal the sums of the definition
+//# exactly, whatever the heights.
+#[test]
+fn a_tall_sample_that_left_the_window_leaves_nothing_behind() {
+    assert_eq!(SAMPLE_QUANTUM, 2f64.powi(-24));
+    // The audit's case: 0.16 m beside 1e-122 m. The running sums lost the
+    // tiny heights under the rounding of the tall ones and scored 0 where the
+    // definition scored 0.58 (at k = 5) and 0.82 (at k = 4).
+    let t = Template::new(3, 0, m(0.3)).unwrap();
+    let signal = [0.0, 0.3, 0.16, 1e-122, 0.0, 1e-122, 0.0];
+    let (fast, slow) = scores(&signal, &t);
+    assert_eq!(fast, slow);
+    // On the grid 1e-122 m is 0: the windows of k = 4 and 5 hold 0.16 or nothing.
+    let grid = [0.0, 0.3, 0.16, 0.0, 0.0, 0.0, 0.0];
+    assert_eq!(scores(&grid, &t).0, fast);
+    // Heights on the grid, 19 orders of magnitude apart: the smallest one
+    // alone in a window still scores 1, after any number of tall ones slid by.
+    let q = SAMPLE_QUANTUM;
+    let mut signal = vec![0.0; 3];
+    for _ in 0..50 {
+        signal.extend_from_slice(&[MAX_SAMPLE, 1000.0 + q, 0.75, 3.0 * q]);
+    }
+    signal.extend_from_slice(&[0.0, 0.0, q, 0.0, 0.0, 0.0]);
+    let (fast, slow) = scores(&signal, &t);
+    assert_eq!(fast, slow);
+    let alone = signal.len() - 4;
+    assert_eq!(fast[alone], 1.0 / 3.0_f64.sqrt());
+    assert_eq!(fast[alone - 1], 1.0 / 3.0_f64.sqrt());
+    // Heights below half a quantum are ground, above it one quantum; half a
+    // quantum exactly goes to the even multiple, 0.
+    let t1 = Template::new(1, 1, m(0.3)).unwrap();
+    for (z, expected) in [
+        (0.49 * q, 0.0),
+        (0.5 * q, 0.0),
+        (0.51 * q, 1.0),
+        (0.9 * q, 1.0),
+        (1e-300, 0.0),
+    ] {
+        assert_eq!(scores(&[0.0, z, 0.0], &t1).0[1], expected, "{z}");
+    }
+}
+
+/// The score of eq. 13 computed by its definition in plain `f64`, on the
+/// samples as FUR-CORRELATION reads them (on the grid, 0 when not finite or
+/// beyond 10⁶ m): an independent reference.
+fn reference(signal: &[f64], t: &Template) -> Vec<f64> {
+    let q = SAMPLE_QUANTUM;
+    let z: Vec<f64> = signal
+        .iter()
+        .map(|&v| {
+            if v.is_finite() && v.abs() <= MAX_SAMPLE {
+                (v / q).round_ties_even() * q
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let (half, hw) = (t.half_length(), t.half_width());
+    (0..signal.len())
+        .map(|k| {
+            if k < half || k + half >= signal.len() {
+                return 0.0;
+            }
+            let window = &z[k - half..=k + half];
+            let a: f64 = window.iter().map(|v| v * v).sum();
+            let support: f64 = z[k - hw..=k + hw].iter().sum();
+            if a == 0.0 {
+                0.0
+            } else {
+                (t.height().get() * support / (a * t.energy()).sqrt()).clamp(-1.0, 1.0)
+            }
+        })
+        .collect()
+}
+
+/// Adversarial samples: zeros, heights of every scale from 1e-300 m to 10⁶ m
+/// (subnormals included), tall and tiny ones side by side, either sign, and
+/// values the correlation ignores (NaN, infinities, beyond 10⁶ m).
+fn adversarial_sample() -> impl Strategy<Value = f64> {
+    let scale = (-300.0_f64..6.0, any::<bool>()).prop_map(|(e, negative)| {
+        let v = 10f64.powf(e);
+        if negative {
+            -v
+        } else {
+            v
+        }
+    });
+    prop_oneof![
+        4 => Just(0.0),
+        3 => scale,
+        2 => 0.0_f64..1.0,
+        1 => (1_u64..1 << 20).prop_map(|k| k as f64 * SAMPLE_QUANTUM),
+        1 => prop::sample::select(vec![
+            MAX_SAMPLE, -MAX_SAMPLE, 1e-122, 5e-324, f64::MIN_POSITIVE, -0.0,
+            f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 2.0 * MAX_SAMPLE, f64::MAX,
+        ]),
+    ]
+}
+
 fn template_strategy() -> impl Strategy<Value = Template> {
     (0_usize..10, 0_usize..8, 0.01_f64..2.0).prop_map(|(hw, margin, h)| {
         Template::new(2 * hw + 1, margin, Meters::new(h).unwrap()).unwrap()
@@ -188,6 +290,27 @@ proptest! {
         let (fast, slow) = scores(&signal, &t);
         for k in 0..signal.len() {
             prop_assert!((fast[k] - slow[k]).abs() < 1e-9, "k {} fast {} slow {}", k, fast[k], slow[k]);
+        }
+    }
+
+    //= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
+    //= type=test
+    //# Each sample z_a MUST be read as the nearest multiple of `SAMPLE_QUANTUM`
+    //# (2⁻²⁴ m), and the running sums MUST equal the sums of the definition
+    //# exactly, whatever the heights.
+    #[test]
+    fn running_sums_are_exact_on_adversarial_signals(
+        t in template_strategy(),
+        signal in prop::collection::vec(adversarial_sample(), 0..200),
+    ) {
+        let (fast, slow) = scores(&signal, &t);
+        let exact = reference(&signal, &t);
+        for k in 0..signal.len() {
+            // The running sums are the definition's, bit for bit.
+            prop_assert_eq!(fast[k].to_bits(), slow[k].to_bits(), "k {}", k);
+            // Against the definition in plain f64: |Σ_support z| ≤ sqrt(w A)
+            // bounds the rounding of the reference's sums, relative to the score.
+            prop_assert!((fast[k] - exact[k]).abs() <= 1e-12, "k {} fast {} reference {}", k, fast[k], exact[k]);
         }
     }
 

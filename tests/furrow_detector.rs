@@ -276,7 +276,7 @@ fn scans_the_detector_cannot_read_are_errors_and_dropped_rays_keep_indices() {
     assert_eq!(clean.len(), with_holes.len());
     for (a, b) in clean.iter().zip(&with_holes) {
         assert_eq!(a.ray, b.ray);
-        assert!(a.point.distance_to(b.point) < 1e-12);
+        assert!(a.point.distance_to(b.point).unwrap().get() < 1e-12);
     }
 }
 
@@ -308,7 +308,7 @@ fn prepending_rays_shifts_the_window_not_the_plants() {
         assert_eq!(a.len(), b.len());
         for (x, y) in a.iter().zip(&b) {
             assert_eq!(x.ray, y.ray);
-            assert!(x.point.distance_to(y.point) < 1e-9);
+            assert!(x.point.distance_to(y.point).unwrap().get() < 1e-9);
         }
     }
     // The window holds the rays with |a| ≤ 0.35 rad, and its points follow the formula.

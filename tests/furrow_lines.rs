@@ -55,7 +55,20 @@ fn hand_computed_fits() {
     // (1,0), (2,1), (3,1), (4,2): x̄ = 2.5, ȳ = 1, S_xx = 5, S_xy = 3: a = 0.6, b = −0.5.
     let l = fit_row_line(pts(&[(1.0, 0.0), (2.0, 1.0), (3.0, 1.0), (4.0, 2.0)])).unwrap();
     assert!((l.slope() - 0.6).abs() < 1e-12 && (l.intercept().get() + 0.5).abs() < 1e-12);
-    assert!((l.y_at(2.0) - 0.7).abs() < 1e-12);
+    assert!((l.y_at(2.0).unwrap() - 0.7).abs() < 1e-12);
+}
+
+//= spec/library.md#lib-finite-no-nan-or-infinity
+//= type=test
+//# A value returned by the core MUST be finite: a computation whose result
+//# would be NaN or infinite MUST return a `Precondition` error instead.
+#[test]
+fn a_row_line_value_that_overflows_is_an_error() {
+    let steep = RowLine::new(1e308, Meters::new(0.5).unwrap()).unwrap();
+    for x in [4.93, -4.93, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        assert_eq!(steep.y_at(x).unwrap_err().requirement, "LIB-FINITE", "{x}");
+    }
+    assert!((steep.y_at(0.0).unwrap() - 0.5).abs() < 1e-15);
 }
 
 //= spec/pierre2022.md#fur-line-row-line-by-least-squares
@@ -199,7 +212,7 @@ proptest! {
                 prop_assert!((line.intercept().get() - shared.b).abs() < 1e-12);
                 // Normal equations (independent of the fit's centring and
                 // scaling): the residuals sum to zero and are orthogonal to x.
-                let residual = |p: &Point2<Robot>| p.y() - line.y_at(p.x());
+                let residual = |p: &Point2<Robot>| p.y() - line.y_at(p.x()).unwrap();
                 let n = points.len() as f64;
                 let scale = points.iter().map(|p| p.x().abs()).sum::<f64>() / n;
                 prop_assert!(points.iter().map(residual).sum::<f64>().abs() < 1e-9 * n);
@@ -209,7 +222,7 @@ proptest! {
                 );
                 // No other line does better.
                 let other = RowLine::new(line.slope() + nudge.0, m(line.intercept().get() + nudge.1)).unwrap();
-                let cost = |l: &RowLine| points.iter().map(|p| (p.y() - l.y_at(p.x())).powi(2)).sum::<f64>();
+                let cost = |l: &RowLine| points.iter().map(|p| (p.y() - l.y_at(p.x()).unwrap()).powi(2)).sum::<f64>();
                 prop_assert!(cost(&line) <= cost(&other) + 1e-12);
             }
             Err(e) => {

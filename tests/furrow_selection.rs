@@ -14,7 +14,7 @@
 use fieldguide::perception::furrow::correlation::Template;
 use fieldguide::perception::furrow::scan::ScanPoint;
 use fieldguide::perception::furrow::selection::{
-    local_maxima, locate, select_one, select_pair, Maximum, Spacing, MAX_MAXIMA,
+    local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing, MAX_MAXIMA,
 };
 use fieldguide::{Meters, Point2};
 use proptest::prelude::*;
@@ -137,7 +137,21 @@ fn pairs_use_the_lateral_distance() {
     ];
     let pair = select_pair(&beans, &spacing, 0.0).unwrap();
     assert_eq!((pair.left.ray, pair.right.ray), (50, 10));
-    assert!((pair.weaker_score() - 0.5).abs() < 1e-12);
+    assert!((pair.weaker_score().unwrap() - 0.5).abs() < 1e-12);
+    // A maximum built by hand with a score that is not a number: an error,
+    // not the other score and not a NaN (LIB-FINITE).
+    for bad in [f64::NAN, f64::INFINITY] {
+        let odd = Pair {
+            left: maximum(50, bad, 4.4, 0.375),
+            right: maximum(10, bad, 3.2, -0.375),
+        };
+        assert_eq!(odd.weaker_score().unwrap_err().requirement, "LIB-FINITE");
+        let one = Pair {
+            left: beans[0],
+            ..odd
+        };
+        assert!(one.weaker_score().is_err());
+    }
     // Rows closer than d_min: no pair at all.
     let close = [maximum(10, 0.9, 4.0, -0.3), maximum(20, 0.9, 4.0, 0.3)];
     assert!(select_pair(&close, &spacing, 0.0).is_none());

@@ -15,11 +15,16 @@
 
 use core::f64::consts::{FRAC_PI_2, PI};
 
+use fieldguide::control::backstepping::steering_command;
 use fieldguide::geometry::path::{
-    FrenetError, PathConfig, PathPosition, ReferencePath, MIN_WAYPOINT_SPACING,
+    FrenetError, PathConfig, PathPosition, ReferencePath, MAX_PATH_COORDINATE, MAX_PATH_LENGTH,
+    MIN_WAYPOINT_SPACING,
 };
 use fieldguide::geometry::units::wrap_angle;
-use fieldguide::{Meters, Point2, Pose2, Transform2, World};
+use fieldguide::model::bicycle::Sideslip;
+use fieldguide::{
+    Meters, MetersPerSecond, Point2, Pose2, Radians, TrackingError, Transform2, World,
+};
 use proptest::prelude::*;
 
 const CAP: usize = 2048;
@@ -47,7 +52,7 @@ fn path_w(points: &[Point2<World>], w: f64) -> Path {
 
 /// |wrap(a − b)|: the distance between two angles.
 fn angle_diff(a: f64, b: f64) -> f64 {
-    wrap_angle(a - b).abs()
+    wrap_angle(Radians::new(a - b).unwrap()).get().abs()
 }
 
 /// Waypoints every `step` metres on the straight line from `(x0, y0)` with heading `phi`.
@@ -223,6 +228,148 @@ fn arc_length_is_the_polyline_length() {
     assert!((q.x() - 3.0).abs() < 1e-12 && (q.y() - 7.0).abs() < 1e-12);
     let q = p.point_at(m(2.5)).unwrap();
     assert!((q.x() - 1.5).abs() < 1e-12 && (q.y() - 2.0).abs() < 1e-12);
+}
+
+/// The next `f64` above a positive `x`.
+fn next_up(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() + 1)
+}
+
+/// A serpentine between x = −1e7 and x = 1e7, 1 m between its rows, whose
+/// last row is shortened so that the length is exactly `length` (an integer
+/// number of metres, computed exactly in `f64`).
+fn serpentine(length: f64) -> Vec<Point2<World>> {
+    let (half, row) = (MAX_PATH_COORDINATE, 2.0 * MAX_PATH_COORDINATE);
+    let mut points = vec![pt(-half, 0.0)];
+    let (mut x, mut y, mut total) = (-half, 0.0, 0.0);
+    loop {
+        let rest = length - total;
+        let direction = if x < 0.0 { 1.0 } else { -1.0 };
+        if rest <= row {
+            points.push(pt(x + direction * rest, y));
+            return points;
+        }
+        x += direction * row;
+        points.push(pt(x, y));
+        y += 1.0;
+        points.push(pt(x, y));
+        total += row + 1.0;
+    }
+}
+
+//= spec/geometry.md#path-range-coordinates-and-length-within-range
+//= type=test
+//# A path MUST be refused with the `PATH-RANGE` error when a waypoint has a
+//# coordinate of magnitude above `MAX_PATH_COORDINATE` (1e7 m) or when its
+//# length L exceeds `MAX_PATH_LENGTH` (1e9 m).
+#[test]
+fn coordinates_and_lengths_beyond_the_range_are_refused_at_the_boundary() {
+    let (c, above) = (MAX_PATH_COORDINATE, next_up(MAX_PATH_COORDINATE));
+    assert_eq!(c, 1e7);
+    assert_eq!(MAX_PATH_LENGTH, 1e9);
+    for (a, b) in [(c, 0.0), (0.0, c), (-c, 0.0), (0.0, -c)] {
+        assert!(Path::from_waypoints(&[pt(0.0, 0.0), pt(a, b)], PathConfig::default()).is_ok());
+    }
+    for (a, b) in [(above, 0.0), (0.0, above), (-above, 0.0), (0.0, -above)] {
+        for points in [[pt(0.0, 0.0), pt(a, b)], [pt(a, b), pt(0.0, 0.0)]] {
+            let e = Path::from_waypoints(&points, PathConfig::default()).unwrap_err();
+            assert_eq!(e.requirement, "PATH-RANGE", "{a} {b}");
+        }
+    }
+    // A duplicate, dropped by PATH-WAYPOINTS, is checked too.
+    let dup = [pt(c, 0.0), pt(above, 0.0), pt(0.0, 0.0)];
+    assert_eq!(
+        Path::from_waypoints(&dup, PathConfig::default())
+            .unwrap_err()
+            .requirement,
+        "PATH-RANGE"
+    );
+    // The audit's case: waypoints 3.4e17 m apart, where s stopped growing.
+    let far = [
+        pt(0.0, 0.0),
+        pt(3.4e17, 0.0),
+        pt(3.4e17, 0.01),
+        pt(3.4e17, 0.02),
+    ];
+    assert_eq!(
+        Path::from_waypoints(&far, PathConfig::default())
+            .unwrap_err()
+            .requirement,
+        "PATH-RANGE"
+    );
+    // Exactly 1e9 m is a path; one metre more is not.
+    let longest =
+        ReferencePath::<128>::from_waypoints(&serpentine(1e9), PathConfig::default()).unwrap();
+    assert_eq!(longest.length().get(), 1e9);
+    let too_long =
+        ReferencePath::<128>::from_waypoints(&serpentine(1e9 + 1.0), PathConfig::default())
+            .unwrap_err();
+    assert_eq!(too_long.requirement, "PATH-RANGE");
+}
+
+//= spec/geometry.md#path-range-coordinates-and-length-within-range
+//= type=test
+//# The abscissae of consecutive vertices of a path MUST increase strictly.
+#[test]
+fn millimetre_steps_at_the_longest_length_still_advance_s() {
+    // 1e9 − 1 m of serpentine, then steps just above 1 mm: each is kept and
+    // each adds to s, where f64's spacing is 1.2e−7 m.
+    let mut points = serpentine(1e9 - 1.0);
+    let last = *points.last().unwrap();
+    for k in 1..=100 {
+        points.push(pt(last.x(), last.y() + 1.0001e-3 * k as f64));
+    }
+    let p = ReferencePath::<256>::from_waypoints(&points, PathConfig::default()).unwrap();
+    assert_eq!(p.vertices().len(), points.len());
+    for w in p.vertices().windows(2) {
+        assert!(w[1].s.get() - w[0].s.get() >= MIN_WAYPOINT_SPACING - 1.2e-7);
+    }
+}
+
+/// A coordinate offset of any scale, 1 mm to 1e300 m, either sign.
+fn any_scale() -> impl Strategy<Value = f64> {
+    (-3.0_f64..300.0, any::<bool>()).prop_map(|(e, negative)| {
+        let v = 10f64.powf(e);
+        if negative {
+            -v
+        } else {
+            v
+        }
+    })
+}
+
+proptest! {
+    //= spec/geometry.md#path-range-coordinates-and-length-within-range
+    //= type=test
+    //# The abscissae of consecutive vertices of a path MUST increase strictly.
+    #[test]
+    fn abscissae_increase_strictly_on_every_path_accepted(
+        start in (any_scale(), any_scale()),
+        steps in prop::collection::vec((any_scale(), any_scale()), 1..40),
+    ) {
+        let mut points = vec![Point2::<World>::new(start.0, start.1)];
+        let (mut x, mut y) = start;
+        for (dx, dy) in steps {
+            x += dx;
+            y += dy;
+            points.push(Point2::new(x, y));
+        }
+        let Some(points) = points.into_iter().collect::<Result<Vec<_>, _>>().ok() else {
+            return Ok(());
+        };
+        match Path::from_waypoints(&points, PathConfig::default()) {
+            Ok(p) => {
+                for w in p.vertices().windows(2) {
+                    prop_assert!(w[1].s.get() > w[0].s.get(), "{:?}", w);
+                }
+                prop_assert!(p.length().get() <= MAX_PATH_LENGTH);
+            }
+            Err(e) => prop_assert!(
+                ["PATH-RANGE", "PATH-WAYPOINTS"].contains(&e.requirement),
+                "{e}"
+            ),
+        }
+    }
 }
 
 // ---------------------------------------------------------------- heading, curvature
@@ -419,10 +566,13 @@ fn path_continues_straight_beyond_its_ends() {
         assert!((q.x() - (last.x() + d * h_end.cos())).abs() < 1e-9);
         assert!((q.y() - (last.y() + d * h_end.sin())).abs() < 1e-9);
     }
-    // Far out the point overflows: an error, not an infinity.
-    let far = path(&[pt(1e308, 0.0), pt(1.5e308, 0.0)]);
-    let e = far.point_at(m(f64::MAX)).unwrap_err();
-    assert_eq!(e.requirement, "LIB-FINITE");
+    // Far out the point is still finite: waypoints lie within 1e7 m of the
+    // origin (PATH-RANGE), so a point at any finite s never overflows.
+    let far = path(&[pt(1e7, 1e7), pt(-1e7, -1e7)]);
+    for s in [f64::MAX, -f64::MAX] {
+        let q = far.point_at(m(s)).unwrap();
+        assert!(q.x().is_finite() && q.y().is_finite());
+    }
 }
 
 // ---------------------------------------------------------------- projection
@@ -691,8 +841,13 @@ fn negative_window_is_refused() {
 
 //= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
 //= type=test
-//# The Frénet error MUST carry c(s) and c(s + lookahead), both evaluated by
-//# the path's smoothed curvature, zero beyond the ends.
+//# The Frénet error MUST carry c(s), the path's smoothed curvature at s, zero
+//# beyond the ends.
+//= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+//= type=test
+//# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+//# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+//# the nearer end when s + lookahead lies beyond an end.
 #[test]
 fn curvature_here_and_ahead_on_the_u_turn() {
     let p = path(&u_turn_points());
@@ -708,15 +863,124 @@ fn curvature_here_and_ahead_on_the_u_turn() {
     let e = p.project(&pose(q.x(), q.y(), FRAC_PI_2), m(-2.0)).unwrap();
     assert!((e.curvature.get() - 1.0 / 3.0).abs() < 1e-3);
     assert!((e.curvature_ahead.get() - 1.0 / 3.0).abs() < 1e-3);
-    // Near the end, looking past it: zero.
+    // Near the end, looking past it: the curvature of the end, a straight one.
     let e = p.project(&pose(1.0, 6.0, PI), m(5.0)).unwrap();
     assert!(e.s.get() > l - 1.5);
-    assert_eq!(e.curvature_ahead.get(), 0.0);
-    // Overflowing lookahead: an error, not an infinity.
-    let err = p
-        .project(&pose(1.0, 6.0, PI), m(f64::MAX))
-        .map(|e| e.curvature_ahead);
-    assert!(err.is_ok() || err.unwrap_err().requirement == "LIB-FINITE");
+    assert_eq!(e.curvature_ahead, p.curvature_at(m(l)));
+    assert!(e.curvature_ahead.get().abs() < 1e-9);
+    // A look-ahead that overflows lies beyond the end: no error.
+    for far in [f64::MAX, -f64::MAX] {
+        let e = p.project(&pose(1.0, 6.0, PI), m(far)).unwrap();
+        let end = if far > 0.0 { l } else { 0.0 };
+        assert_eq!(e.curvature_ahead, p.curvature_at(m(end)));
+    }
+}
+
+/// 10 m east along y = 0, then 5 m of a left arc of radius 5 m (c = 0.2 1/m):
+/// a path that ends in a curve. Mirrored end for end (`reversed`), it starts
+/// with the curve.
+fn ending_on_an_arc(reversed: bool) -> Path {
+    let mut points = line_points(0.0, 0.0, 0.0, 100, 0.1);
+    for q in arc_points(5.0, -FRAC_PI_2, 1.0, 0.1) {
+        points.push(pt(q.x() + 10.0, q.y() + 5.0));
+    }
+    if reversed {
+        points.reverse();
+    }
+    path(&points)
+}
+
+/// The curvature ahead for a robot on the (extended) path at abscissa `s`,
+/// heading along it, with look-ahead `lookahead`.
+fn curvature_ahead_at(p: &Path, s: f64, lookahead: f64) -> f64 {
+    let q = p.point_at(m(s)).unwrap();
+    let h = p.heading_at(m(s)).get();
+    p.project(&pose(q.x(), q.y(), h), m(lookahead))
+        .unwrap()
+        .curvature_ahead
+        .get()
+}
+
+//= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+//= type=test
+//# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+//# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+//# the nearer end when s + lookahead lies beyond an end.
+#[test]
+fn curvature_ahead_does_not_jump_where_the_look_ahead_crosses_an_end() {
+    let v_t = 0.8;
+    for reversed in [false, true] {
+        let p = ending_on_an_arc(reversed);
+        let l = p.length().get();
+        // The curved end: c = ±0.2 there (the arc is exact up to the ends).
+        let (curved_end, straight_end) = if reversed { (0.0, l) } else { (l, 0.0) };
+        assert!((p.curvature_at(m(curved_end)).get().abs() - 0.2).abs() < 1e-3);
+        assert!(p.curvature_at(m(straight_end)).get().abs() < 1e-9);
+        // The robot where s + lookahead crosses each end, looking either way.
+        for (end, lookahead) in [(l, v_t), (l, -v_t), (0.0, v_t), (0.0, -v_t)] {
+            let held = p.curvature_at(m(end)).get();
+            let crossing = end - lookahead;
+            let mut previous = curvature_ahead_at(&p, crossing - 0.05, lookahead);
+            for i in -499..=500 {
+                let s = crossing + 1e-4 * f64::from(i);
+                let c = curvature_ahead_at(&p, s, lookahead);
+                assert!(
+                    (c - previous).abs() < 1e-3,
+                    "reversed {reversed}, end {end}, lookahead {lookahead}: c(s + vT) jumps from {previous} to {c} at s = {s}"
+                );
+                previous = c;
+            }
+            // Beyond the end the curvature of the end is held.
+            let past = if end > 0.0 { 0.5 } else { -0.5 };
+            let beyond = curvature_ahead_at(&p, crossing + past, lookahead);
+            assert_eq!(beyond, held);
+        }
+    }
+}
+
+//= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+//= type=test
+//# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+//# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+//# the nearer end when s + lookahead lies beyond an end.
+#[test]
+fn steering_does_not_jump_where_the_look_ahead_reaches_the_end_of_an_arc() {
+    // Pierre 2022's path tracking (0.8 m/s, T = 1 s, 2 m wheelbase) on a path
+    // ending in an arc of radius 5 m: the feed-forward alone is
+    // atan(2 m · 0.2 1/m) = 0.38 rad, which a zero curvature past the end
+    // dropped within one millimetre of travel.
+    let law = fieldguide::presets::path_tracking().unwrap();
+    let (v, v_t) = (MetersPerSecond::new(0.8).unwrap(), 0.8);
+    let p = ending_on_an_arc(false);
+    let l = p.length().get();
+    let steer = |s: f64| {
+        // 5 cm left of the path, heading along it.
+        let q = p.point_at(m(s)).unwrap();
+        let h = p.heading_at(m(s)).get();
+        let e = p
+            .project(
+                &pose(q.x() - 0.05 * h.sin(), q.y() + 0.05 * h.cos(), h),
+                m(v_t),
+            )
+            .unwrap();
+        steering_command(&law.law, &TrackingError::from(e), Sideslip::ZERO, v)
+            .unwrap()
+            .steering
+            .get()
+    };
+    let crossing = l - v_t;
+    let mut previous = steer(crossing - 0.05);
+    for i in -499..=500 {
+        let s = crossing + 1e-4 * f64::from(i);
+        let delta = steer(s);
+        // At most 0.01 rad per 0.1 mm of travel (the polyline's vertices
+        // every 0.1 m, seen through y and θ̃, move it by about 1e-3 rad).
+        assert!(
+            (delta - previous).abs() < 0.01,
+            "steering jumps from {previous} to {delta} rad at s = {s}"
+        );
+        previous = delta;
+    }
 }
 
 // ---------------------------------------------------------------- properties
@@ -831,13 +1095,13 @@ proptest! {
         let q = pose(qx, qy, 0.0);
         let e = p.project(&q, m(0.0)).unwrap();
         let foot = p.point_at(e.s).unwrap();
-        let d = foot.distance_to(q.position);
+        let d = foot.distance_to(q.position).unwrap().get();
         prop_assert!((d - e.y.get().abs()).abs() < 1e-9 * (1.0 + d));
         let l = p.length().get();
         for i in 0..=400 {
             let s = -20.0 + (l + 40.0) * f64::from(i) / 400.0;
             let other = p.point_at(m(s)).unwrap();
-            prop_assert!(d <= other.distance_to(q.position) + 1e-9);
+            prop_assert!(d <= other.distance_to(q.position).unwrap().get() + 1e-9);
         }
         // The local search with a window covering everything agrees.
         let near = p.project_near(&q, m(0.0), m(0.5 * l), m(l + 1e6)).unwrap();
@@ -864,7 +1128,7 @@ proptest! {
         for i in 0..=100 {
             let s = hint - window + 2.0 * window * f64::from(i) / 100.0;
             let other = p.point_at(m(s)).unwrap();
-            prop_assert!(d <= other.distance_to(q.position) + 1e-9);
+            prop_assert!(d <= other.distance_to(q.position).unwrap().get() + 1e-9);
         }
     }
 

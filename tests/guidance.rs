@@ -1703,8 +1703,8 @@ proptest! {
             let (c, s) = (step.2.cos(), step.2.sin());
             (c * dx + s * dy, -s * dx + c * dy)
         };
-        let p0 = to_new(0.0, line.y_at(0.0));
-        let p1 = to_new(1.0, line.y_at(1.0));
+        let p0 = to_new(0.0, line.y_at(0.0).unwrap());
+        let p1 = to_new(1.0, line.y_at(1.0).unwrap());
         let new_slope = (p1.1 - p0.1) / (p1.0 - p0.0);
         let new_line = RowLine::new(new_slope, m(p0.1 - new_slope * p0.0)).unwrap();
         let fresh = lines::tracking_error(&new_line).unwrap();

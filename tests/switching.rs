@@ -231,6 +231,11 @@ fn a_straight_line_where_the_path_turns_is_caught_ahead() {
     assert_eq!(e.unwrap_err().requirement, "SW-PLAN-AHEAD");
 }
 
+/// An angle wrapped to (−π, π].
+fn wrap(angle: f64) -> f64 {
+    fieldguide::geometry::units::wrap_angle(Radians::new(angle).unwrap()).get()
+}
+
 fn angle() -> impl Strategy<Value = f64> {
     -3.0..3.0f64
 }
@@ -251,8 +256,8 @@ proptest! {
         // The closest point lies on the line.
         let on_line = -phi.sin() * (closest.0 - x0) + phi.cos() * (closest.1 - d);
         prop_assert!(on_line.abs() < 1e-9);
-        let path = error(ry, fieldguide::geometry::units::wrap_angle(psi));
-        let line = error(y_line, fieldguide::geometry::units::wrap_angle(psi - phi));
+        let path = error(ry, wrap(psi));
+        let line = error(y_line, wrap(psi - phi));
         let relative = line_relative_to_path(&line, &path).unwrap();
         prop_assert!((relative.offset.get() - closest.1).abs() < 1e-9);
         prop_assert!((relative.heading.get() - phi).abs() < 1e-9);
@@ -274,7 +279,6 @@ proptest! {
             &[Point2::new(0.0, 0.0).unwrap(), Point2::new(10.0, 0.0).unwrap()],
             PathConfig::default(),
         ).unwrap();
-        let wrap = fieldguide::geometry::units::wrap_angle;
         let path = error(ry, wrap(psi));
         let line = error(y_line, wrap(psi - phi));
         let here = line_relative_to_path(&line, &path).unwrap();

@@ -44,7 +44,10 @@ impl OdometryErrors {
 pub fn increment(from: &Pose2<World>, to: &Pose2<World>) -> (f64, f64) {
     let dx = to.position.x() - from.position.x();
     let dy = to.position.y() - from.position.y();
-    let dpsi = fieldguide::geometry::units::wrap_angle(to.heading.get() - from.heading.get());
+    let dpsi = fieldguide::Radians::new(to.heading.get() - from.heading.get())
+        .map_or(f64::NAN, |a| {
+            fieldguide::geometry::units::wrap_angle(a).get()
+        });
     let mid = from.heading.get() + dpsi / 2.0;
     (dx * mid.cos() + dy * mid.sin(), dpsi)
 }

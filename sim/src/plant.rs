@@ -43,8 +43,8 @@ impl SteeringActuator {
     /// ±rate·h, then saturated.
     #[must_use]
     pub fn advance(&self, current: f64, command: f64, h: f64) -> f64 {
-        let (target, _) = self.limit.clamp(command);
-        let target = target.get();
+        let target =
+            fieldguide::Radians::new(command).map_or(f64::NAN, |c| self.limit.clamp(c).0.get());
         let lagged = if self.time_constant_s > 0.0 {
             target + (current - target) * (-h / self.time_constant_s).exp()
         } else {
@@ -52,7 +52,7 @@ impl SteeringActuator {
         };
         let max_step = self.rate_limit_rad_s * h;
         let next = current + (lagged - current).clamp(-max_step, max_step);
-        self.limit.clamp(next).0.get()
+        fieldguide::Radians::new(next).map_or(f64::NAN, |n| self.limit.clamp(n).0.get())
     }
 }
 

@@ -354,14 +354,17 @@ fn tick(
             index,
             s_m: p.s,
             lateral_error_m: p.lateral,
-            angular_error_rad: fieldguide::geometry::units::wrap_angle(
+            angular_error_rad: fieldguide::Radians::new(
                 heading
                     - setup
                         .world
                         .plots
                         .get(index)
                         .map_or(0.0, |q| q.spec.centre_line(p.s).2),
-            ),
+            )
+            .map_or(f64::NAN, |a| {
+                fieldguide::geometry::units::wrap_angle(a).get()
+            }),
         });
     let hedge = setup.edge.and_then(|e| {
         setup

@@ -107,9 +107,11 @@ impl Sensors {
         let _reserved = rng.gaussian(0.0);
         if let Some(last) = self.last_truth {
             let ds = (truth.distance_m - last.distance_m) * (1.0 + n.odometry_scale_error);
-            let dth = fieldguide::geometry::units::wrap_angle(
-                truth.pose.heading.get() - last.pose.heading.get(),
-            ) + n.odometry_yaw_bias_rad_s * dt
+            let dth = fieldguide::Radians::new(truth.pose.heading.get() - last.pose.heading.get())
+                .map_or(f64::NAN, |a| {
+                    fieldguide::geometry::units::wrap_angle(a).get()
+                })
+                + n.odometry_yaw_bias_rad_s * dt
                 + heading_noise;
             let (x, y, th) = self.odometry;
             let mid = th + dth / 2.0;

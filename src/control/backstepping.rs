@@ -256,7 +256,7 @@ pub fn steering_command(
         libm::tan(beta_r) + length * terms.drive * factor / terms.alpha,
         "steering tangent overflows",
     )?;
-    let raw = libm::atan(tangent) - sideslip.front.get();
+    let raw = Radians::new(libm::atan(tangent) - sideslip.front.get())?;
     let (steering, saturated) = config.vehicle.max_steering.clamp(raw);
     Ok(SteeringCommand {
         steering,

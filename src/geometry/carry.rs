@@ -5,7 +5,7 @@
 use crate::error::{finite, Precondition};
 use crate::geometry::frame::{Odom, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{wrap_angle, Meters, Radians};
+use crate::geometry::units::{wrap_raw, Meters, Radians};
 
 /// The odometry pose `now` expressed in the robot frame of the odometry pose
 /// `then` (the frame a scan taken at `then` is expressed in).
@@ -39,7 +39,7 @@ pub fn moved_lateral(error: &TrackingError, pose: &Pose2<Robot>) -> Result<f64, 
 pub fn straight(y: f64, angular_deviation: f64) -> Result<TrackingError, Precondition> {
     Ok(TrackingError::to_straight_line(
         Meters::new(y)?,
-        Radians::new(wrap_angle(finite(
+        Radians::new(wrap_raw(finite(
             angular_deviation,
             "moved angular error overflows",
         )?))?,

@@ -7,7 +7,7 @@
 use core::fmt::Debug;
 use core::marker::PhantomData;
 
-use super::units::{wrap_angle, Meters, Radians};
+use super::units::{wrap_raw, Meters, Radians};
 use crate::error::{finite, Precondition};
 
 //= spec/library.md#lib-frames-frames-and-sign-conventions
@@ -103,10 +103,11 @@ impl<F: Frame> Point2<F> {
         self.y
     }
 
-    /// Euclidean distance to `other`, in metres (`hypot`, so no intermediate overflow).
-    #[must_use]
-    pub fn distance_to(self, other: Self) -> f64 {
-        libm::hypot(other.x - self.x, other.y - self.y)
+    /// Euclidean distance to `other`, in metres (`hypot`, so no intermediate
+    /// overflow). Errors with `LIB-FINITE` when the distance itself overflows
+    /// (points near `±f64::MAX` apart).
+    pub fn distance_to(self, other: Self) -> Result<Meters, Precondition> {
+        Meters::new(libm::hypot(other.x - self.x, other.y - self.y))
     }
 
     /// The mirror image about the x axis (left and right swapped).
@@ -181,7 +182,7 @@ impl<A: Frame, B: Frame> Transform2<A, B> {
     /// The rotation angle, wrapped to (−π, π].
     #[must_use]
     pub fn angle(&self) -> Radians {
-        Radians(wrap_angle(libm::atan2(self.sin, self.cos)))
+        Radians(wrap_raw(libm::atan2(self.sin, self.cos)))
     }
 
     /// The image in `B` of a point of `A`. Errors only if the result overflows.
@@ -195,7 +196,7 @@ impl<A: Frame, B: Frame> Transform2<A, B> {
     /// The image in `B` of a heading expressed in `A`, wrapped to (−π, π].
     #[must_use]
     pub fn apply_heading(&self, heading: Radians) -> Radians {
-        Radians(wrap_angle(heading.get() + libm::atan2(self.sin, self.cos)))
+        Radians(wrap_raw(heading.get() + libm::atan2(self.sin, self.cos)))
     }
 
     /// The image in `B` of a pose of `A`. Errors only if the position overflows.
@@ -280,5 +281,21 @@ mod tests {
         assert!(Pose2::<World>::new(0.0, 0.0, f64::INFINITY).is_err());
         let huge = Transform2::<Robot, World>::new(f64::MAX, 0.0, 0.0).unwrap();
         assert!(huge.apply(Point2::new(f64::MAX, 0.0).unwrap()).is_err());
+    }
+
+    //= spec/library.md#lib-finite-no-nan-or-infinity
+    //= type=test
+    //# A value returned by the core MUST be finite: a computation whose result
+    //# would be NaN or infinite MUST return a `Precondition` error instead.
+    #[test]
+    fn a_distance_that_overflows_is_an_error() {
+        let far = Point2::<World>::new(f64::MAX, 1e308).unwrap();
+        let e = far.distance_to(Point2::origin()).unwrap_err();
+        assert_eq!(e.requirement, "LIB-FINITE");
+        let near = Point2::<World>::new(3.0, 4.0).unwrap();
+        assert!((near.distance_to(Point2::origin()).unwrap().get() - 5.0).abs() < 1e-15);
+        // The largest finite distance is still a distance.
+        let edge = Point2::<World>::new(f64::MAX, 0.0).unwrap();
+        assert!(edge.distance_to(Point2::origin()).unwrap().get() >= f64::MAX);
     }
 }

@@ -12,19 +12,31 @@
 //! - heading and curvature are smoothed over a window `w` (default 1 m) so that
 //!   c(s) stays meaningful when waypoints carry centimetre GNSS noise;
 //! - before s = 0 and after s = L the path continues straight along its end
-//!   tangents, with zero curvature.
+//!   tangents, with zero curvature; the curvature ahead of the robot,
+//!   c(s + v T), holds the curvature of the nearer end there, so that it does
+//!   not jump when s + v T crosses an end (FRENET-CURVATURE).
 
 use heapless::Vec;
 
 use super::frame::{Point2, Pose2, World};
 use super::tracking::TrackingError;
-use super::units::{wrap_angle, Curvature, Meters, Radians};
-use crate::error::{finite, Precondition};
+use super::units::{wrap_raw, Curvature, Meters, Radians};
+use crate::error::Precondition;
 
 /// Consecutive waypoints closer than this (metres) are duplicates and dropped
 /// (`spec/geometry.md`, PATH-WAYPOINTS). One millimetre is well below the
 /// precision of RTK GNSS (about 1.5 cm), so dropping such points loses nothing.
 pub const MIN_WAYPOINT_SPACING: f64 = 1e-3;
+
+/// The largest magnitude of a waypoint coordinate, metres (`spec/geometry.md`,
+/// PATH-RANGE): a local tangent plane 20 000 km across. Differences of such
+/// coordinates are exact to 2e−9 m, far below [`MIN_WAYPOINT_SPACING`].
+pub const MAX_PATH_COORDINATE: f64 = 1e7;
+
+/// The longest path, metres (PATH-RANGE). Below it the spacing of `f64` is at
+/// most 1.2e−7 m, so each kept waypoint, at least [`MIN_WAYPOINT_SPACING`]
+/// from the last one, adds to s and s increases strictly along the path.
+pub const MAX_PATH_LENGTH: f64 = 1e9;
 
 /// A chord shorter than this (metres) has no usable direction; the heading
 /// then falls back to the direction of the polyline segment at s.
@@ -140,7 +152,9 @@ impl From<FrenetError> for TrackingError {
 /// waypoints (Pierre 2022, section 2.1; `spec/geometry.md`).
 ///
 /// Invariants: at least 2 vertices, consecutive vertices at least
-/// [`MIN_WAYPOINT_SPACING`] apart, s strictly increasing from 0 to L.
+/// [`MIN_WAYPOINT_SPACING`] apart, coordinates within
+/// [`MAX_PATH_COORDINATE`], L at most [`MAX_PATH_LENGTH`], s strictly
+/// increasing from 0 to L.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReferencePath<const N: usize> {
     vertices: Vec<PathVertex, N>,
@@ -178,9 +192,10 @@ impl<const N: usize> ReferencePath<N> {
     ///
     /// Consecutive waypoints closer than [`MIN_WAYPOINT_SPACING`] to the last
     /// kept one are dropped. Errors: a smoothing window ≤ 0 (`PATH-CONFIG`),
-    /// fewer than 2 distinct waypoints (`PATH-WAYPOINTS`), more than `N`
-    /// distinct waypoints (`PATH-CAPACITY`), an arc length that overflows
-    /// (`LIB-FINITE`).
+    /// a waypoint coordinate beyond ±[`MAX_PATH_COORDINATE`] or a length
+    /// beyond [`MAX_PATH_LENGTH`] (`PATH-RANGE`), fewer than 2 distinct
+    /// waypoints (`PATH-WAYPOINTS`), more than `N` distinct waypoints
+    /// (`PATH-CAPACITY`).
     //= spec/geometry.md#path-waypoints-distinct-waypoints
     //# A waypoint closer than `MIN_WAYPOINT_SPACING` (1 mm) to the last kept
     //# waypoint MUST be dropped, not reported as an error.
@@ -193,6 +208,12 @@ impl<const N: usize> ReferencePath<N> {
     //= spec/geometry.md#path-arc-length-curvilinear-abscissa
     //# The curvilinear abscissa s of a vertex MUST be the length of the polyline
     //# through the kept waypoints from the first one to that vertex.
+    //= spec/geometry.md#path-range-coordinates-and-length-within-range
+    //# A path MUST be refused with the `PATH-RANGE` error when a waypoint has a
+    //# coordinate of magnitude above `MAX_PATH_COORDINATE` (1e7 m) or when its
+    //# length L exceeds `MAX_PATH_LENGTH` (1e9 m).
+    //= spec/geometry.md#path-range-coordinates-and-length-within-range
+    //# The abscissae of consecutive vertices of a path MUST increase strictly.
     pub fn from_waypoints(
         points: &[Point2<World>],
         config: PathConfig,
@@ -201,14 +222,25 @@ impl<const N: usize> ReferencePath<N> {
         let mut vertices: Vec<PathVertex, N> = Vec::new();
         let mut last: Option<(Point2<World>, f64)> = None;
         for &p in points {
+            if libm::fabs(p.x()) > MAX_PATH_COORDINATE || libm::fabs(p.y()) > MAX_PATH_COORDINATE {
+                return Err(Precondition::new(
+                    "PATH-RANGE",
+                    "waypoint coordinate beyond 1e7 m",
+                ));
+            }
             let s = match last {
                 None => 0.0,
                 Some((q, s_q)) => {
-                    let d = q.distance_to(p);
+                    // Within the coordinate range: at most 2.9e7 m, never overflows.
+                    let d = q.distance_to(p)?.get();
                     if d < MIN_WAYPOINT_SPACING {
                         continue;
                     }
-                    finite(s_q + d, "path arc length overflows")?
+                    let s = s_q + d;
+                    if s > MAX_PATH_LENGTH {
+                        return Err(Precondition::new("PATH-RANGE", "path length beyond 1e9 m"));
+                    }
+                    s
                 }
             };
             let vertex = PathVertex {
@@ -307,8 +339,10 @@ impl<const N: usize> ReferencePath<N> {
 
     /// The Frénet error of `pose` at the globally closest point of the path
     /// (Pierre 2022, section 2.1; FRENET-CLOSEST). `lookahead` (metres, any
-    /// sign, usually v T) gives `curvature_ahead = c(s + lookahead)`.
-    /// O(N). Errors with `LIB-FINITE` when a distance or abscissa overflows.
+    /// sign, usually v T) gives `curvature_ahead = c(s + lookahead)`, held at
+    /// the curvature of the nearer end when s + lookahead lies beyond it
+    /// (FRENET-CURVATURE). O(N). Errors with `LIB-FINITE` when a distance or
+    /// abscissa overflows.
     //= spec/geometry.md#frenet-closest-closest-point
     //# `project` MUST return the abscissa s of a point of the extended path
     //# (the polyline and its two end extensions) closest to the robot position.
@@ -461,8 +495,12 @@ impl<const N: usize> ReferencePath<N> {
     //# The angular deviation MUST be θ̃ = θ − θ_Γ(s), the robot heading minus
     //# the smoothed path heading at s, wrapped to (−π, π].
     //= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
-    //# The Frénet error MUST carry c(s) and c(s + lookahead), both evaluated by
-    //# the path's smoothed curvature, zero beyond the ends.
+    //# The Frénet error MUST carry c(s), the path's smoothed curvature at s, zero
+    //# beyond the ends.
+    //= spec/geometry.md#frenet-curvature-curvature-at-and-ahead-of-s
+    //# The Frénet error MUST carry the curvature ahead c(min(max(s + lookahead,
+    //# 0), L)): the smoothed curvature at s + lookahead, held at the curvature of
+    //# the nearer end when s + lookahead lies beyond an end.
     //= spec/geometry.md#frenet-ends-before-the-start-and-past-the-end
     //# The position MUST be `BeforeStart` when s < 0, `PastEnd` when s > L and
     //# `Within` otherwise.
@@ -484,10 +522,11 @@ impl<const N: usize> ReferencePath<N> {
         let s = Meters::new(c.s)?;
         let y = Meters::new(y)?;
         let path_heading = self.heading_at(s);
-        let angular_deviation = Radians::new(wrap_angle(pose.heading.get() - path_heading.get()))?;
+        let angular_deviation = Radians::new(wrap_raw(pose.heading.get() - path_heading.get()))?;
         let curvature = self.curvature_at(s);
-        let ahead = Meters::new(s.get() + lookahead.get())?;
-        let curvature_ahead = self.curvature_at(ahead);
+        // An abscissa that overflows lies beyond an end: the clamp takes it there.
+        let ahead = clamp(s.get() + lookahead.get(), 0.0, self.length);
+        let curvature_ahead = self.curvature_at(Meters(ahead));
         let position = if s.get() < 0.0 {
             PathPosition::BeforeStart
         } else if s.get() > self.length {
@@ -570,7 +609,7 @@ impl<const N: usize> ReferencePath<N> {
                 sb.position.x() - sa.position.x(),
             )
         };
-        Radians::new(wrap_angle(angle)).unwrap_or(Radians::ZERO)
+        Radians::new(wrap_raw(angle)).unwrap_or(Radians::ZERO)
     }
 
     /// Midpoint of the clipped window around `x`: the abscissa whose tangent the
@@ -598,7 +637,7 @@ impl<const N: usize> ReferencePath<N> {
         if arc < MIN_CHORD {
             return Curvature::ZERO;
         }
-        let turn = wrap_angle(self.smoothed_heading(b).get() - self.smoothed_heading(a).get());
+        let turn = wrap_raw(self.smoothed_heading(b).get() - self.smoothed_heading(a).get());
         Curvature::new(turn / arc).unwrap_or(Curvature::ZERO)
     }
 }

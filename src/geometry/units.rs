@@ -83,14 +83,10 @@ finite_unit!(
     "seconds (s)"
 );
 
-/// Wraps any finite angle to (−π, π].
-///
-/// Unit types hold one meaning each (`spec/library.md`, LIB-UNITS).
-//= spec/library.md#lib-frames-frames-and-sign-conventions
-//# Angles MUST be counter-clockwise positive and, where the core returns an
-//# orientation, wrapped to (−π, π].
-#[must_use]
-pub fn wrap_angle(angle: f64) -> f64 {
+/// `angle` (radians) wrapped to (−π, π]; NaN for NaN or infinite input. The
+/// raw form used inside the core, where every result goes through a unit
+/// constructor or is finite by construction.
+pub(crate) fn wrap_raw(angle: f64) -> f64 {
     let r = libm::remainder(angle, TAU);
     // `remainder` gives [−π, π]; −π is mapped to π so the interval is (−π, π].
     if r <= -PI {
@@ -100,11 +96,23 @@ pub fn wrap_angle(angle: f64) -> f64 {
     }
 }
 
+/// The same direction as `angle`, wrapped to (−π, π].
+///
+/// An angle is finite by its type, so the result always is: there is no
+/// angle to wrap in a NaN or an infinity (`spec/library.md`, LIB-FINITE).
+//= spec/library.md#lib-frames-frames-and-sign-conventions
+//# Angles MUST be counter-clockwise positive and, where the core returns an
+//# orientation, wrapped to (−π, π].
+#[must_use]
+pub fn wrap_angle(angle: Radians) -> Radians {
+    Radians(wrap_raw(angle.0))
+}
+
 impl Radians {
-    /// The same direction, wrapped to (−π, π].
+    /// The same direction, wrapped to (−π, π] ([`wrap_angle`]).
     #[must_use]
     pub fn wrapped(self) -> Self {
-        Self(wrap_angle(self.0))
+        wrap_angle(self)
     }
 }
 
@@ -156,10 +164,16 @@ mod tests {
     //# orientation, wrapped to (−π, π].
     #[test]
     fn wrapping_lands_in_the_half_open_interval() {
-        assert_eq!(wrap_angle(PI), PI);
-        assert_eq!(wrap_angle(-PI), PI);
-        assert!((wrap_angle(3.0 * PI) - PI).abs() < 1e-12);
-        assert!((wrap_angle(-0.5 - TAU) + 0.5).abs() < 1e-12);
-        assert!((wrap_angle(1e6) - libm::remainder(1e6, TAU)).abs() < 1e-9);
+        let w = |a: f64| wrap_angle(Radians::new(a).unwrap()).get();
+        assert_eq!(w(PI), PI);
+        assert_eq!(w(-PI), PI);
+        assert!((w(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((w(-0.5 - TAU) + 0.5).abs() < 1e-12);
+        assert!((w(1e6) - libm::remainder(1e6, TAU)).abs() < 1e-9);
+        // The largest angles wrap to a finite angle too.
+        for a in [f64::MAX, -f64::MAX, 1e300, f64::MIN_POSITIVE, 5e-324, -0.0] {
+            let r = w(a);
+            assert!(r.is_finite() && r > -PI && r <= PI, "{a}: {r}");
+        }
     }
 }

@@ -66,14 +66,14 @@ impl SteeringLimit {
     //# The steering command MUST lie within [−δ_max, δ_max]; a law output
     //# beyond it MUST be clamped to the nearer bound and reported as saturated.
     #[must_use]
-    pub fn clamp(self, steering: f64) -> (Radians, bool) {
+    pub fn clamp(self, steering: Radians) -> (Radians, bool) {
         let max = self.0.get();
-        if steering > max {
+        if steering.get() > max {
             (Radians(max), true)
-        } else if steering < -max {
+        } else if steering.get() < -max {
             (Radians(-max), true)
         } else {
-            (Radians(steering), false)
+            (steering, false)
         }
     }
 }

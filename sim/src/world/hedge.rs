@@ -287,7 +287,9 @@ impl HedgeSpec {
 
 /// `angle` wrapped to (−π, π].
 fn wrap(angle: f64) -> f64 {
-    fieldguide::geometry::units::wrap_angle(angle)
+    fieldguide::Radians::new(angle).map_or(f64::NAN, |a| {
+        fieldguide::geometry::units::wrap_angle(a).get()
+    })
 }
 
 /// A row of posts: `count` circles of `radius` along a line from `start`

@@ -145,7 +145,11 @@ impl<const N: usize> Accumulator<N> {
         let mut kept = Deque::<Selected<Odom>, N>::new();
         let mut dropped = 0_usize;
         while let Some(entry) = self.entries.pop_front() {
-            let near = entry.reference().distance_to(odom.position) <= self.keep_distance.get();
+            // A distance that overflows is farther than any keep distance.
+            let near = entry
+                .reference()
+                .distance_to(odom.position)
+                .is_ok_and(|d| d.get() <= self.keep_distance.get());
             if near {
                 let _ = kept.push_back(entry);
             } else {

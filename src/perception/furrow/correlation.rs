@@ -9,6 +9,15 @@ use crate::geometry::units::Meters;
 /// measures; they count as 0 so that squared sums stay finite (FUR-CORRELATION).
 pub const MAX_SAMPLE: f64 = 1.0e6;
 
+/// The grid the correlation reads samples on, metres: 2⁻²⁴ m ≈ 6e−8 m, far
+/// below any LiDAR's resolution (FUR-CORRELATION). Each sample is rounded to
+/// the nearest multiple of it, so a height below half of it counts as 0, and
+/// the sums of eq. 13 are sums of integers, exact whatever the heights.
+pub const SAMPLE_QUANTUM: f64 = 1.0 / 16_777_216.0;
+
+/// 1 / [`SAMPLE_QUANTUM`], exactly.
+const PER_QUANTUM: f64 = 16_777_216.0;
+
 /// The rectangular plant model of eq. 12, with zero margins (FUR-TEMPLATE).
 ///
 /// Template index `i` runs over `[−half, half]` with `half = (width − 1)/2 +
@@ -138,12 +147,89 @@ pub fn height_signal(height: Option<Meters>, floor: Meters) -> f64 {
     }
 }
 
-/// A sample as the correlation reads it: non-finite or absurd values count as 0.
-fn sample(value: f64) -> f64 {
+/// 1.5 · 2⁵²: added to a number of magnitude below 2⁵¹, it rounds that
+/// number to the nearest whole one (ties to even) and leaves it in the low
+/// bits of the sum, which lies in [2⁵², 2⁵³).
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+
+/// The bits of [`ROUNDER`].
+const ROUNDER_BITS: u64 = ROUNDER.to_bits();
+
+/// A sample as the correlation reads it, in multiples of [`SAMPLE_QUANTUM`]:
+/// the value rounded to the nearest multiple (ties to even); non-finite or
+/// absurd values count as 0. |result| ≤ 10⁶ · 2²⁴ < 2⁴⁴.
+fn sample(value: f64) -> i64 {
     if value.is_finite() && libm::fabs(value) <= MAX_SAMPLE {
-        value
+        // An exact scaling by a power of two (|scaled| < 2⁴⁴), rounded by the
+        // addition; the difference of the bits is the whole number, in two's
+        // complement.
+        let sum = value * PER_QUANTUM + ROUNDER;
+        i64::from_ne_bytes(sum.to_bits().wrapping_sub(ROUNDER_BITS).to_ne_bytes())
     } else {
-        0.0
+        0
+    }
+}
+
+/// An exact integer sum as an `f64`: one rounding when it fits an `i64`
+/// (as every window of real heights does), else at most four (relative
+/// error below 4 · 2⁻⁵³), from its 32-bit limbs.
+fn to_f64(v: i128) -> f64 {
+    if let Ok(small) = i64::try_from(v) {
+        // small = high · 2³² + low, high in i32, low in u32.
+        let high = i32::try_from(small.wrapping_shr(32)).unwrap_or(0);
+        let low = u32::try_from(small & 0xffff_ffff).unwrap_or(0);
+        return f64::from(high) * 4_294_967_296.0 + f64::from(low);
+    }
+    let magnitude = v.unsigned_abs();
+    let mut x = 0.0_f64;
+    for shift in [96_u32, 64, 32, 0] {
+        let limb = u32::try_from(magnitude.wrapping_shr(shift) & 0xffff_ffff).unwrap_or(0);
+        x = x * 4_294_967_296.0 + f64::from(limb);
+    }
+    if v < 0 {
+        -x
+    } else {
+        x
+    }
+}
+
+/// The exact sums of one window: `S` over the support and `A` over the whole
+/// template, in quanta and squared quanta. With |sample| < 2⁴⁴ and at most
+/// 2³² samples (the template length fits `u32`), |S| < 2⁷⁶ and A < 2¹²⁰
+/// (a square below 2⁸⁸): no integer operation wraps, so the wrapping ones
+/// are exact.
+#[derive(Default)]
+struct Sums {
+    support: i128,
+    energy: i128,
+}
+
+impl Sums {
+    fn add_energy(&mut self, z: i64) {
+        self.energy = self
+            .energy
+            .wrapping_add(i128::from(z).wrapping_mul(i128::from(z)));
+    }
+
+    fn remove_energy(&mut self, z: i64) {
+        self.energy = self
+            .energy
+            .wrapping_sub(i128::from(z).wrapping_mul(i128::from(z)));
+    }
+
+    fn add_support(&mut self, z: i64) {
+        self.support = self.support.wrapping_add(i128::from(z));
+    }
+
+    fn remove_support(&mut self, z: i64) {
+        self.support = self.support.wrapping_sub(i128::from(z));
+    }
+
+    /// c = h S / sqrt(A R), back in metres (exact scalings by powers of two).
+    fn score(&self, template: &Template) -> f64 {
+        let s = to_f64(self.support) * SAMPLE_QUANTUM;
+        let a = to_f64(self.energy) * (SAMPLE_QUANTUM * SAMPLE_QUANTUM);
+        score(template.height().get() * s, a, template.energy())
     }
 }
 
@@ -168,7 +254,10 @@ fn score(numerator: f64, a: f64, r: f64) -> f64 {
 /// `out[k] = Σ_i z_r[i] z_a[k+i] / sqrt(A R)` with `A = Σ_i z_a[k+i]²`,
 /// `R = Σ_i z_r[i]²`, `i ∈ [−half, half]`, for every centre `k` where the whole
 /// template fits (`half ≤ k < n − half`); `out[k] = 0` elsewhere and where
-/// `A = 0`. Samples that are not finite or exceed [`MAX_SAMPLE`] count as 0.
+/// `A = 0`. Samples are read on the grid of [`SAMPLE_QUANTUM`] (rounded to
+/// the nearest multiple) and the sums are exact; samples that are not finite
+/// or exceed [`MAX_SAMPLE`] count as 0. Since z_r is h_ref on the support and
+/// 0 elsewhere, Σ_i z_r[i] z_a[k+i] = h_ref · Σ_support z_a[k+i].
 ///
 /// Errors with `FUR-CORRELATION` when `out` is shorter than `signal`.
 //= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
@@ -183,7 +272,6 @@ pub fn correlate_direct(
 ) -> Result<(), Precondition> {
     let out = prepare(signal, out)?;
     let half = template.half_length();
-    let r = template.energy();
     for (k, slot) in out.iter_mut().enumerate() {
         let Some(start) = k.checked_sub(half) else {
             continue;
@@ -194,16 +282,17 @@ pub fn correlate_direct(
         else {
             continue;
         };
-        let mut numerator = 0.0;
-        let mut a = 0.0;
+        let mut sums = Sums::default();
         let mut offset = 0_isize.saturating_sub_unsigned(half);
         for &z in window {
             let z = sample(z);
-            numerator += template.value(offset) * z;
-            a += z * z;
+            if template.value(offset) > 0.0 {
+                sums.add_support(z);
+            }
+            sums.add_energy(z);
             offset = offset.saturating_add(1);
         }
-        *slot = score(numerator, a, r);
+        *slot = sums.score(template);
     }
     Ok(())
 }
@@ -218,60 +307,21 @@ fn prepare<'o>(signal: &[f64], out: &'o mut [f64]) -> Result<&'o mut [f64], Prec
     Ok(out)
 }
 
-/// Running sums over a sliding window, compensated (Neumaier) so that the
-/// rounding of large samples that left the window does not swamp small ones
-/// still in it, with an exact count of non-zero samples: when the window
-/// holds none the sum is reset to exactly 0.
-#[derive(Default)]
-struct Running {
-    sum: f64,
-    compensation: f64,
-    nonzero: usize,
-}
-
-impl Running {
-    fn accumulate(&mut self, value: f64) {
-        let t = self.sum + value;
-        if libm::fabs(self.sum) >= libm::fabs(value) {
-            self.compensation += (self.sum - t) + value;
-        } else {
-            self.compensation += (value - t) + self.sum;
-        }
-        self.sum = t;
-    }
-
-    fn add(&mut self, value: f64) {
-        if value != 0.0 {
-            self.accumulate(value);
-            self.nonzero = self.nonzero.saturating_add(1);
-        }
-    }
-
-    fn remove(&mut self, value: f64) {
-        if value != 0.0 {
-            self.accumulate(-value);
-            self.nonzero = self.nonzero.saturating_sub(1);
-            if self.nonzero == 0 {
-                self.sum = 0.0;
-                self.compensation = 0.0;
-            }
-        }
-    }
-
-    fn value(&self) -> f64 {
-        self.sum + self.compensation
-    }
-}
-
 /// The normalised correlation of eq. 13, `O(N)` whatever the template length:
 /// the support sum `S` and the window energy `A` slide by one ray per centre
 /// (one sample enters, one leaves), and `c[k] = height · S / sqrt(A R)`.
 ///
-/// Same result as [`correlate_direct`] up to rounding, same outputs where the
-/// template does not fit, same errors.
+/// The sums are integers in quanta of [`SAMPLE_QUANTUM`], so sliding them is
+/// exact: the result is [`correlate_direct`]'s, bit for bit, whatever the
+/// heights (a tall sample that left the window leaves no rounding behind),
+/// with the same outputs where the template does not fit and the same errors.
 //= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
 //# The scores of a window of N rays MUST be computed with running sums, in
 //# O(N) operations whatever the template length.
+//= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
+//# Each sample z_a MUST be read as the nearest multiple of `SAMPLE_QUANTUM`
+//# (2⁻²⁴ m), and the running sums MUST equal the sums of the definition
+//# exactly, whatever the heights.
 pub fn correlate(signal: &[f64], template: &Template, out: &mut [f64]) -> Result<(), Precondition> {
     let out = prepare(signal, out)?;
     let n = signal.len();
@@ -282,35 +332,30 @@ pub fn correlate(signal: &[f64], template: &Template, out: &mut [f64]) -> Result
     let half = template.half_length();
     let half_width = template.half_width();
     let margin = template.margin();
-    let r = template.energy();
-    let h = template.height().get();
-    let z = |i: usize| signal.get(i).copied().map_or(0.0, sample);
+    let z = |i: usize| signal.get(i).copied().map_or(0, sample);
 
     // The first window: centre `half`, samples [0, length), support [margin, margin + width).
-    let mut support = Running::default();
-    let mut energy = Running::default();
+    let mut sums = Sums::default();
     for i in 0..length {
         let v = z(i);
-        energy.add(v * v);
+        sums.add_energy(v);
         if i >= margin && i < margin.saturating_add(template.width()) {
-            support.add(v);
+            sums.add_support(v);
         }
     }
     let last = n.saturating_sub(half);
     for k in half..last {
         if let Some(slot) = out.get_mut(k) {
-            *slot = score(h * support.value(), energy.value(), r);
+            *slot = sums.score(template);
         }
         // Slide to centre k + 1: the window loses k − half and gains k + half + 1,
         // the support loses k − half_width and gains k + half_width + 1.
         let enter = k.saturating_add(half).saturating_add(1);
         if enter < n {
-            let leave = z(k.saturating_sub(half));
-            energy.remove(leave * leave);
-            let v = z(enter);
-            energy.add(v * v);
-            support.remove(z(k.saturating_sub(half_width)));
-            support.add(z(k.saturating_add(half_width).saturating_add(1)));
+            sums.remove_energy(z(k.saturating_sub(half)));
+            sums.add_energy(z(enter));
+            sums.remove_support(z(k.saturating_sub(half_width)));
+            sums.add_support(z(k.saturating_add(half_width).saturating_add(1)));
         }
     }
     Ok(())

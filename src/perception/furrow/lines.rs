@@ -43,10 +43,13 @@ impl RowLine {
         self.intercept
     }
 
-    /// The line's y at `x` m.
-    #[must_use]
-    pub fn y_at(&self, x: f64) -> f64 {
-        self.slope * x + self.intercept.get()
+    /// The line's y at `x` m. Errors with `LIB-FINITE` when `x` is not finite
+    /// or the value overflows.
+    pub fn y_at(&self, x: f64) -> Result<f64, Precondition> {
+        finite(
+            self.slope * finite(x, "row line abscissa must be finite")? + self.intercept.get(),
+            "row line value overflows",
+        )
     }
 }
 

@@ -409,7 +409,8 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
                 None => (None, None),
             },
             RowMode::Two(spacing) => match select_pair(&maxima, &spacing, reference_y) {
-                Some(p) => (Some(Selected::Two(p.points())), Some(p.weaker_score())),
+                // Scores of the correlation are finite: `weaker_score` cannot fail here.
+                Some(p) => (Some(Selected::Two(p.points())), p.weaker_score().ok()),
                 None => (None, None),
             },
         };

@@ -7,7 +7,7 @@ use heapless::Vec;
 
 use super::correlation::Template;
 use super::scan::ScanPoint;
-use crate::error::Precondition;
+use crate::error::{finite, Precondition};
 use crate::geometry::frame::{Frame, Point2, Robot};
 use crate::geometry::units::Meters;
 
@@ -194,9 +194,12 @@ impl Pair<Maximum> {
     }
 
     /// The weaker of the two maxima's scores (the furrow quality, FUR-QUALITY).
-    #[must_use]
-    pub fn weaker_score(&self) -> f64 {
-        self.left.score.min(self.right.score)
+    /// Errors with `LIB-FINITE` when a score is not finite (a maximum built
+    /// by hand: the correlation's scores are in [−1, 1]).
+    pub fn weaker_score(&self) -> Result<f64, Precondition> {
+        let left = finite(self.left.score, "left maximum's score must be finite")?;
+        let right = finite(self.right.score, "right maximum's score must be finite")?;
+        Ok(left.min(right))
     }
 }
 

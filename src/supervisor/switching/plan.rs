@@ -5,7 +5,7 @@
 use crate::error::{finite, Precondition};
 use crate::geometry::path::ReferencePath;
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{wrap_angle, Meters, Radians};
+use crate::geometry::units::{wrap_raw, Meters, Radians};
 
 /// Where a behaviour's line lies relative to the planned path.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,7 +56,7 @@ impl PathAhead {
                 "look-ahead distance must not be negative",
             ));
         }
-        let ahead = Meters(s.get() + distance.get());
+        let ahead = Meters::new(s.get() + distance.get())?;
         let here = path.point_at(s)?;
         let there = path.point_at(ahead)?;
         let heading = path.heading_at(s).get();
@@ -66,7 +66,7 @@ impl PathAhead {
             distance,
             along: Meters(finite(cos * dx + sin * dy, "path look-ahead overflows")?),
             left: Meters(finite(cos * dy - sin * dx, "path look-ahead overflows")?),
-            turn: Radians(wrap_angle(path.heading_at(ahead).get() - heading)),
+            turn: Radians(wrap_raw(path.heading_at(ahead).get() - heading)),
         })
     }
 
@@ -109,7 +109,7 @@ pub fn line_relative_to_path_ahead(
     ahead: &PathAhead,
 ) -> Result<LineRelativeToPath, Precondition> {
     // The line's heading in the path frame at s; the robot is at (0, y_path).
-    let delta = wrap_angle(path.angular_deviation.get() - line.angular_deviation.get());
+    let delta = wrap_raw(path.angular_deviation.get() - line.angular_deviation.get());
     let (sin_d, cos_d) = (libm::sin(delta), libm::cos(delta));
     let (y_line, y_path, d) = (line.y.get(), path.y.get(), ahead.distance.get());
     // The line's point closest to the robot, moved d along the line.
@@ -123,7 +123,7 @@ pub fn line_relative_to_path_ahead(
     )?;
     Ok(LineRelativeToPath {
         offset: Meters(offset),
-        heading: Radians(wrap_angle(delta - turn)),
+        heading: Radians(wrap_raw(delta - turn)),
     })
 }
 
