@@ -589,10 +589,11 @@ where
             extra_used,
         };
         let mut behaviours = Vec::<BehaviourStatus, K>::new();
+        let mut ahead = None;
         for (estimate, b) in estimates.iter().zip(self.config.behaviours()) {
-            let reference = frenet
-                .as_ref()
-                .map(|f| PlanReference::new(self.path, f, b.plan));
+            let reference = frenet.as_ref().map(|f| {
+                PlanReference::new(self.path, f, b.plan, estimate.error.is_some(), &mut ahead)
+            });
             // One status per configured behaviour, at most K.
             let _ = behaviours.push(behaviour_status(
                 estimate,
@@ -747,16 +748,34 @@ impl PlanReference {
     //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
     //# The path ahead MUST be taken at the tolerance's look-ahead from the
     //# projection's abscissa.
+    ///
+    /// The path ahead is computed only for a behaviour with a line to check
+    /// (`needed`), and once per tick for each look-ahead: `cache` holds the
+    /// last one (look-ahead bits, path ahead).
     fn new<const N: usize>(
         path: &ReferencePath<N>,
         frenet: &FrenetError,
         plan: Option<PlanTolerance>,
+        needed: bool,
+        cache: &mut Option<(u64, Option<PathAhead>)>,
     ) -> Self {
         let check = plan.map(|tolerance| {
-            let ahead = if tolerance.lookahead().get() > 0.0 {
-                PathAhead::on_path(path, frenet.s, tolerance.lookahead()).ok()
-            } else {
+            let lookahead = tolerance.lookahead();
+            // A Meters is finite: not above zero is at or below it.
+            let ahead = if lookahead.get() <= 0.0 {
                 Some(PathAhead::HERE)
+            } else if !needed {
+                // Never read: without a line the behaviour is consistent.
+                None
+            } else {
+                match *cache {
+                    Some((bits, ahead)) if bits == lookahead.get().to_bits() => ahead,
+                    _ => {
+                        let ahead = PathAhead::on_path(path, frenet.s, lookahead).ok();
+                        *cache = Some((lookahead.get().to_bits(), ahead));
+                        ahead
+                    }
+                }
             };
             (tolerance, ahead)
         });
