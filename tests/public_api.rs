@@ -1,0 +1,1545 @@
+//! Every public function and method of the core, called with values of every
+//! kind (`spec/library.md`, LIB-FINITE and LIB-NO-PANIC): ordinary ones,
+//! magnitudes from 1e-300 to 1e300 of either sign, subnormals, ±0, the
+//! extremes of `f64` and, wherever a raw `f64` is accepted, NaN and ±∞.
+//! Values of the unit types are drawn from the same finite mix, so a huge
+//! `Meters` or a subnormal `Radians` reaches every function that takes one.
+//!
+//! Each call goes through `check!`, which asserts that what comes back holds
+//! no NaN and no infinity anywhere, private fields included: a finite value,
+//! or an error. A panic fails the property like a failed assertion.
+//!
+//! `the_property_tests_call_every_public_function` keeps this file complete:
+//! it scans `src/**/*.rs` for `pub fn` and `pub const fn` (outside
+//! `#[cfg(test)]` and `#[cfg(doctest)]`) and for the methods declared by
+//! public traits, and fails when one has no `check!` here, or when a
+//! `check!` names a function that no longer exists. A new public function
+//! therefore needs a call below before CI passes.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic,
+    clippy::as_conversions,
+    clippy::arithmetic_side_effects,
+    clippy::float_cmp,
+    clippy::too_many_lines,
+    clippy::too_many_arguments
+)]
+// `check!` gives back every result it checked, used or not.
+#![allow(unused_must_use)]
+
+mod edge_support;
+mod furrow_common;
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use core::f64::consts::{FRAC_PI_2, PI};
+use core::fmt::Debug;
+
+use fieldguide::control::backstepping::{
+    steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Gains,
+    Inversion,
+};
+use fieldguide::control::ControlLaw;
+use fieldguide::error::finite;
+use fieldguide::geometry::carry::{moved_lateral, moved_line_error, pose_in_scan_frame, straight};
+use fieldguide::geometry::fit::{fit_line, fit_parabola, LineFit, ParabolaFit};
+use fieldguide::geometry::path::{PathConfig, ReferencePath};
+use fieldguide::geometry::units::wrap_angle;
+use fieldguide::guidance::{
+    BehaviourId, Guidance, GuidanceConfig, GuidanceParams, Mode as GuidanceMode, RoutedScan,
+    TickInput,
+};
+use fieldguide::model::bicycle::{
+    frenet_rates, world_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
+};
+use fieldguide::model::{Actuation, Command, Vehicle};
+use fieldguide::perception::edge::{
+    build_chain, build_chain_into, detect, detect_points, rotation_contact, scan_into,
+    scan_to_points as edge_scan_to_points, tracking_error as edge_tracking_error,
+    translation_contact, Chain, ChainEnd, EdgeConfig, EdgeDetector, EdgeDetectorConfig, EdgeLine,
+    EdgeParameters, EdgeQuality, ScanPoints, Side,
+};
+use fieldguide::perception::furrow::accumulation::{Accumulator, Selected};
+use fieldguide::perception::furrow::correlation::{
+    correlate, correlate_direct, height_signal, Template,
+};
+use fieldguide::perception::furrow::lines::{
+    fit_row_line, mean_tracking_error, tracking_error as row_tracking_error, RowLine,
+};
+use fieldguide::perception::furrow::quality::furrow_verdict;
+use fieldguide::perception::furrow::scan::{
+    scan_to_points as furrow_scan_to_points, MountPose, ScanPoint, ScanWindow,
+};
+use fieldguide::perception::furrow::selection::{
+    local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing,
+};
+use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams, RowLines, Rows};
+use fieldguide::perception::{
+    AnyDetector, AnyDetectorConfig, AnyLine, Better, Detection, Detector, HeldLine,
+    QualityThresholds, RangeLimits, Scan, Verdict,
+};
+use fieldguide::presets;
+use fieldguide::supervisor::switching::{
+    delay_ticks, line_relative_to_path, line_relative_to_path_ahead, step as machine_step,
+    BehaviourConfig, Input, PathAhead, PlanTolerance, Report, Switching, SwitchingConfig,
+    SwitchingState,
+};
+use fieldguide::{
+    Curvature, Meters, MetersPerSecond, Odom, Point2, Pose2, Precondition, Radians,
+    RadiansPerSecond, Robot, Seconds, Sensor, TrackingError, Transform2, World,
+};
+use proptest::prelude::*;
+
+// ---------------------------------------------------------------- the check
+
+/// Calls the public function named by `key` (as the coverage test below
+/// finds it in `src/`: module, type or trait, name) and asserts that the
+/// result holds no NaN and no infinity; gives the result back.
+macro_rules! check {
+    ($key:literal, $call:expr) => {{
+        let value = $call;
+        finite_or_error($key, stringify!($call), &value);
+        value
+    }};
+}
+
+/// Asserts that the `Debug` form of `value` (every field, private ones
+/// included, down to each `f64`) names no NaN and no infinity, and that the
+/// call really is the function its key names.
+fn finite_or_error<T: Debug>(key: &str, call: &str, value: &T) {
+    let name = key.rsplit("::").next().unwrap_or(key);
+    assert!(call.contains(name), "check!({key}) calls `{call}`");
+    all_finite(&format!("{key} (`{call}`)"), value);
+}
+
+/// Asserts that the `Debug` form of `value` names no NaN and no infinity.
+fn all_finite<T: Debug>(what: &str, value: &T) {
+    let text = format!("{value:?}");
+    let non_finite = text
+        .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .any(|token| token == "NaN" || token == "inf");
+    if non_finite {
+        let shown: String = text.chars().take(600).collect();
+        panic!("{what} gave a non-finite value: {shown}");
+    }
+}
+
+// ---------------------------------------------------------------- values
+
+/// 10^e with a sign.
+fn signed_power(e: f64, negative: bool) -> f64 {
+    let v = 10f64.powf(e);
+    if negative {
+        -v
+    } else {
+        v
+    }
+}
+
+/// Any finite `f64`: ordinary values, 1e-300 to 1e300 of either sign,
+/// subnormals, ±0 and the extremes.
+fn fin() -> BoxedStrategy<f64> {
+    prop_oneof![
+        4 => -10.0..10.0_f64,
+        3 => (-300.0..300.0_f64, any::<bool>()).prop_map(|(e, n)| signed_power(e, n)),
+        1 => (1_u64..(1 << 52), any::<bool>()).prop_map(|(bits, n)| {
+            let v = f64::from_bits(bits);
+            if n { -v } else { v }
+        }),
+        1 => prop::sample::select(vec![
+            0.0, -0.0, f64::MAX, -f64::MAX, f64::MIN_POSITIVE, -f64::MIN_POSITIVE,
+            f64::EPSILON, 1e7, -1e7, FRAC_PI_2, PI, -PI,
+        ]),
+    ]
+    .boxed()
+}
+
+/// Any `f64`, NaN and infinities included.
+fn raw() -> BoxedStrategy<f64> {
+    prop_oneof![
+        6 => fin(),
+        1 => prop::sample::select(vec![f64::NAN, f64::INFINITY, f64::NEG_INFINITY]),
+    ]
+    .boxed()
+}
+
+/// A value that is usually plausible for a field robot (within `scale`), sometimes anything finite.
+fn near(scale: f64) -> BoxedStrategy<f64> {
+    prop_oneof![3 => -scale..scale, 1 => fin()].boxed()
+}
+
+fn m(v: f64) -> Meters {
+    Meters::new(v).unwrap()
+}
+
+fn rad(v: f64) -> Radians {
+    Radians::new(v).unwrap()
+}
+
+fn meters() -> BoxedStrategy<Meters> {
+    fin().prop_map(m).boxed()
+}
+
+fn radians() -> BoxedStrategy<Radians> {
+    fin().prop_map(rad).boxed()
+}
+
+fn point<F: fieldguide::Frame>() -> BoxedStrategy<Point2<F>> {
+    (near(20.0), near(20.0))
+        .prop_map(|(x, y)| Point2::new(x, y).unwrap())
+        .boxed()
+}
+
+/// A pose with any finite heading, wrapped or not (the fields are public).
+fn pose<F: fieldguide::Frame>() -> BoxedStrategy<Pose2<F>> {
+    (point::<F>(), near(4.0))
+        .prop_map(|(position, h)| Pose2 {
+            position,
+            heading: rad(h),
+        })
+        .boxed()
+}
+
+fn tracking() -> BoxedStrategy<TrackingError> {
+    (near(2.0), near(1.5), near(0.5), near(0.5))
+        .prop_map(|(y, a, c, ca)| TrackingError {
+            y: m(y),
+            angular_deviation: rad(a),
+            curvature: Curvature::new(c).unwrap(),
+            curvature_ahead: Curvature::new(ca).unwrap(),
+        })
+        .boxed()
+}
+
+fn side() -> impl Strategy<Value = Side> {
+    prop_oneof![Just(Side::Left), Just(Side::Right)]
+}
+
+fn verdict() -> impl Strategy<Value = Verdict> {
+    prop::sample::select(Verdict::ALL.to_vec())
+}
+
+/// A range as a LiDAR may send it, hostile ones included.
+fn range() -> BoxedStrategy<f64> {
+    prop_oneof![6 => 0.05..30.0_f64, 1 => raw()].boxed()
+}
+
+/// A scan's parts: first angle, increment, ranges (a plausible LiDAR or anything).
+/// A scan's first angle, increment and ranges.
+type ScanParts = (Radians, Radians, Vec<f64>);
+
+fn scan_parts(rays: usize) -> BoxedStrategy<ScanParts> {
+    (
+        prop_oneof![3 => Just(-FRAC_PI_2), 1 => fin()],
+        prop_oneof![3 => Just(PI / rays as f64), 1 => fin()],
+        prop::collection::vec(range(), 0..=rays),
+    )
+        .prop_map(|(s, i, r)| (rad(s), rad(i), r))
+        .boxed()
+}
+
+fn limits() -> BoxedStrategy<RangeLimits> {
+    (near(1.0), near(40.0))
+        .prop_map(|(lo, hi)| {
+            RangeLimits::new(m(lo), m(hi))
+                .unwrap_or_else(|_| RangeLimits::new(m(0.05), m(30.0)).unwrap())
+        })
+        .boxed()
+}
+
+/// Ranges of a straight wall `d` m to the left of a sensor at the robot's
+/// origin (Side::Left hedge), with some rays replaced by anything.
+fn wall_ranges(d: f64, rays: usize, faults: &[(usize, f64)]) -> Vec<f64> {
+    let mut r: Vec<f64> = (0..rays)
+        .map(|k| {
+            let a = -FRAC_PI_2 + PI * (k as f64 + 0.5) / rays as f64;
+            if a.sin() > 0.05 {
+                d / a.sin()
+            } else {
+                f64::INFINITY
+            }
+        })
+        .collect();
+    for &(i, v) in faults {
+        if let Some(slot) = r.get_mut(i % rays.max(1)) {
+            *slot = v;
+        }
+    }
+    r
+}
+
+/// Waypoints: a plausible drive (a random walk of 0.2-2 m steps) or anything finite.
+fn waypoints() -> BoxedStrategy<Vec<Point2<World>>> {
+    prop_oneof![
+        3 => (near(5.0), near(5.0), prop::collection::vec((0.2..2.0_f64, -0.3..0.3_f64), 1..40))
+            .prop_map(|(x0, y0, steps)| {
+                let (mut x, mut y, mut h) = (x0, y0, 0.0_f64);
+                let mut out = vec![Point2::new(x, y).unwrap()];
+                for (d, turn) in steps {
+                    h += turn;
+                    x += d * h.cos();
+                    y += d * h.sin();
+                    if let Ok(p) = Point2::new(x, y) {
+                        out.push(p);
+                    }
+                }
+                out
+            }),
+        1 => prop::collection::vec((fin(), fin()), 0..8).prop_map(|v| {
+            v.into_iter().map(|(x, y)| Point2::new(x, y).unwrap()).collect()
+        }),
+    ]
+    .boxed()
+}
+
+type SmallPath = ReferencePath<64>;
+
+/// A path of the waypoints, or a straight 30 m one when they are refused.
+fn path_of(points: &[Point2<World>]) -> SmallPath {
+    ReferencePath::from_waypoints(points, PathConfig::default()).unwrap_or_else(|_| {
+        ReferencePath::from_waypoints(
+            &[
+                Point2::new(0.0, 0.0).unwrap(),
+                Point2::new(30.0, 0.0).unwrap(),
+            ],
+            PathConfig::default(),
+        )
+        .unwrap()
+    })
+}
+
+// ---------------------------------------------------------------- units, errors, frames
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    #[test]
+    fn units_errors_and_angles(v in raw(), w in raw(), f in fin()) {
+        macro_rules! unit {
+            ($t:ty) => {
+                if let Ok(u) = check!("geometry::units::$name::new", <$t>::new(v)) {
+                    check!("geometry::units::$name::get", u.get());
+                    check!("geometry::units::$name::abs", u.abs());
+                    check!("geometry::units::$name::negated", u.negated());
+                }
+            };
+        }
+        unit!(Meters);
+        unit!(Radians);
+        unit!(Curvature);
+        unit!(MetersPerSecond);
+        unit!(RadiansPerSecond);
+        unit!(Seconds);
+        check!("error::finite", finite(v, "a value"));
+        check!("error::finite", finite(w, "another value"));
+        check!("error::Precondition::new", Precondition::new("LIB-FINITE", "anything"));
+        let a = rad(f);
+        let wrapped = check!("geometry::units::wrap_angle", wrap_angle(a));
+        prop_assert!(wrapped.get() > -PI && wrapped.get() <= PI);
+        let same = check!("geometry::units::Radians::wrapped", a.wrapped());
+        prop_assert_eq!(same, wrapped);
+    }
+
+    #[test]
+    fn points_poses_and_transforms(
+        x in raw(), y in raw(), h in raw(),
+        p in point::<World>(), q in point::<World>(), far in (fin(), fin()),
+        pose_a in pose::<Robot>(), heading in radians(),
+        t1 in (near(5.0), near(5.0), near(4.0)), t2 in (fin(), fin(), fin()),
+        e in tracking(), ym in meters(), am in radians(),
+    ) {
+        check!("geometry::frame::Point2::new", Point2::<World>::new(x, y));
+        check!("geometry::frame::Point2::origin", Point2::<World>::origin());
+        let wide = Point2::<World>::new(far.0, far.1).unwrap();
+        check!("geometry::frame::Point2::from_meters", Point2::<World>::from_meters(ym, m(far.0)));
+        check!("geometry::frame::Point2::x", wide.x());
+        check!("geometry::frame::Point2::y", wide.y());
+        check!("geometry::frame::Point2::distance_to", p.distance_to(q));
+        check!("geometry::frame::Point2::distance_to", wide.distance_to(p));
+        check!("geometry::frame::Point2::distance_to", wide.distance_to(wide.mirrored()));
+        check!("geometry::frame::Point2::mirrored", wide.mirrored());
+        check!("geometry::frame::Pose2::new", Pose2::<World>::new(x, y, h));
+        let body: Transform2<Sensor, Robot> =
+            check!("geometry::frame::Pose2::body_to_frame", pose_a.body_to_frame());
+        check!("geometry::frame::Transform2::new", Transform2::<Robot, World>::new(x, y, h));
+        for (tx, ty, ta) in [t1, t2] {
+            let t = Transform2::<Robot, World>::new(tx, ty, ta).unwrap();
+            check!("geometry::frame::Transform2::angle", t.angle());
+            check!("geometry::frame::Transform2::apply", t.apply(Point2::from_meters(ym, m(far.1))));
+            check!("geometry::frame::Transform2::apply_heading", t.apply_heading(heading));
+            check!("geometry::frame::Transform2::apply_pose", t.apply_pose(pose_a));
+            check!("geometry::frame::Transform2::inverse", t.inverse());
+            check!("geometry::frame::Transform2::then", body.then(&t));
+        }
+        check!("geometry::tracking::TrackingError::to_straight_line", TrackingError::to_straight_line(ym, am));
+        check!("geometry::tracking::TrackingError::mirrored", e.mirrored());
+    }
+
+    #[test]
+    fn errors_carried_by_odometry(
+        then in pose::<Odom>(), now in pose::<Odom>(), moved in pose::<Robot>(),
+        e in tracking(), y in raw(), a in raw(),
+    ) {
+        check!("geometry::carry::pose_in_scan_frame", pose_in_scan_frame(&then, &now));
+        check!("geometry::carry::moved_lateral", moved_lateral(&e, &moved));
+        check!("geometry::carry::straight", straight(y, a));
+        check!("geometry::carry::moved_line_error", moved_line_error(&e, &moved));
+    }
+
+    #[test]
+    fn least_squares_fits(
+        xy in prop::collection::vec((near(10.0), near(10.0)), 0..12),
+        coefficients in (raw(), raw(), raw()), x in raw(), p in point::<Robot>(),
+    ) {
+        let points: Vec<Point2<Robot>> =
+            xy.iter().map(|&(x, y)| Point2::new(x, y).unwrap()).collect();
+        check!("geometry::fit::fit_line", fit_line(points.iter()));
+        check!("geometry::fit::fit_parabola", fit_parabola(points.iter()));
+        let (a, b, c) = coefficients;
+        let lines = [LineFit { a, b }, fit_line(points.iter()).unwrap_or(LineFit { a: 0.5, b: 1.0 })];
+        for line in lines {
+            check!("geometry::fit::LineFit::value_at", line.value_at(x));
+            check!("geometry::fit::LineFit::residual", line.residual(p));
+            check!("geometry::fit::LineFit::mean_squared_residual", line.mean_squared_residual(points.iter()));
+        }
+        let parabolas = [
+            ParabolaFit { a, b, c },
+            fit_parabola(points.iter()).unwrap_or(ParabolaFit { a: 0.1, b: 0.5, c: 1.0 }),
+        ];
+        for parabola in parabolas {
+            check!("geometry::fit::ParabolaFit::value_at", parabola.value_at(x));
+            check!("geometry::fit::ParabolaFit::slope_at", parabola.slope_at(x));
+            check!("geometry::fit::ParabolaFit::residual", parabola.residual(p));
+            check!("geometry::fit::ParabolaFit::mean_squared_residual", parabola.mean_squared_residual(points.iter()));
+        }
+    }
+
+    #[test]
+    fn reference_paths_and_projection(
+        points in waypoints(), window in meters(), s in prop::collection::vec(meters(), 1..6),
+        poses in prop::collection::vec(pose::<World>(), 1..6), lookahead in meters(),
+        hint in meters(), search in meters(),
+    ) {
+        check!("geometry::path::PathConfig::new", PathConfig::new(window));
+        let config = PathConfig::new(window).unwrap_or_default();
+        check!("geometry::path::ReferencePath::from_waypoints", SmallPath::from_waypoints(&points, config));
+        let path = path_of(&points);
+        check!("geometry::path::ReferencePath::config", path.config());
+        check!("geometry::path::ReferencePath::length", path.length());
+        check!("geometry::path::ReferencePath::vertices", path.vertices());
+        for &s in &s {
+            check!("geometry::path::ReferencePath::heading_at", path.heading_at(s));
+            check!("geometry::path::ReferencePath::curvature_at", path.curvature_at(s));
+            check!("geometry::path::ReferencePath::point_at", path.point_at(s));
+        }
+        for pose in &poses {
+            let frenet = check!("geometry::path::ReferencePath::project", path.project(pose, lookahead));
+            check!("geometry::path::ReferencePath::project_near", path.project_near(pose, lookahead, hint, search));
+            if let Ok(f) = frenet {
+                check!("geometry::path::FrenetError::tracking_error", f.tracking_error());
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- vehicles and laws
+
+fn commands() -> BoxedStrategy<Command> {
+    (0..4_u8, prop::array::uniform4(fin()))
+        .prop_map(|(kind, [a, b, c, _])| {
+            let speed = MetersPerSecond::new(a).unwrap();
+            match kind {
+                0 => Command::Bicycle {
+                    speed,
+                    steering: rad(b),
+                },
+                1 => Command::FourWheelSteering {
+                    speed,
+                    front: rad(b),
+                    rear: rad(c),
+                },
+                2 => Command::Differential {
+                    left: speed,
+                    right: MetersPerSecond::new(b).unwrap(),
+                },
+                _ => Command::SkidSteer {
+                    speed,
+                    yaw_rate: RadiansPerSecond::new(b).unwrap(),
+                },
+            }
+        })
+        .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    #[test]
+    fn vehicles_and_the_kinematic_model(
+        wheelbase in raw(), limit in raw(), rate in fin(), command in commands(),
+        clamp_at in radians(), slip in (raw(), raw()), wild_slip in (radians(), radians()),
+        speed in prop_oneof![3 => 0.1..3.0_f64, 1 => fin()], steering in radians(),
+        e in tracking(), at in pose::<World>(),
+    ) {
+        for actuation in [
+            Actuation::Bicycle, Actuation::FourWheelSteering, Actuation::Differential, Actuation::SkidSteer,
+        ] {
+            check!("model::Actuation::at_rest", actuation.at_rest());
+            check!("model::Actuation::label", actuation.label());
+        }
+        check!("model::Command::actuation", command.actuation());
+        check!("model::Command::speed", command.speed());
+        check!("model::Command::steering", command.steering());
+        check!("model::Command::stopped", command.stopped());
+        check!("model::bicycle::Wheelbase::new", Wheelbase::new(wheelbase));
+        check!("model::bicycle::SteeringLimit::new", SteeringLimit::new(limit));
+        let wb = Wheelbase::new(wheelbase).unwrap_or(Wheelbase::new(2.0).unwrap());
+        let sl = SteeringLimit::new(limit).unwrap_or(SteeringLimit::new(0.5).unwrap());
+        check!("model::bicycle::Wheelbase::get", wb.get());
+        check!("model::bicycle::SteeringLimit::get", sl.get());
+        check!("model::bicycle::SteeringLimit::clamp", sl.clamp(clamp_at));
+        let rate = RadiansPerSecond::new(rate).unwrap();
+        check!("model::bicycle::Bicycle::new", Bicycle::new(wb, sl, Some(rate)));
+        let bicycle = Bicycle::new(wb, sl, None).unwrap();
+        let vehicle = Vehicle::Bicycle(bicycle);
+        check!("model::Vehicle::actuation", vehicle.actuation());
+        check!("model::Vehicle::check", vehicle.check(&command));
+        check!("model::bicycle::Sideslip::new", Sideslip::new(slip.0, slip.1));
+        let sideslip = Sideslip { front: wild_slip.0, rear: wild_slip.1 };
+        check!("model::bicycle::Sideslip::check", sideslip.check());
+        check!("model::bicycle::Sideslip::mirrored", sideslip.mirrored());
+        let small = Sideslip::new(slip.0, slip.1).unwrap_or(Sideslip::ZERO);
+        let v = MetersPerSecond::new(speed).unwrap();
+        for s in [sideslip, small] {
+            check!("model::bicycle::yaw_rate", yaw_rate(v, steering, s, wb));
+            check!("model::bicycle::frenet_rates", frenet_rates(&e, v, steering, s, wb));
+            check!("model::bicycle::world_rates", world_rates(&at, v, steering, s, wb));
+        }
+    }
+
+    #[test]
+    fn backstepping_laws(
+        gains in (raw(), raw(), raw()), e in tracking(), slip in (radians(), radians()),
+        speed in prop_oneof![3 => 0.1..3.0_f64, 1 => fin()], printed in any::<bool>(),
+    ) {
+        let (k_y, k_theta, ratio) = gains;
+        check!("control::backstepping::Gains::new", Gains::new(k_y, k_theta, ratio));
+        #[cfg(feature = "fault-injection")]
+        check!("control::backstepping::Gains::with_unchecked_sign", Gains::with_unchecked_sign(k_y, k_theta, ratio));
+        let gains = Gains::new(k_y, k_theta, ratio).unwrap_or(Gains::new(-0.7, -2.8, 2.0).unwrap());
+        check!("control::backstepping::Gains::k_y", gains.k_y());
+        check!("control::backstepping::Gains::k_theta", gains.k_theta());
+        let config = BacksteppingConfig {
+            gains,
+            vehicle: presets::vehicle().unwrap(),
+            inversion: if printed { Inversion::Printed } else { Inversion::Exact },
+        };
+        let v = MetersPerSecond::new(speed).unwrap();
+        let wild = Sideslip { front: slip.0, rear: slip.1 };
+        for s in [wild, Sideslip::new(0.05 * slip.0.get().sin(), 0.05 * slip.1.get().cos()).unwrap()] {
+            check!("control::backstepping::target_angular_deviation", target_angular_deviation(&gains, &e, s));
+            check!("control::backstepping::yaw_rate_objective", yaw_rate_objective(&gains, &e, s, v));
+            check!("control::backstepping::steering_command", steering_command(&config, &e, s, v));
+            check!("control::ControlLaw::check_extra", BacksteppingConfig::check_extra(&s));
+            check!("control::ControlLaw::command", config.command(&e, &s, v));
+        }
+        check!("control::ControlLaw::actuation", config.actuation());
+    }
+
+    #[test]
+    fn quality_thresholds_and_scan_limits(
+        enter in raw(), exit in raw(), quality in raw(), lo in meters(), hi in meters(), r in raw(),
+    ) {
+        for better in [Better::Lower, Better::Higher] {
+            if let Ok(t) = check!("perception::QualityThresholds::new", QualityThresholds::new(enter, exit, better)) {
+                check!("perception::QualityThresholds::enter", t.enter());
+                check!("perception::QualityThresholds::exit", t.exit());
+                check!("perception::QualityThresholds::classify", t.classify(quality));
+            }
+        }
+        for v in Verdict::ALL {
+            check!("perception::Verdict::estimate_is_valid", v.estimate_is_valid());
+        }
+        if let Ok(l) = check!("perception::scan::RangeLimits::new", RangeLimits::new(lo, hi)) {
+            check!("perception::scan::RangeLimits::min", l.min());
+            check!("perception::scan::RangeLimits::max", l.max());
+            check!("perception::scan::RangeLimits::accepts", l.accepts(r));
+        }
+    }
+}
+
+// ---------------------------------------------------------------- edge following
+
+/// Edge parameters: Table 1's, one of them replaced by anything.
+fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
+    (0..13_usize, raw(), 0..8_usize)
+        .prop_map(|(field, v, points)| {
+            let mut p = EdgeParameters::PIERRE2022;
+            match field {
+                0 => p.radius = v,
+                1 => p.max_rotation = v,
+                2 => p.max_chain_length = v,
+                3 => p.search_distance = v,
+                4 => p.offset = v,
+                5 => p.min_chain_length = v,
+                6 => p.max_link = v,
+                7 => p.max_turn = v,
+                8 => p.max_width = v,
+                9 => p.sigma_enter = v,
+                10 => p.sigma_exit = v,
+                11 => p.min_points = points,
+                _ => {}
+            }
+            p
+        })
+        .boxed()
+}
+
+/// Robot-frame points: a ragged hedge on either side, or anything finite.
+fn edge_points() -> BoxedStrategy<Vec<Point2<Robot>>> {
+    prop_oneof![
+        3 => (side(), 0.5..3.0_f64, -0.3..0.3_f64, prop::collection::vec(-0.05..0.05_f64, 5..60))
+            .prop_map(|(s, d, angle, jitter)| {
+                let xs: Vec<f64> = (0..jitter.len()).map(|k| -1.0 + 0.08 * k as f64).collect();
+                edge_support::hedge(s, d, angle, &xs, &jitter)
+            }),
+        1 => prop::collection::vec((fin(), fin()), 0..20)
+            .prop_map(|v| v.into_iter().map(|(x, y)| Point2::new(x, y).unwrap()).collect()),
+    ]
+    .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    #[test]
+    fn edge_detection(
+        parameters in edge_parameters(), s in side(), points in edge_points(),
+        q in point::<Robot>(), pivot in point::<Robot>(), centre in point::<Robot>(),
+        radius in meters(), d in 0.5..3.0_f64,
+        faults in prop::collection::vec((0..360_usize, raw()), 0..20),
+        parts in scan_parts(360), limits in limits(), wall in any::<bool>(),
+        mount in (near(2.0), near(1.0), near(4.0)), odometry in pose::<Odom>(),
+        parabola in (raw(), raw(), raw()), offset in meters(), x_r in raw(),
+    ) {
+        check!("perception::edge::config::EdgeConfig::new", EdgeConfig::new(&parameters));
+        check!("perception::edge::config::EdgeConfig::pierre2022", EdgeConfig::pierre2022());
+        let config = EdgeConfig::new(&parameters).unwrap_or(EdgeConfig::pierre2022().unwrap());
+        check!("perception::edge::config::EdgeConfig::radius", config.radius());
+        check!("perception::edge::config::EdgeConfig::max_rotation", config.max_rotation());
+        check!("perception::edge::config::EdgeConfig::max_chain_length", config.max_chain_length());
+        check!("perception::edge::config::EdgeConfig::search_distance", config.search_distance());
+        check!("perception::edge::config::EdgeConfig::offset", config.offset());
+        check!("perception::edge::config::EdgeConfig::min_chain_length", config.min_chain_length());
+        check!("perception::edge::config::EdgeConfig::max_link", config.max_link());
+        check!("perception::edge::config::EdgeConfig::max_turn", config.max_turn());
+        check!("perception::edge::config::EdgeConfig::max_width", config.max_width());
+        check!("perception::edge::config::EdgeConfig::min_points", config.min_points());
+        check!("perception::edge::config::EdgeConfig::thresholds", config.thresholds());
+        check!("perception::edge::config::Side::sign", s.sign());
+        check!("perception::edge::config::Side::mirrored", s.mirrored());
+        check!("perception::edge::chain::translation_contact", translation_contact(q, s, radius));
+        check!("perception::edge::chain::rotation_contact", rotation_contact(pivot, centre, q, s, radius));
+        let chain: Chain<64> = check!("perception::edge::chain::build_chain", build_chain(&points, s, &config));
+        check!("perception::edge::chain::Chain::points", chain.points());
+        check!("perception::edge::chain::Chain::indices", chain.indices());
+        check!("perception::edge::chain::Chain::centers", chain.centers());
+        check!("perception::edge::chain::Chain::length", chain.length());
+        check!("perception::edge::chain::Chain::end", chain.end());
+        check!("perception::edge::chain::Chain::len", chain.len());
+        check!("perception::edge::chain::Chain::is_empty", chain.is_empty());
+        let mut reused = check!("perception::edge::chain::Chain::empty", Chain::<64>::empty(ChainEnd::NoEdge));
+        check!("perception::edge::chain::build_chain_into", build_chain_into(&points, s, &config, &mut reused));
+        prop_assert_eq!(reused.indices(), chain.indices());
+        let found = check!("perception::edge::detect_points", detect_points::<64>(&points, s, &config));
+        if let Ok(found) = found {
+            check!("perception::edge::EdgeDetection::usable_error", found.usable_error());
+        }
+        let fit = ParabolaFit { a: parabola.0, b: parabola.1, c: parabola.2 };
+        check!("perception::edge::parabola::tracking_error", edge_tracking_error(&fit, s, offset, x_r));
+        let quality = check!("perception::edge::quality::EdgeQuality::measure", EdgeQuality::measure(&points, offset, &fit));
+        if let Ok(quality) = quality {
+            check!("perception::edge::quality::EdgeQuality::grade", quality.grade(&config));
+        }
+
+        // Scans: a wall on the left with faults, or anything.
+        let (start, increment, wild) = parts;
+        // A wall is seen by a LiDAR at the robot's origin, looking for it on the left.
+        let ranges = if wall { wall_ranges(d, 360, &faults) } else { wild };
+        let scan = Scan {
+            start: if wall { rad(-FRAC_PI_2 + PI / 720.0) } else { start },
+            increment: if wall { rad(PI / 360.0) } else { increment },
+            ranges: &ranges,
+            limits: if wall { RangeLimits::new(m(0.05), m(30.0)).unwrap() } else { limits },
+        };
+        let mount = if wall { (0.0, 0.0, 0.0) } else { mount };
+        let mount = Transform2::<Sensor, Robot>::new(mount.0, mount.1, mount.2).unwrap();
+        let s = if wall { Side::Left } else { s };
+        check!("perception::edge::scan::scan_to_points", edge_scan_to_points::<512>(&scan, &mount));
+        let mut buffer = check!("perception::edge::scan::ScanPoints::new", ScanPoints::<512>::new());
+        check!("perception::edge::scan::scan_into", scan_into(&scan, &mount, &mut buffer));
+        check!("perception::edge::scan::ScanPoints::as_slice", buffer.as_slice());
+        check!("perception::edge::scan::ScanPoints::dropped", buffer.dropped());
+        check!("perception::edge::detect", detect::<512, 64>(&scan, &mount, s, &config));
+        let detector_config = EdgeDetectorConfig { edge: config, mount, side: s };
+        let mut detector = check!("perception::edge::EdgeDetector::new", EdgeDetector::<512, 64>::new(detector_config));
+        check!("perception::edge::EdgeDetector::config", detector.config());
+        let outcome = check!("perception::edge::EdgeDetector::detect", detector.detect(&scan, &odometry));
+        if let Ok(outcome) = outcome {
+            check!("perception::edge::EdgeOutcome::usable_error", outcome.usable_error());
+        }
+        check!("perception::edge::EdgeDetector::points", detector.points());
+        check!("perception::edge::EdgeDetector::chain", detector.chain());
+    }
+}
+
+// ---------------------------------------------------------------- furrow pursuing
+
+/// Furrow parameters: Table 2's, one of them replaced by anything.
+fn furrow_parameters() -> BoxedStrategy<FurrowParams> {
+    (0..18_usize, raw(), 0..40_usize, any::<bool>())
+        .prop_map(|(field, v, n, one)| {
+            let mut p = FurrowParams::table2();
+            let (mv, rv) = (Meters::new(v).ok(), Radians::new(v).ok());
+            match field {
+                0 => p.mount_x = mv.unwrap_or(p.mount_x),
+                1 => p.mount_y = mv.unwrap_or(p.mount_y),
+                2 => p.mount_height = mv.unwrap_or(p.mount_height),
+                3 => p.mount_pitch = rv.unwrap_or(p.mount_pitch),
+                4 => p.window_half_angle = rv.unwrap_or(p.window_half_angle),
+                5 => p.template_width = n,
+                6 => p.template_margin = n,
+                7 => p.template_height = mv.unwrap_or(p.template_height),
+                8 => p.height_floor = mv.unwrap_or(p.height_floor),
+                9 => p.peak_threshold = v,
+                10 => p.averaged_scans = n,
+                11 => p.keep_distance = mv.unwrap_or(p.keep_distance),
+                12 => p.min_points = n,
+                13 => p.min_extent = mv.unwrap_or(p.min_extent),
+                14 => p.enter = v,
+                15 => p.exit = v,
+                16 => {
+                    p.rows = Rows::Two {
+                        min_spacing: mv.unwrap_or(m(0.66)),
+                        max_spacing: m(0.9),
+                    }
+                }
+                _ => {}
+            }
+            if one {
+                p.rows = Rows::One;
+            }
+            p
+        })
+        .boxed()
+}
+
+/// The same maximum, bit for bit (a NaN score included).
+fn same(a: &Maximum, b: &Maximum) -> bool {
+    a.ray == b.ray && a.point == b.point && a.score.to_bits() == b.score.to_bits()
+}
+
+fn maxima() -> BoxedStrategy<Vec<Maximum>> {
+    prop::collection::vec((0..400_usize, raw(), point::<Robot>()), 0..8)
+        .prop_map(|v| {
+            v.into_iter()
+                .map(|(ray, score, point)| Maximum { ray, score, point })
+                .collect()
+        })
+        .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    #[test]
+    fn furrow_detection(
+        parameters in furrow_parameters(),
+        template in (0..20_usize, 0..10_usize, meters()),
+        signal in prop::collection::vec(raw(), 0..80),
+        heights in (prop::option::of(meters()), meters()),
+        offset in any::<isize>(), k in 0..100_usize,
+        angle in radians(), mount in (meters(), meters(), meters(), radians()), half in radians(),
+        scores in prop::collection::vec(raw(), 0..60), threshold in raw(), radius in 0..10_usize,
+        maxima in maxima(), reference_y in raw(), spacing in (meters(), meters()),
+        line in (raw(), meters()), other in (raw(), meters()), x in raw(),
+        line_points in prop::collection::vec(point::<Robot>(), 0..10),
+        weakest in prop::option::of(raw()), fitted in any::<bool>(),
+        ridge in (0.2..1.2_f64, 0.02..0.1_f64), parts in scan_parts(300), rows in any::<bool>(),
+        odometry in prop::collection::vec(pose::<Odom>(), 1..5),
+        limit in 0..12_usize, keep in meters(),
+    ) {
+        check!("perception::furrow::FurrowParams::table2", FurrowParams::table2());
+        check!("perception::furrow::FurrowConfig::new", FurrowConfig::new(&parameters));
+        let config = FurrowConfig::new(&parameters).unwrap_or(FurrowConfig::new(&FurrowParams::table2()).unwrap());
+        check!("perception::furrow::FurrowConfig::params", config.params());
+        let mp = check!("perception::furrow::FurrowConfig::mount", config.mount());
+        check!("perception::furrow::FurrowConfig::window", config.window());
+        check!("perception::furrow::FurrowConfig::template", config.template());
+        check!("perception::furrow::FurrowConfig::thresholds", config.thresholds());
+
+        // The parts of one scan.
+        check!("perception::furrow::scan::MountPose::new", MountPose::new(mount.0, mount.1, mount.2, mount.3));
+        check!("perception::furrow::scan::MountPose::x", mp.x());
+        check!("perception::furrow::scan::MountPose::y", mp.y());
+        check!("perception::furrow::scan::MountPose::height", mp.height());
+        check!("perception::furrow::scan::MountPose::pitch", mp.pitch());
+        check!("perception::furrow::scan::MountPose::ground_range", mp.ground_range(angle));
+        if let Ok(window) = check!("perception::furrow::scan::ScanWindow::new", ScanWindow::new(half)) {
+            check!("perception::furrow::scan::ScanWindow::half_angle", window.half_angle());
+        }
+        let (width, margin, height) = template;
+        check!("perception::furrow::correlation::Template::new", Template::new(width, margin, height));
+        let t = Template::new(width, margin, height).unwrap_or(*config.template());
+        check!("perception::furrow::correlation::Template::width", t.width());
+        check!("perception::furrow::correlation::Template::margin", t.margin());
+        check!("perception::furrow::correlation::Template::height", t.height());
+        check!("perception::furrow::correlation::Template::half_width", t.half_width());
+        check!("perception::furrow::correlation::Template::half_length", t.half_length());
+        check!("perception::furrow::correlation::Template::length", t.length());
+        check!("perception::furrow::correlation::Template::value", t.value(offset));
+        check!("perception::furrow::correlation::Template::energy", t.energy());
+        check!("perception::furrow::correlation::height_signal", height_signal(heights.0, heights.1));
+        let mut out = vec![f64::NAN; signal.len()];
+        check!("perception::furrow::correlation::correlate", correlate(&signal, &t, &mut out));
+        all_finite("the scores of correlate", &out);
+        check!("perception::furrow::correlation::correlate_direct", correlate_direct(&signal, &t, &mut out));
+        all_finite("the scores of correlate_direct", &out);
+
+        // A scan over two ridges (or anything), through the configured mount.
+        let lidar = furrow_common::Lidar::centred(300, 1.2);
+        let (start, increment, wild) = parts;
+        let (ridge_spacing, half_width) = ridge;
+        let ridges = [
+            furrow_common::Ridge { center_y: -ridge_spacing / 2.0, half_width, height: 0.25 },
+            furrow_common::Ridge { center_y: ridge_spacing / 2.0, half_width, height: 0.3 },
+        ];
+        let ranges = if rows {
+            // Cast through Table 2's mount (a perturbed one may look nowhere near the ground).
+            furrow_common::ridge_scan(&FurrowParams::table2(), &lidar, (0.0, 0.0, 0.0), &ridges)
+        } else {
+            wild
+        };
+        let scan = Scan {
+            start: if rows { rad(lidar.angle_min) } else { start },
+            increment: if rows { rad(lidar.increment) } else { increment },
+            ranges: &ranges,
+            limits: RangeLimits::new(m(0.05), m(30.0)).unwrap(),
+        };
+        let mut rays = [None::<ScanPoint>; 512];
+        let window = check!(
+            "perception::furrow::scan::scan_to_points",
+            furrow_scan_to_points(&scan, config.mount(), config.window(), &mut rays)
+        );
+        let count = window.map_or(0, |w| w.count);
+        let rays = &rays[..count];
+        all_finite("the rays of scan_to_points", &rays);
+        let heights: Vec<f64> = rays
+            .iter()
+            .map(|r| height_signal(r.map(|p| p.height), config.params().height_floor))
+            .collect();
+        check!("perception::furrow::selection::locate", locate(k, rays, &heights, config.template()));
+        check!("perception::furrow::selection::locate", locate(k, rays, &signal, &t));
+
+        // Selection.
+        check!("perception::furrow::selection::local_maxima", local_maxima(&scores, threshold, radius));
+        // A selection passes one of the given maxima through, unchanged, its
+        // score included (the caller's, any f64 here): its point is checked.
+        check!("perception::furrow::selection::select_one", select_one(&maxima, reference_y).map(|o| o.point));
+        let one = select_one(&maxima, reference_y);
+        prop_assert!(one.is_none_or(|o| maxima.iter().any(|m| same(m, &o))));
+        check!("perception::furrow::selection::Spacing::new", Spacing::new(spacing.0, spacing.1));
+        let spacing = Spacing::new(spacing.0, spacing.1).unwrap_or(Spacing::new(m(0.66), m(0.9)).unwrap());
+        check!("perception::furrow::selection::Spacing::min", spacing.min());
+        check!("perception::furrow::selection::Spacing::max", spacing.max());
+        check!("perception::furrow::selection::Spacing::contains", spacing.contains(x));
+        // The pair's maxima are given ones, scores included: their points are checked.
+        check!("perception::furrow::selection::select_pair", select_pair(&maxima, &spacing, reference_y).map(|p| p.points()));
+        let pair = select_pair(&maxima, &spacing, reference_y);
+        let given = |p: Pair<Maximum>| {
+            maxima.iter().any(|m| same(m, &p.left)) && maxima.iter().any(|m| same(m, &p.right))
+        };
+        prop_assert!(pair.is_none_or(given));
+        if let Some(pair) = pair {
+            check!("perception::furrow::selection::Pair::weaker_score", pair.weaker_score());
+            let points = check!("perception::furrow::selection::Pair::points", pair.points());
+            check!("perception::furrow::selection::Pair::mid", points.mid());
+        }
+        if let [a, b, ..] = maxima.as_slice() {
+            let pair = Pair { left: *a, right: *b };
+            check!("perception::furrow::selection::Pair::weaker_score", pair.weaker_score());
+            check!("perception::furrow::selection::Pair::mid", pair.points().mid());
+        }
+
+        // Row lines.
+        check!("perception::furrow::lines::RowLine::new", RowLine::new(line.0, line.1));
+        let rows_seen: Vec<RowLine> = [line, other]
+            .iter()
+            .map(|&(a, b)| RowLine::new(a, b).unwrap_or(RowLine::new(0.1, m(0.4)).unwrap()))
+            .collect();
+        for row in &rows_seen {
+            check!("perception::furrow::lines::RowLine::slope", row.slope());
+            check!("perception::furrow::lines::RowLine::intercept", row.intercept());
+            check!("perception::furrow::lines::RowLine::y_at", row.y_at(x));
+            check!("perception::furrow::lines::tracking_error", row_tracking_error(row));
+        }
+        check!("perception::furrow::lines::mean_tracking_error", mean_tracking_error(&rows_seen[0], &rows_seen[1]));
+        check!("perception::furrow::lines::fit_row_line", fit_row_line(line_points.iter()));
+        check!("perception::furrow::quality::furrow_verdict", furrow_verdict(config.thresholds(), fitted, weakest));
+
+        // Accumulation through odometry.
+        check!("perception::furrow::accumulation::Accumulator::new", Accumulator::<8>::new(limit, keep));
+        let mut kept = Accumulator::<8>::new(limit.clamp(1, 8), keep).unwrap_or(Accumulator::new(4, m(6.0)).unwrap());
+        for (i, odom) in odometry.iter().enumerate() {
+            let selection = if i % 2 == 0 {
+                Selected::One(line_points.first().copied().unwrap_or(Point2::origin()))
+            } else {
+                Selected::Two(Pair { left: Point2::new(4.0, 0.4).unwrap(), right: Point2::new(4.0, -0.4).unwrap() })
+            };
+            check!("perception::furrow::accumulation::Selected::reference", selection.reference());
+            check!("perception::furrow::accumulation::Accumulator::odom_to_robot", Accumulator::<8>::odom_to_robot(odom));
+            let to_odom: Transform2<Robot, Odom> = odom.body_to_frame();
+            check!("perception::furrow::accumulation::Selected::moved", selection.moved(&to_odom));
+            check!("perception::furrow::accumulation::Accumulator::push", kept.push(&selection, odom));
+            check!("perception::furrow::accumulation::Accumulator::len", kept.len());
+            check!("perception::furrow::accumulation::Accumulator::is_empty", kept.is_empty());
+            check!("perception::furrow::accumulation::Accumulator::newest", kept.newest(odom));
+            check!(
+                "perception::furrow::accumulation::Accumulator::in_robot_frame",
+                kept.in_robot_frame(odom).collect::<Vec<_>>()
+            );
+            check!("perception::furrow::accumulation::Accumulator::forget_far", kept.forget_far(odom));
+        }
+        check!("perception::furrow::accumulation::Accumulator::clear", kept.clear());
+        prop_assert!(kept.is_empty());
+
+        // The detector over the scan, seen from each odometry pose.
+        let detector = check!("perception::furrow::FurrowDetector::new", FurrowDetector::<512, 32>::new(config));
+        let mut detector = detector.unwrap_or(FurrowDetector::new(FurrowConfig::new(&FurrowParams::table2()).unwrap()).unwrap());
+        check!("perception::furrow::FurrowDetector::config", detector.config());
+        check!("perception::furrow::FurrowDetector::maxima", detector.maxima(&scan));
+        // Along the rows, 0.1 m per scan (enough scans for row lines), or the
+        // same scan from each of the odometry poses.
+        let drive: Vec<(Pose2<Odom>, Vec<f64>)> = if rows {
+            (0..8)
+                .map(|k| {
+                    let at = (0.1 * f64::from(k), 0.0, 0.0);
+                    let ranges = furrow_common::ridge_scan(&FurrowParams::table2(), &lidar, at, &ridges);
+                    (Pose2::new(at.0, at.1, at.2).unwrap(), ranges)
+                })
+                .collect()
+        } else {
+            odometry.iter().map(|o| (*o, ranges.clone())).collect()
+        };
+        for (odom, ranges) in &drive {
+            let scan = Scan { ranges, ..scan };
+            check!("perception::furrow::FurrowDetector::detect", detector.detect(&scan, odom));
+            check!("perception::furrow::FurrowDetector::accumulated", detector.accumulated());
+        }
+        check!("perception::furrow::FurrowDetector::reset", detector.reset());
+        prop_assert_eq!(detector.accumulated(), 0);
+    }
+}
+
+// ---------------------------------------------------------------- the detector seam
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn any_detector_and_held_lines(
+        edge in any::<bool>(), s in side(), d in 0.5..3.0_f64,
+        faults in prop::collection::vec((0..360_usize, raw()), 0..20),
+        parts in scan_parts(360), odometry in prop::collection::vec(pose::<Odom>(), 1..4),
+        moves in prop::collection::vec(pose::<Robot>(), 1..4),
+        parabola in (raw(), raw(), raw()), offset in meters(), rows in prop::collection::vec((raw(), meters()), 2),
+    ) {
+        let config = if edge {
+            AnyDetectorConfig::Edge(EdgeDetectorConfig {
+                edge: EdgeConfig::pierre2022().unwrap(),
+                mount: Transform2::new(0.0, 0.0, 0.0).unwrap(),
+                side: s,
+            })
+        } else {
+            AnyDetectorConfig::Furrow(FurrowConfig::new(&FurrowParams::table2()).unwrap())
+        };
+        let mut detector = check!("perception::detector::Detector::configure", AnyDetector::<512, 64, 512, 32>::configure(&config)).unwrap();
+        check!("perception::detector::Detector::thresholds", AnyDetector::<512, 64, 512, 32>::thresholds(&config));
+        check!("perception::detector::AnyDetector::as_edge", detector.as_edge().map(EdgeDetector::config));
+        check!("perception::detector::AnyDetector::as_furrow", detector.as_furrow().map(FurrowDetector::config));
+        let (start, increment, wild) = parts;
+        let ranges = if edge { wall_ranges(d, 360, &faults) } else { wild };
+        let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };
+        for odom in &odometry {
+            let seen = check!("perception::detector::Detector::observe", detector.observe(&scan, odom));
+            if let Ok(seen) = seen {
+                let kind: Detection<&str> = check!("perception::detector::Detection::map_line", seen.map_line(|_| "held"));
+                prop_assert_eq!(kind.line.is_some(), seen.line.is_some());
+                if let Some(line) = seen.line {
+                    for p in &moves {
+                        check!("perception::detector::HeldLine::error_at", line.error_at(p));
+                    }
+                }
+            }
+        }
+        // Lines built by hand, with any coefficients.
+        let fit = ParabolaFit { a: parabola.0, b: parabola.1, c: parabola.2 };
+        let rows: Vec<RowLine> = rows
+            .iter()
+            .map(|&(a, b)| RowLine::new(a, b).unwrap_or(RowLine::new(0.0, b).unwrap()))
+            .collect();
+        let lines = [
+            AnyLine::Edge(EdgeLine { parabola: fit, side: s, offset }),
+            AnyLine::Furrow(RowLines::One(rows[0])),
+            AnyLine::Furrow(RowLines::Two(Pair { left: rows[0], right: rows[1] })),
+        ];
+        for line in lines {
+            for p in &moves {
+                check!("perception::detector::HeldLine::error_at", line.error_at(p));
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- switching and plan
+
+fn seconds() -> BoxedStrategy<Seconds> {
+    prop_oneof![3 => 0.005..2.0_f64, 1 => fin()]
+        .prop_map(|v| Seconds::new(v).unwrap())
+        .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+
+    #[test]
+    fn switching_machine(
+        delay in seconds(), period in seconds(), enter in seconds(), exit in seconds(),
+        stop in seconds(), plan in prop::option::of(seconds()),
+        thresholds in (raw(), raw()), ticks in prop::collection::vec((verdict(), verdict(), any::<bool>(), any::<bool>()), 1..60),
+        index in 0..4_usize,
+    ) {
+        check!("supervisor::switching::config::delay_ticks", delay_ticks(delay, period, "SW-DELAYS"));
+        let q = QualityThresholds::new(thresholds.0, thresholds.1, Better::Higher)
+            .unwrap_or(QualityThresholds::new(0.4, 0.2, Better::Higher).unwrap());
+        check!("supervisor::switching::config::BehaviourConfig::new", BehaviourConfig::new(q, enter, exit));
+        let edge = check!("supervisor::switching::config::BehaviourConfig::edge_following", BehaviourConfig::edge_following()).unwrap();
+        let furrow = check!("supervisor::switching::config::BehaviourConfig::furrow_pursuing", BehaviourConfig::furrow_pursuing()).unwrap();
+        let mine = BehaviourConfig::new(q, enter, exit).unwrap_or(edge);
+        check!("supervisor::switching::config::BehaviourConfig::thresholds", mine.thresholds());
+        check!("supervisor::switching::config::BehaviourConfig::enter_delay", mine.enter_delay());
+        check!("supervisor::switching::config::BehaviourConfig::exit_delay", mine.exit_delay());
+        check!("supervisor::switching::config::SwitchingConfig::new", SwitchingConfig::new(period, [mine, furrow], stop, plan));
+        let config = SwitchingConfig::new(period, [mine, furrow], stop, plan).unwrap_or(
+            SwitchingConfig::new(Seconds::new(0.01).unwrap(), [edge, furrow], Seconds::new(0.5).unwrap(), plan.map(|_| Seconds::new(1.0).unwrap())).unwrap(),
+        );
+        #[cfg(feature = "fault-injection")]
+        {
+            let faulty = check!(
+                "supervisor::switching::config::SwitchingConfig::with_fault",
+                config.with_fault(fieldguide::supervisor::switching::Fault::NeverStop)
+            );
+            check!("supervisor::switching::config::SwitchingConfig::fault", faulty.fault());
+        }
+        check!("supervisor::switching::config::SwitchingConfig::period", config.period());
+        check!("supervisor::switching::config::SwitchingConfig::behaviour", config.behaviour(index));
+        check!("supervisor::switching::config::SwitchingConfig::ticks", config.ticks(index));
+        check!("supervisor::switching::config::SwitchingConfig::all_ticks", config.all_ticks());
+        check!("supervisor::switching::config::SwitchingConfig::stop_delay", config.stop_delay());
+        check!("supervisor::switching::config::SwitchingConfig::stop_ticks", config.stop_ticks());
+        check!("supervisor::switching::config::SwitchingConfig::plan_delay", config.plan_delay());
+        check!("supervisor::switching::config::SwitchingConfig::plan_ticks", config.plan_ticks());
+        check!("supervisor::switching::config::SwitchingConfig::min_dwell_ticks", config.min_dwell_ticks());
+        let mut machine = check!("supervisor::switching::machine::Switching::new", Switching::new(config));
+        let mut state = check!("supervisor::switching::machine::SwitchingState::initial", SwitchingState::<2>::initial());
+        for (a, b, consistent, localised) in ticks {
+            let input = Input {
+                behaviours: [Report { verdict: a, plan_consistent: consistent }, check!("supervisor::switching::Report::consistent", Report::consistent(b))],
+                localisation_valid: localised,
+            };
+            let out = check!("supervisor::switching::machine::Switching::step", machine.step(&input));
+            let (next, same) = check!("supervisor::switching::machine::step", machine_step(&config, &state, &input));
+            prop_assert_eq!(out, same);
+            state = next;
+            prop_assert_eq!(machine.state(), &state);
+        }
+        check!("supervisor::switching::machine::Switching::mode", machine.mode());
+        check!("supervisor::switching::machine::Switching::config", machine.config());
+        let s = check!("supervisor::switching::machine::Switching::state", machine.state());
+        check!("supervisor::switching::machine::SwitchingState::mode", s.mode());
+        check!("supervisor::switching::machine::SwitchingState::entry_run", s.entry_run(index));
+        check!("supervisor::switching::machine::SwitchingState::exit_run", s.exit_run());
+        check!("supervisor::switching::machine::SwitchingState::plan_run", s.plan_run());
+        check!("supervisor::switching::machine::SwitchingState::sourceless_run", s.sourceless_run());
+    }
+
+    #[test]
+    fn plan_consistency(
+        points in waypoints(), s in meters(), d in meters(), line in tracking(), at_path in tracking(),
+        max_offset in meters(), max_heading in radians(), lookahead in meters(),
+    ) {
+        let path = path_of(&points);
+        let ahead = check!("supervisor::switching::plan::PathAhead::on_path", PathAhead::on_path(&path, s, d));
+        let ahead = ahead.unwrap_or(PathAhead::HERE);
+        check!("supervisor::switching::plan::PathAhead::distance", ahead.distance());
+        check!("supervisor::switching::plan::line_relative_to_path", line_relative_to_path(&line, &at_path));
+        check!("supervisor::switching::plan::line_relative_to_path_ahead", line_relative_to_path_ahead(&line, &at_path, &ahead));
+        check!("supervisor::switching::plan::PlanTolerance::new", PlanTolerance::new(max_offset, max_heading));
+        let tolerance = PlanTolerance::new(max_offset, max_heading)
+            .unwrap_or(PlanTolerance::new(m(0.3), rad(0.3)).unwrap());
+        check!("supervisor::switching::plan::PlanTolerance::with_lookahead", tolerance.with_lookahead(lookahead));
+        let tolerance = tolerance.with_lookahead(lookahead).unwrap_or(tolerance);
+        check!("supervisor::switching::plan::PlanTolerance::max_offset", tolerance.max_offset());
+        check!("supervisor::switching::plan::PlanTolerance::max_heading", tolerance.max_heading());
+        check!("supervisor::switching::plan::PlanTolerance::lookahead", tolerance.lookahead());
+        check!("supervisor::switching::plan::PlanTolerance::is_consistent", tolerance.is_consistent(&line, &at_path, &ahead));
+    }
+}
+
+// ---------------------------------------------------------------- presets and the pipeline
+
+/// Path tracking and both behaviours as the presets give them, with some
+/// values replaced by anything finite.
+fn guidance_params(
+    side: Side,
+    mount: Transform2<Sensor, Robot>,
+    change: usize,
+    v: f64,
+) -> GuidanceParams<AnyDetectorConfig, BacksteppingConfig, 2> {
+    let mut p = presets::pierre2022_both(side, mount).unwrap();
+    let seconds = Seconds::new(v).unwrap();
+    match change {
+        0 => p.period = seconds,
+        1 => p.path.speed = MetersPerSecond::new(v).unwrap(),
+        2 => p.path.horizon = seconds,
+        3 => p.path.search_window = m(v),
+        4 => p.stop_delay = seconds,
+        5 => p.max_scan_age = seconds,
+        6 => p.behaviours[0].speed = MetersPerSecond::new(v).unwrap(),
+        7 => p.behaviours[1].enter_delay = seconds,
+        8 => {
+            p.plan_delay = Some(seconds);
+            p.behaviours[0].plan = PlanTolerance::new(m(0.3), rad(0.3)).ok();
+        }
+        _ => {}
+    }
+    p
+}
+
+type Pipeline<'p> = Guidance<'p, 64, AnyDetector<512, 64, 512, 32>, BacksteppingConfig, 2>;
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn presets_and_the_guidance_pipeline(
+        s in side(),
+        mount in prop_oneof![3 => Just((0.0, 0.0, 0.0)), 1 => (near(2.0), near(1.0), near(4.0))],
+        change in 0..12_usize, v in prop_oneof![2 => 0.01..2.0_f64, 1 => fin()],
+        points in waypoints(), other in waypoints(),
+        ticks in prop::collection::vec((
+            gnss(), pose::<Odom>(), (slip(), slip()),
+            any::<bool>(), any::<bool>(), 0..8_u16, parts_or_wall(),
+        ), 1..12),
+    ) {
+        let mount = Transform2::<Sensor, Robot>::new(mount.0, mount.1, mount.2).unwrap();
+        check!("presets::vehicle", presets::vehicle());
+        check!("presets::path_tracking", presets::path_tracking());
+        check!("presets::edge_following", presets::edge_following(s, mount));
+        check!("presets::furrow_pursuing", presets::furrow_pursuing());
+        check!("presets::pierre2022_path", presets::pierre2022_path());
+        check!("presets::pierre2022_edge", presets::pierre2022_edge(s, mount));
+        check!("presets::pierre2022_furrow", presets::pierre2022_furrow());
+        check!("presets::pierre2022_both", presets::pierre2022_both(s, mount));
+        let params = guidance_params(s, mount, change, v);
+        let config = check!("guidance::config::GuidanceConfig::new", GuidanceConfig::new::<AnyDetector<512, 64, 512, 32>>(&params));
+        let config = config.unwrap_or(
+            GuidanceConfig::new::<AnyDetector<512, 64, 512, 32>>(&presets::pierre2022_both(s, mount).unwrap()).unwrap(),
+        );
+        check!("guidance::config::GuidanceConfig::params", config.params());
+        check!("guidance::config::GuidanceConfig::behaviours", config.behaviours());
+        check!("guidance::config::GuidanceConfig::switching", config.switching());
+        check!("guidance::config::GuidanceConfig::lookahead", config.lookahead());
+        check!("guidance::config::GuidanceConfig::max_scan_age_ticks", config.max_scan_age_ticks());
+        let (path, replacement) = (path_of(&points), path_of(&other));
+        let mut guidance: Pipeline<'_> = check!("guidance::Guidance::new", Guidance::new(config, &path)).unwrap();
+        check!("guidance::Guidance::config", guidance.config());
+        check!("guidance::Guidance::path", guidance.path());
+        for (i, (gnss, odometry, (front, rear), edge_scan, furrow_scan, stranger, (wall, parts))) in ticks.into_iter().enumerate() {
+            if i == 3 {
+                check!("guidance::Guidance::set_path", guidance.set_path(&replacement));
+            }
+            let (start, increment, ranges) = parts;
+            let ranges = if wall { wall_ranges(1.5, 360, &[]) } else { ranges };
+            let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };
+            let mut scans = Vec::new();
+            if edge_scan {
+                scans.push(RoutedScan { behaviour: presets::EDGE, scan });
+            }
+            if furrow_scan {
+                scans.push(RoutedScan { behaviour: presets::FURROW, scan });
+            }
+            if stranger == 0 {
+                scans.push(RoutedScan { behaviour: BehaviourId(7), scan });
+            }
+            // On the path (a few decimetres off, nearly along it), or anywhere.
+            let on_path = if i >= 3 { &replacement } else { &path };
+            let gnss = match gnss {
+                Gnss::None => None,
+                Gnss::Anywhere(p) => Some(p),
+                Gnss::Near { s, left, turn } => {
+                    let q = on_path.point_at(m(s * on_path.length().get())).unwrap();
+                    let h = on_path.heading_at(m(s * on_path.length().get())).get();
+                    Pose2::new(q.x() - left * h.sin(), q.y() + left * h.cos(), h + turn).ok()
+                }
+            };
+            let out = check!("guidance::Guidance::step", guidance.step(&TickInput {
+                scans: &scans,
+                gnss,
+                odometry,
+                extra: Sideslip { front, rear },
+            }));
+            if let Ok(out) = out {
+                check!("guidance::LawOutcome::command", out.path.law.command());
+                for id in [presets::EDGE, presets::FURROW, BehaviourId(7)] {
+                    check!("guidance::TickOutput::behaviour", out.behaviour(id));
+                }
+            }
+        }
+        check!("guidance::Guidance::switching", guidance.switching());
+        let mode = check!("guidance::Guidance::mode", guidance.mode());
+        for mode in [mode, GuidanceMode::PathTracking, GuidanceMode::Stop, GuidanceMode::Behaviour(BehaviourId(7))] {
+            check!("guidance::Guidance::label", guidance.label(mode));
+        }
+        for id in [presets::EDGE, presets::FURROW, BehaviourId(7)] {
+            check!("guidance::Guidance::detector", guidance.detector(id));
+            check!("guidance::Guidance::held", guidance.held(id));
+        }
+    }
+}
+
+/// Where the GNSS puts the robot in a tick.
+#[derive(Debug, Clone, Copy)]
+enum Gnss {
+    /// No fix.
+    None,
+    /// At a fraction `s` of the path, `left` m to its left, `turn` rad from its heading.
+    Near { s: f64, left: f64, turn: f64 },
+    /// Anywhere.
+    Anywhere(Pose2<World>),
+}
+
+fn gnss() -> BoxedStrategy<Gnss> {
+    prop_oneof![
+        1 => Just(Gnss::None),
+        4 => (0.0..1.0_f64, -0.5..0.5_f64, -0.3..0.3_f64)
+            .prop_map(|(s, left, turn)| Gnss::Near { s, left, turn }),
+        1 => pose::<World>().prop_map(Gnss::Anywhere),
+    ]
+    .boxed()
+}
+
+/// A sideslip angle: a plausible one, or any finite angle (|β| ≥ π/2 is refused).
+fn slip() -> BoxedStrategy<Radians> {
+    prop_oneof![4 => (-0.1..0.1_f64).prop_map(rad), 1 => radians()].boxed()
+}
+
+/// Whether a scan is a wall on the left, and the parts of a scan otherwise.
+fn parts_or_wall() -> BoxedStrategy<(bool, ScanParts)> {
+    (any::<bool>(), scan_parts(360)).boxed()
+}
+
+// ---------------------------------------------------------------- coverage
+
+/// One public function of the core, as `module::Type::name`,
+/// `module::Trait::name` or `module::name` (the module from the file's path
+/// under `src/`; `$name` for the unit types' shared methods).
+fn public_functions(src: &Path) -> BTreeSet<String> {
+    let mut keys = BTreeSet::new();
+    let mut files = Vec::new();
+    collect_rust_files(src, &mut files);
+    for file in files {
+        let relative = file.strip_prefix(src).unwrap().with_extension("");
+        let mut parts: Vec<String> = relative
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        if matches!(parts.last().map(String::as_str), Some("mod" | "lib")) {
+            parts.pop();
+        }
+        let module = parts.join("::");
+        let text = std::fs::read_to_string(&file).unwrap();
+        scan_file(&module, &text, &mut keys);
+    }
+    keys
+}
+
+fn collect_rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            collect_rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// A line without its comment and the contents of its string and char
+/// literals (`in_string` carries an open string over lines).
+fn code_of(line: &str, in_string: &mut bool) -> String {
+    let chars: Vec<char> = line.chars().collect();
+    let mut out = String::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if *in_string {
+            if c == '\\' {
+                i += 2;
+                continue;
+            }
+            if c == '"' {
+                *in_string = false;
+            }
+            i += 1;
+            continue;
+        }
+        if c == '/' && chars.get(i + 1) == Some(&'/') {
+            break;
+        }
+        if c == '"' {
+            *in_string = true;
+        } else if c == '\'' && chars.get(i + 2) == Some(&'\'') {
+            i += 3;
+            continue;
+        } else {
+            out.push(c);
+        }
+        i += 1;
+    }
+    out
+}
+
+/// The identifier at the start of `s`.
+fn identifier(s: &str) -> String {
+    s.chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '$')
+        .collect()
+}
+
+/// The type an `impl` header is for: the last path segment after `for`, or
+/// after `impl`, generics removed.
+fn impl_type(header: &str) -> String {
+    let mut h = header.split('{').next().unwrap_or("").to_string();
+    // Remove generic arguments, innermost first.
+    while let Some(close) = h.find('>') {
+        let Some(open) = h[..close].rfind('<') else {
+            break;
+        };
+        h.replace_range(open..=close, "");
+    }
+    let h = h.split(" where").next().unwrap_or("");
+    let after_impl = h.trim_start().trim_start_matches("impl").trim_start();
+    let target = after_impl.split(" for ").last().unwrap_or(after_impl);
+    let path = target.split_whitespace().next().unwrap_or("");
+    identifier(path.rsplit("::").next().unwrap_or(path))
+}
+
+#[derive(Debug, PartialEq)]
+enum Block {
+    /// An `impl` of the named type.
+    Impl(String),
+    /// A public trait's declaration.
+    Trait(String),
+    /// A `#[cfg(test)]` or `#[cfg(doctest)]` module.
+    Skipped,
+}
+
+/// Adds the public functions of one file (rustfmt's layout: one item
+/// header per line, braces counted outside comments and literals).
+fn scan_file(module: &str, text: &str, keys: &mut BTreeSet<String>) {
+    let mut in_string = false;
+    let mut depth = 0_usize;
+    let mut blocks: Vec<(usize, Block)> = Vec::new();
+    let mut header: Option<String> = None;
+    let mut test_only = false;
+    for raw in text.lines() {
+        let code = code_of(raw, &mut in_string);
+        let line = code.trim();
+        if line.starts_with("#[cfg(test)]") || line.starts_with("#[cfg(doctest)]") {
+            test_only = true;
+            continue;
+        }
+        let skipped = blocks.iter().any(|(_, b)| *b == Block::Skipped);
+        if let Some(h) = header.as_mut() {
+            h.push(' ');
+            h.push_str(line);
+        } else if (line.starts_with("impl") && !line.starts_with("impl_"))
+            || line.starts_with("pub trait ")
+            || (test_only && line.contains("mod "))
+        {
+            header = Some(line.to_string());
+        }
+        if !skipped && header.is_none() {
+            let owner = blocks.iter().rev().find_map(|(_, b)| match b {
+                Block::Impl(t) => Some((t.clone(), false)),
+                Block::Trait(t) => Some((t.clone(), true)),
+                Block::Skipped => None,
+            });
+            let public = line
+                .strip_prefix("pub fn ")
+                .or_else(|| line.strip_prefix("pub const fn "));
+            let name = match (&owner, public) {
+                (_, Some(rest)) => Some(identifier(rest)),
+                (Some((_, true)), None) => line.strip_prefix("fn ").map(identifier),
+                _ => None,
+            };
+            if let Some(name) = name {
+                let key = match owner {
+                    Some((t, _)) => format!("{module}::{t}::{name}"),
+                    None => format!("{module}::{name}"),
+                };
+                keys.insert(key);
+            }
+        }
+        let opens = code.matches('{').count();
+        let closes = code.matches('}').count();
+        if let Some(h) = header.take() {
+            if opens > 0 {
+                let block = if test_only && h.contains("mod ") {
+                    Block::Skipped
+                } else if let Some(rest) = h.strip_prefix("pub trait ") {
+                    Block::Trait(identifier(rest))
+                } else {
+                    Block::Impl(impl_type(&h))
+                };
+                blocks.push((depth + 1, block));
+                test_only = false;
+            } else if h.ends_with(';') {
+                test_only = false;
+            } else {
+                header = Some(h);
+            }
+        } else if test_only
+            && !line.is_empty()
+            && !line.starts_with("#[")
+            && !line.starts_with("///")
+        {
+            // The attribute belonged to an item without a body (`mod x;`, a struct).
+            if line.ends_with(';') || opens == closes {
+                test_only = false;
+            }
+        }
+        depth = (depth + opens).saturating_sub(closes);
+        while blocks.last().is_some_and(|(d, _)| *d > depth) {
+            blocks.pop();
+        }
+    }
+}
+
+/// The keys of every `check!` in this file.
+fn checked_keys(this_file: &str) -> BTreeSet<String> {
+    // Spelt in two parts, so that this line is not a call itself.
+    let marker = concat!("check", "!(");
+    this_file
+        .match_indices(marker)
+        .filter_map(|(i, _)| {
+            let rest = this_file[i + marker.len()..]
+                .trim_start()
+                .strip_prefix('"')?;
+            rest.find('"').map(|end| rest[..end].to_string())
+        })
+        .collect()
+}
+
+//= spec/library.md#lib-finite-no-nan-or-infinity
+//= type=test
+//# A value returned by the core MUST be finite: a computation whose result
+//# would be NaN or infinite MUST return a `Precondition` error instead.
+//= spec/library.md#lib-no-panic-no-panic
+//= type=test
+//# The core MUST NOT panic for any input: a function whose domain is restricted
+//# MUST return `Result<_, Precondition>` naming the requirement it protects.
+#[test]
+fn the_property_tests_call_every_public_function() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let public = public_functions(&root.join("src"));
+    let this_file = std::fs::read_to_string(root.join("tests/public_api.rs")).unwrap();
+    let checked = checked_keys(&this_file);
+    // The scan must see the API (a broken scanner would pass vacuously).
+    assert!(
+        public.len() > 250,
+        "only {} public functions found",
+        public.len()
+    );
+    for known in [
+        "geometry::frame::Point2::distance_to",
+        "geometry::units::wrap_angle",
+        "geometry::units::$name::new",
+        "perception::detector::Detector::observe",
+        "guidance::Guidance::step",
+    ] {
+        assert!(public.contains(known), "the scan misses {known}");
+    }
+    let missing: Vec<&String> = public.difference(&checked).collect();
+    let stale: Vec<&String> = checked.difference(&public).collect();
+    assert!(
+        missing.is_empty(),
+        "public functions without a check! in tests/public_api.rs: {missing:#?}"
+    );
+    assert!(
+        stale.is_empty(),
+        "check! names that are no public function of src/: {stale:#?}"
+    );
+}
+
+#[test]
+fn the_scan_reads_impls_traits_and_test_modules() {
+    let text = r#"
+impl<const N: usize> Thing<N> {
+    /// A doc comment with pub fn inside { and braces }.
+    pub fn visible(&self) -> f64 { 1.0 }
+    fn private(&self) {}
+    pub(crate) fn crate_only(&self) {}
+    pub const fn constant() -> u8 { 0 }
+}
+impl<const A: usize, const B: usize>
+    Detector for Other<A, B>
+{
+    fn observe(&self) {}
+}
+impl<'p, D, const K: usize> Guidance<'p, D, K>
+where
+    D: Detector,
+    D::Config: Copy,
+{
+    pub fn step(&mut self) {}
+}
+pub trait Seam: Copy {
+    fn method(&self) -> Result<(), ()>;
+}
+pub fn free(s: &str) -> bool { s == "}" }
+#[cfg(test)]
+mod tests {
+    pub fn hidden() {}
+}
+pub fn after() {}
+"#;
+    let mut keys = BTreeSet::new();
+    scan_file("m", text, &mut keys);
+    let expected: BTreeSet<String> = [
+        "m::Thing::visible",
+        "m::Thing::constant",
+        "m::Guidance::step",
+        "m::Seam::method",
+        "m::free",
+        "m::after",
+    ]
+    .iter()
+    .map(ToString::to_string)
+    .collect();
+    assert_eq!(keys, expected);
+}
