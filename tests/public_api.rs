@@ -967,7 +967,6 @@ proptest! {
             AnyDetectorConfig::Furrow(FurrowConfig::new(&FurrowParams::table2()).unwrap())
         };
         let mut detector = check!("perception::detector::Detector::configure", AnyDetector::<512, 64, 512, 32>::configure(&config)).unwrap();
-        check!("perception::detector::Detector::thresholds", AnyDetector::<512, 64, 512, 32>::thresholds(&config));
         check!("perception::detector::AnyDetector::as_edge", detector.as_edge().map(EdgeDetector::config));
         check!("perception::detector::AnyDetector::as_furrow", detector.as_furrow().map(FurrowDetector::config));
         let (start, increment, wild) = parts;
@@ -1025,11 +1024,11 @@ proptest! {
         check!("supervisor::switching::config::delay_ticks", delay_ticks(delay, period, "SW-DELAYS"));
         let q = QualityThresholds::new(thresholds.0, thresholds.1, Better::Higher)
             .unwrap_or(QualityThresholds::new(0.4, 0.2, Better::Higher).unwrap());
-        check!("supervisor::switching::config::BehaviourConfig::new", BehaviourConfig::new(q, enter, exit));
+        check!("perception::QualityThresholds::classify", q.classify(thresholds.0));
+        check!("supervisor::switching::config::BehaviourConfig::new", BehaviourConfig::new(enter, exit));
         let edge = check!("supervisor::switching::config::BehaviourConfig::edge_following", BehaviourConfig::edge_following()).unwrap();
         let furrow = check!("supervisor::switching::config::BehaviourConfig::furrow_pursuing", BehaviourConfig::furrow_pursuing()).unwrap();
-        let mine = BehaviourConfig::new(q, enter, exit).unwrap_or(edge);
-        check!("supervisor::switching::config::BehaviourConfig::thresholds", mine.thresholds());
+        let mine = BehaviourConfig::new(enter, exit).unwrap_or(edge);
         check!("supervisor::switching::config::BehaviourConfig::enter_delay", mine.enter_delay());
         check!("supervisor::switching::config::BehaviourConfig::exit_delay", mine.exit_delay());
         check!("supervisor::switching::config::SwitchingConfig::new", SwitchingConfig::new(period, [mine, furrow], stop, plan));
@@ -1155,9 +1154,9 @@ proptest! {
         check!("presets::pierre2022_furrow", presets::pierre2022_furrow());
         check!("presets::pierre2022_both", presets::pierre2022_both(s, mount));
         let params = guidance_params(s, mount, change, v);
-        let config = check!("guidance::config::GuidanceConfig::new", GuidanceConfig::new::<AnyDetector<512, 64, 512, 32>>(&params));
+        let config = check!("guidance::config::GuidanceConfig::new", GuidanceConfig::new(&params));
         let config = config.unwrap_or(
-            GuidanceConfig::new::<AnyDetector<512, 64, 512, 32>>(&presets::pierre2022_both(s, mount).unwrap()).unwrap(),
+            GuidanceConfig::new(&presets::pierre2022_both(s, mount).unwrap()).unwrap(),
         );
         check!("guidance::config::GuidanceConfig::params", config.params());
         check!("guidance::config::GuidanceConfig::behaviours", config.behaviours());
