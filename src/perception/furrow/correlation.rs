@@ -257,7 +257,7 @@ fn score(numerator: f64, a: f64, r: f64) -> f64 {
 /// `A = 0`. Samples are read on the grid of [`SAMPLE_QUANTUM`] (rounded to
 /// the nearest multiple) and the sums are exact; samples that are not finite
 /// or exceed [`MAX_SAMPLE`] count as 0. Since z_r is h_ref on the support and
-/// 0 elsewhere, Σ_i z_r[i] z_a[k+i] = h_ref · Σ_support z_a[k+i].
+/// 0 elsewhere, `Σ_i z_r[i] z_a[k+i] = h_ref · Σ_support z_a[k+i]`.
 ///
 /// Errors with `FUR-CORRELATION` when `out` is shorter than `signal`.
 //= spec/pierre2022.md#fur-correlation-normalised-correlation-by-running-sums
