@@ -172,7 +172,7 @@ fn template_wider_than_the_window_scores_nothing_and_short_output_is_refused() {
 #[test]
 fn a_tall_sample_that_left_the_window_leaves_nothing_behind() {
     assert_eq!(SAMPLE_QUANTUM, 2f64.powi(-24));
-    // The audit's case: 0.16 m beside 1e-122 m. The running sums lost the
+    // A 0.16 m height beside 1e-122 m ones. The running sums lost the
     // tiny heights under the rounding of the tall ones and scored 0 where the
     // definition scored 0.58 (at k = 5) and 0.82 (at k = 4).
     let t = Template::new(3, 0, m(0.3)).unwrap();

@@ -284,7 +284,7 @@ fn coordinates_and_lengths_beyond_the_range_are_refused_at_the_boundary() {
             .requirement,
         "PATH-RANGE"
     );
-    // The audit's case: waypoints 3.4e17 m apart, where s stopped growing.
+    // Waypoints 3.4e17 m apart, where s stopped growing.
     let far = [
         pt(0.0, 0.0),
         pt(3.4e17, 0.0),
