@@ -35,6 +35,22 @@ fn edited_error_of(text: String, edit: impl Fn(String) -> String) -> ScenarioErr
         .expect_err("the edited scenario must be refused")
 }
 
+/// The byte span of the section of `text` whose header is `header`: from the
+/// header to the next header (or the end).
+fn section_span(text: &str, header: &str) -> (usize, usize) {
+    let start = text.find(header).unwrap();
+    let end = text[start + 1..]
+        .find("\n[")
+        .map_or(text.len(), |i| start + 1 + i);
+    (start, end)
+}
+
+/// `text` without the section whose header is `header`.
+fn without_section(text: &str, header: &str) -> String {
+    let (start, end) = section_span(text, header);
+    format!("{}{}", &text[..start], &text[end..])
+}
+
 fn assert_field(e: &ScenarioError, field: &str, reason_part: &str) {
     assert_eq!(e.field(), Some(field), "{e}");
     let message = e.to_string();
@@ -501,13 +517,7 @@ fn world_lidar_and_furrow_fields_are_named() {
 
 #[test]
 fn furrow_pursuing_needs_its_sensor_and_its_world() {
-    let e = furrow_error_of(|t| {
-        let start = t.find("[lidar]").unwrap();
-        let end = t[start + 1..]
-            .find("\n[")
-            .map_or(t.len(), |i| start + 1 + i);
-        format!("{}{}", &t[..start], &t[end..])
-    });
+    let e = furrow_error_of(|t| without_section(&t, "[lidar]"));
     assert_field(&e, "furrow", "[lidar]");
     // Without plots the path along them has nothing to follow.
     let e = furrow_error_of(|t| {
@@ -780,23 +790,13 @@ fn hedge_horizontal_lidar_and_edge_fields_are_named() {
 
 #[test]
 fn edge_following_needs_its_sensor_and_the_priority_names_each_behaviour_once() {
-    let section = |t: &str, name: &str| -> (usize, usize) {
-        let start = t.find(name).unwrap();
-        let end = t[start + 1..]
-            .find("\n[")
-            .map_or(t.len(), |i| start + 1 + i);
-        (start, end)
-    };
-    let e = hedge_error_of(|t| {
-        let (start, end) = section(&t, "[horizontal_lidar]");
-        format!("{}{}", &t[..start], &t[end..])
-    });
+    let e = hedge_error_of(|t| without_section(&t, "[horizontal_lidar]"));
     assert_field(&e, "edge", "[horizontal_lidar]");
     // The furrow-pursuing scenario's LiDAR and furrow sections added: both
     // behaviours, furrow first unless `switching.priority` says otherwise.
     let furrow = Source::builtin("furrow-pursuing").unwrap().text;
-    let (l0, l1) = section(&furrow, "[lidar]");
-    let (f0, f1) = section(&furrow, "[furrow]");
+    let (l0, l1) = section_span(&furrow, "[lidar]");
+    let (f0, f1) = section_span(&furrow, "[furrow]");
     let both = |priority: &str| {
         let hedge = Source::builtin("hedge-following").unwrap().text;
         assert!(!hedge.contains("\n[switching]\n"));
@@ -951,16 +951,9 @@ fn a_segment_along_a_missing_plot_is_named() {
 fn lidars_without_their_behaviour_and_bad_ground_are_named() {
     // A LiDAR whose behaviour is missing: its scans would go nowhere.
     let furrow = Source::builtin("furrow-pursuing").unwrap().text;
-    let without = |t: &str, name: &str| {
-        let start = t.find(name).unwrap();
-        let end = t[start + 1..]
-            .find("\n[")
-            .map_or(t.len(), |i| start + 1 + i);
-        format!("{}{}", &t[..start], &t[end..])
-    };
-    let e = edited_error_of(furrow.clone(), |t| without(&t, "[furrow]"));
+    let e = edited_error_of(furrow.clone(), |t| without_section(&t, "[furrow]"));
     assert_field(&e, "lidar", "needs a `[furrow]` section");
-    let e = hedge_error_of(|t| without(&t, "[edge]"));
+    let e = hedge_error_of(|t| without_section(&t, "[edge]"));
     assert_field(&e, "horizontal_lidar", "needs an `[edge]` section");
     // The ground's shape and the obstacles' height.
     let terrain = |extra: &'static str| {

@@ -19,6 +19,7 @@ use fieldguide::{Meters, Precondition, Seconds};
 
 use super::{Command, DetectorStatus, Guidance, TickInput, SEARCH_WINDOW_M};
 use crate::capacity::{EDGE_CHAIN, EDGE_RAYS, FURROW_RAYS, FURROW_SCANS, PATH_CAPACITY};
+use crate::plant::Plant;
 use crate::scenario::setup::Setup;
 pub use crate::scenario::setup::{EDGE, FURROW};
 
@@ -121,6 +122,13 @@ impl<'p> Pipeline<'p> {
     /// requirements), named by its requirement ID.
     pub fn new(setup: &'p Setup) -> Result<Self, Precondition> {
         let config = GuidanceConfig::new(&params(setup)?)?;
+        // The laws command the configured vehicle; the plant must take its commands.
+        if config.params().vehicle.actuation() != setup.vehicle.actuation() {
+            return Err(Precondition::new(
+                "GD-VEHICLE",
+                "the plant takes another actuation than the pipeline's vehicle",
+            ));
+        }
         Ok(Self {
             core: Box::new(CorePipeline::new(config, &setup.path)?),
             period_s: setup.control.period_s,
@@ -180,7 +188,7 @@ impl Guidance for Pipeline<'_> {
         };
         // A tick without a source outside Stop (GD-COMMAND): the vehicle
         // keeps the previous command.
-        let rest = fieldguide::model::Actuation::Bicycle.at_rest();
+        let rest = self.core.config().params().vehicle.actuation().at_rest();
         let (drive, saturated) = match (out.command, self.held) {
             (Some(c), _) => (c.command, c.saturated),
             (None, Some(held)) => held,
