@@ -18,14 +18,11 @@
 use core::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, RoutedScan, TickInput};
 use fieldguide::model::bicycle::Sideslip;
-use fieldguide::perception::edge::Side;
 use fieldguide::perception::furrow::FurrowParams;
-use fieldguide::presets::{pierre2022_both, Pierre2022, EDGE, FURROW};
-use fieldguide::supervisor::switching::PlanTolerance;
-use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Seconds, World};
+use fieldguide::presets::{Pierre2022, EDGE, FURROW};
+use fieldguide::{Odom, Pose2, World};
 
 mod common;
 
@@ -34,21 +31,8 @@ use common::PLANT_SPACING as SPACING;
 fn guidance(c: &mut Criterion) {
     let horizontal = common::hedge_ranges();
     let inclined = common::rows_ranges(&FurrowParams::table2());
-    let waypoints: Vec<Point2<World>> = (0..=400)
-        .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
-        .collect();
-    let path = ReferencePath::<512>::from_waypoints(&waypoints, PathConfig::default()).unwrap();
-    // Both behaviours, furrow pursuing first, the plan checked for both.
-    let mut params = pierre2022_both(Side::Left, common::hedge_mount()).unwrap();
-    // Checked at the robot and 2 m ahead (SW-PLAN-AHEAD), as in exp2-acre.
-    let tolerance = PlanTolerance::new(Meters::new(0.5).unwrap(), Radians::new(0.3).unwrap())
-        .unwrap()
-        .with_lookahead(Meters::new(2.0).unwrap())
-        .unwrap();
-    for behaviour in &mut params.behaviours {
-        behaviour.plan = Some(tolerance);
-    }
-    params.plan_delay = Some(Seconds::new(1.0).unwrap());
+    let path = common::straight_path();
+    let params = common::pipeline_params();
     let config = GuidanceConfig::new(&params).unwrap();
     let mut pipeline: Pierre2022<'_, 512> = Guidance::new(config, &path).unwrap();
     let mut x = 0.0;

@@ -73,7 +73,7 @@ use heapless::Vec;
 use crate::control::ControlLaw;
 use crate::error::Precondition;
 use crate::geometry::carry::pose_in_scan_frame;
-use crate::geometry::frame::{Odom, Pose2, World};
+use crate::geometry::frame::{Odom, Pose2, Robot, World};
 use crate::geometry::path::{FrenetError, ReferencePath};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, MetersPerSecond};
@@ -178,6 +178,28 @@ pub struct PathStatus<X> {
     /// The extra input the law used: the tick's with compensation on, else
     /// the law's neutral input.
     pub extra_used: X,
+    /// The pose the plan check judged the lines from (GD-PLAN-DEAD-RECKONING).
+    pub plan_pose: PlanPose,
+}
+
+/// The pose a tick's plan check judged the behaviours' lines from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlanPose {
+    /// The tick's GNSS pose, projected on the path.
+    Gnss,
+    /// No fix in the tick: the last fix moved by the odometry since it,
+    /// `travelled` metres of odometry, projected on the path as `frenet`
+    /// (never used by path tracking).
+    DeadReckoned {
+        /// Odometry distance since the fix.
+        travelled: Meters,
+        /// The dead-reckoned pose's Frénet error.
+        frenet: FrenetError,
+    },
+    /// Neither: no fix yet, a refused projection, no dead reckoning
+    /// configured, or the fix carried farther than configured. The check
+    /// cannot judge, and every line counts as consistent (GD-PLAN).
+    Unjudged,
 }
 
 /// A behaviour in one tick.
@@ -372,8 +394,19 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     /// Odometry distance travelled since that projection, m.
     since_projection: f64,
     last_odometry: Option<Pose2<Odom>>,
+    /// The last GNSS fix and the odometry since it (GD-PLAN-DEAD-RECKONING).
+    last_fix: Option<LastFix>,
     /// The last command made; its stop is held in Stop (GD-STOP).
     last_command: Command,
+}
+
+/// A GNSS fix, the odometry pose of its tick and the odometry distance
+/// travelled since.
+#[derive(Debug, Clone, Copy)]
+struct LastFix {
+    world: Pose2<World>,
+    odometry: Pose2<Odom>,
+    travelled: f64,
 }
 
 impl<'p, const PATH: usize, D, L, const K: usize> Guidance<'p, PATH, D, L, K>
@@ -413,6 +446,7 @@ where
             s_hint: None,
             since_projection: 0.0,
             last_odometry: None,
+            last_fix: None,
         })
     }
 
@@ -522,6 +556,11 @@ where
     //# A tick MUST NOT allocate on the heap and MUST NOT read a clock: the
     //# pipeline's buffers are fixed by its const parameters and time is counted in
     //# ticks.
+    //= spec/library.md#lib-bounded-tick-every-loop-of-a-tick-has-a-bound-fixed-before-the-first-tick
+    //# Every loop the core runs in one guidance tick MUST be bounded by the length
+    //# of an input slice, a const-generic capacity or a count validated at
+    //# configuration, so that the cost of the worst tick is known before the first
+    //# tick.
     pub fn step(
         &mut self,
         input: &TickInput<'_, L::Extra>,
@@ -534,6 +573,17 @@ where
                 .map_or(f64::INFINITY, Meters::get)
         });
         self.last_odometry = Some(input.odometry);
+        match (input.gnss, self.last_fix.as_mut()) {
+            (Some(world), _) => {
+                self.last_fix = Some(LastFix {
+                    world,
+                    odometry: input.odometry,
+                    travelled: 0.0,
+                });
+            }
+            (None, Some(fix)) => fix.travelled += travelled,
+            (None, None) => {}
+        }
 
         // 1. Detections, or the held ones aged and moved (GD-SCAN-AGE).
         let max_age = self.config.max_scan_age_ticks();
@@ -581,17 +631,31 @@ where
         //# projection on the path succeeds and the path-tracking law gives a command
         //# from it.
         let localisation_valid = path_law.command().is_some();
+        //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+        //# Path tracking MUST NOT use the dead-reckoned pose: localisation stays
+        //# invalid without a fix (GD-LOCALISATION).
+        let plan_pose = match (&frenet, input.gnss) {
+            (Some(_), _) => PlanPose::Gnss,
+            (None, Some(_)) => PlanPose::Unjudged,
+            (None, None) => self.dead_reckoned(&input.odometry),
+        };
         let path = PathStatus {
             frenet,
             projection_refused,
             law: path_law,
             localisation_valid,
             extra_used,
+            plan_pose,
         };
         let mut behaviours = Vec::<BehaviourStatus, K>::new();
         let mut ahead = None;
+        let plan_frenet = match &path.plan_pose {
+            PlanPose::Gnss => path.frenet,
+            PlanPose::DeadReckoned { frenet, .. } => Some(*frenet),
+            PlanPose::Unjudged => None,
+        };
         for (estimate, b) in estimates.iter().zip(self.config.behaviours()) {
-            let reference = frenet.as_ref().map(|f| {
+            let reference = plan_frenet.as_ref().map(|f| {
                 PlanReference::new(self.path, f, b.plan, estimate.error.is_some(), &mut ahead)
             });
             // One status per configured behaviour, at most K.
@@ -715,21 +779,54 @@ where
         let Some(pose) = gnss else {
             return (None, None);
         };
-        let lookahead = self.config.lookahead();
-        let base = self.config.params().path.search_window.get();
-        // A window that overflows (absurd odometry) searches the whole path.
-        let window = Meters::new(base + self.since_projection).ok();
-        let projection = match (self.s_hint, window) {
-            (Some(hint), Some(window)) => self.path.project_near(pose, lookahead, hint, window),
-            _ => self.path.project(pose, lookahead),
-        };
-        match projection {
+        match self.project_locally(pose) {
             Ok(frenet) => {
                 self.s_hint = Some(frenet.s);
                 self.since_projection = 0.0;
                 (Some(frenet), None)
             }
             Err(e) => (None, Some(e)),
+        }
+    }
+
+    /// The projection of `pose` within the search window plus the odometry
+    /// distance since the last projection, around its abscissa; the whole
+    /// path before the first one or when the window overflows.
+    fn project_locally(&self, pose: &Pose2<World>) -> Result<FrenetError, Precondition> {
+        let lookahead = self.config.lookahead();
+        let base = self.config.params().path.search_window.get();
+        // A window that overflows (absurd odometry) searches the whole path.
+        let window = Meters::new(base + self.since_projection).ok();
+        match (self.s_hint, window) {
+            (Some(hint), Some(window)) => self.path.project_near(pose, lookahead, hint, window),
+            _ => self.path.project(pose, lookahead),
+        }
+    }
+
+    /// The plan check's pose in a tick without a fix (GD-PLAN-DEAD-RECKONING):
+    /// the last fix moved by the odometry since it, while that distance is
+    /// within the configured one.
+    //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+    //# When a dead-reckoning distance is configured and a tick has no GNSS pose,
+    //# the plan consistency of GD-PLAN MUST be judged from the pose of the last
+    //# fix moved by odometry: the tick's odometry pose in the robot frame of the
+    //# fix's odometry pose, placed at the fix, as long as the odometry distance
+    //# summed over the ticks since the fix is at most the configured distance;
+    //# beyond it, and before the first fix, the check MUST NOT judge.
+    fn dead_reckoned(&self, odometry: &Pose2<Odom>) -> PlanPose {
+        let (Some(limit), Some(fix)) = (self.config.params().plan_dead_reckoning, self.last_fix)
+        else {
+            return PlanPose::Unjudged;
+        };
+        if fix.travelled > limit.get() {
+            return PlanPose::Unjudged;
+        }
+        let pose = pose_in_scan_frame(&fix.odometry, odometry)
+            .and_then(|moved| fix.world.body_to_frame::<Robot>().apply_pose(moved))
+            .and_then(|pose| self.project_locally(&pose));
+        match (pose, Meters::new(fix.travelled)) {
+            (Ok(frenet), Ok(travelled)) => PlanPose::DeadReckoned { travelled, frenet },
+            _ => PlanPose::Unjudged,
         }
     }
 }

@@ -661,6 +661,45 @@ fn a_full_buffer_stops_the_chain() {
     assert!(none.is_empty());
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    //= spec/library.md#lib-bounded-tick-every-loop-of-a-tick-has-a-bound-fixed-before-the-first-tick
+    //= type=test
+    //# Every loop the core runs in one guidance tick MUST be bounded by the length
+    //# of an input slice, a const-generic capacity or a count validated at
+    //# configuration, so that the cost of the worst tick is known before the first
+    //# tick.
+    /// Dense scans, where the bounded sweep skips whole blocks of candidates
+    /// (LIB-BOUNDED-TICK): a hedge seen by 512 rays over 60° with a few
+    /// millimetres of noise, and a blob of 512 points within 0.4 m. The chain
+    /// is the one of the closed-form contacts over every point.
+    #[test]
+    fn dense_scans_give_minimal_contacts(
+        side in side(),
+        face in 0.8..1.8f64,
+        noise in prop::collection::vec(-0.003..0.003f64, 512),
+        blob in prop::collection::vec((-0.4..0.4f64, -0.4..0.4f64), 512),
+    ) {
+        let s = side.sign();
+        let hedge: Vec<_> = noise
+            .iter()
+            .enumerate()
+            .map(|(k, n)| {
+                let a = core::f64::consts::FRAC_PI_3 * (f64::from(u16::try_from(k).unwrap()) / 511.0 - 0.5);
+                let range = face / a.cos() + n;
+                pt(range * a.sin(), s * range * a.cos())
+            })
+            .collect();
+        let blob: Vec<_> = blob.iter().map(|(x, y)| pt(0.3 + x, s * (1.2 + y))).collect();
+        for points in [hedge, blob] {
+            let chain = build_chain::<M>(&points, side, &config());
+            prop_assert!(chain.len() >= 2);
+            check_minimal_contacts(&points, side, &config(), &chain);
+        }
+    }
+}
+
 #[test]
 fn more_points_than_the_candidate_buffer_still_give_minimal_contacts() {
     // 2000 points of a ragged wall within reach: beyond the 1024-point buffer.

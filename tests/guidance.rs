@@ -26,7 +26,7 @@ use fieldguide::geometry::carry::{moved_line_error, pose_in_scan_frame};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::guidance::{
     BehaviourId, BehaviourParams, BehaviourStatus, Guidance, GuidanceConfig, GuidanceParams,
-    LawOutcome, Mode, RoutedScan, TickInput, TickOutput, MAX_SCAN_AGE_TICKS,
+    LawOutcome, Mode, PlanPose, RoutedScan, TickInput, TickOutput, MAX_SCAN_AGE_TICKS,
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::model::{Actuation, Command, Saturated, Vehicle};
@@ -1045,6 +1045,102 @@ fn a_line_far_from_the_plan_is_not_entered() {
     assert_eq!(g.mode(), Mode::Behaviour(EDGE));
 }
 
+//= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+//= type=test
+//# When a dead-reckoning distance is configured and a tick has no GNSS pose,
+//# the plan consistency of GD-PLAN MUST be judged from the pose of the last
+//# fix moved by odometry: the tick's odometry pose in the robot frame of the
+//# fix's odometry pose, placed at the fix, as long as the odometry distance
+//# summed over the ticks since the fix is at most the configured distance;
+//# beyond it, and before the first fix, the check MUST NOT judge.
+//= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+//= type=test
+//# Path tracking MUST NOT use the dead-reckoned pose: localisation stays
+//# invalid without a fix (GD-LOCALISATION).
+#[test]
+fn through_an_outage_the_plan_is_checked_from_the_last_fix_moved_by_odometry() {
+    let path = straight_path();
+    let tolerance = PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap();
+    let mut params = with_plan(edge_params(), tolerance, Seconds::new(0.5).unwrap());
+    params.plan_dead_reckoning = Some(m(5.0));
+    // The robot drives 2 cm per tick along the world's x axis, 0.1 m left of
+    // the path, heading 0.05 rad; odometry is exact but in a frame rotated by
+    // 0.7 rad and shifted from the world's.
+    let to_odom = Transform2::<World, Odom>::new(3.0, -2.0, 0.7).unwrap();
+    let truth = |k: u32| world((0.02 * f64::from(k), 0.1, 0.05));
+    // A wall 2.5 m left of the robot: its line is 1.1 m or more from the path.
+    let far = wall_ranges((0.0, 0.0, 0.0), long_wall(2.5));
+    let far_scans = [routed(EDGE, edge_scan(&far))];
+    let tick = |g: &mut Pipeline<'_>, k: u32, fix: bool| {
+        g.step(&TickInput {
+            scans: &far_scans,
+            gnss: fix.then(|| truth(k)),
+            odometry: to_odom.apply_pose(truth(k)).unwrap(),
+            extra: Sideslip::ZERO,
+        })
+        .unwrap()
+    };
+    // Before any fix: nothing to judge from, the line counts as consistent.
+    let mut g = pipeline(&params, &path);
+    let out = tick(&mut g, 0, false);
+    assert_eq!(out.path.plan_pose, PlanPose::Unjudged);
+    assert!(status(&out, EDGE).plan_consistent);
+    let mut g = pipeline(&params, &path);
+    for k in 0..=20 {
+        let out = tick(&mut g, k, true);
+        assert_eq!(out.path.plan_pose, PlanPose::Gnss);
+    }
+    let mut judged = 0;
+    for k in 21..400 {
+        let out = tick(&mut g, k, false);
+        assert!(!out.path.localisation_valid && out.path.frenet.is_none());
+        let travelled = 0.02 * f64::from(k - 20);
+        match out.path.plan_pose {
+            PlanPose::DeadReckoned {
+                travelled: t,
+                frenet,
+            } => {
+                judged += 1;
+                assert!(travelled <= 5.0 + 1e-9, "tick {k}");
+                assert!((t.get() - travelled).abs() < 1e-9);
+                // The pose carried by exact odometry is the true one.
+                let expected = path.project(&truth(k), m(0.8)).unwrap();
+                assert!((frenet.s.get() - expected.s.get()).abs() < 1e-9);
+                assert!((frenet.y.get() - expected.y.get()).abs() < 1e-9);
+                assert!(
+                    (frenet.angular_deviation.get() - expected.angular_deviation.get()).abs()
+                        < 1e-9
+                );
+                assert!(!status(&out, EDGE).plan_consistent, "tick {k}");
+            }
+            PlanPose::Unjudged => {
+                assert!(travelled > 5.0 - 1e-9, "tick {k}");
+                assert!(status(&out, EDGE).plan_consistent);
+            }
+            PlanPose::Gnss => panic!("no fix in tick {k}"),
+        }
+        // The far line is never followed while it can be judged.
+        if travelled <= 5.0 {
+            assert_ne!(out.mode, Mode::Behaviour(EDGE), "tick {k}");
+        }
+    }
+    assert_eq!(judged, 250);
+    // Without dead reckoning, the outage cannot be judged and the line is
+    // entered.
+    let mut blind = params.clone();
+    blind.plan_dead_reckoning = None;
+    let mut g = pipeline(&blind, &path);
+    for k in 0..=20 {
+        tick(&mut g, k, true);
+    }
+    let mut out = tick(&mut g, 21, false);
+    assert_eq!(out.path.plan_pose, PlanPose::Unjudged);
+    for k in 22..100 {
+        out = tick(&mut g, k, false);
+    }
+    assert_eq!(out.mode, Mode::Behaviour(EDGE));
+}
+
 //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines
 //= type=test
 //# The path ahead MUST be taken at the tolerance's look-ahead from the
@@ -1232,6 +1328,10 @@ fn v(x: f64) -> MetersPerSecond {
 //# that is not positive (`GD-LOCALISATION`), a maximal scan age that is negative
 //# or longer than 65 534 ticks (`GD-SCAN-AGE`), or a delay of the switching
 //# machine (`SW-DELAYS`, `SW-STOP`, `SW-PLAN-CONSISTENCY`).
+//= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+//= type=test
+//# A dead-reckoning distance that is not positive MUST be refused with
+//# `GD-PLAN-DEAD-RECKONING`.
 #[test]
 fn each_bad_parameter_is_refused_naming_its_requirement() {
     let good = both_params(FURROW_FIRST);
@@ -1257,6 +1357,14 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
         (Box::new(|p| p.max_scan_age = s(-0.01)), "GD-SCAN-AGE"),
         (Box::new(|p| p.max_scan_age = s(655.36)), "GD-SCAN-AGE"),
         (Box::new(|p| p.max_scan_age = s(655.35)), "GD-SCAN-AGE"),
+        (
+            Box::new(|p| p.plan_dead_reckoning = Some(m(0.0))),
+            "GD-PLAN-DEAD-RECKONING",
+        ),
+        (
+            Box::new(|p| p.plan_dead_reckoning = Some(m(-1.0))),
+            "GD-PLAN-DEAD-RECKONING",
+        ),
         (Box::new(|p| p.period = s(0.0)), "SW-DELAYS"),
         (
             Box::new(|p| behaviour_mut(p, EDGE).enter_delay = s(0.0)),
@@ -1296,6 +1404,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
     ] {
         let p = GuidanceParams {
             max_scan_age: s(age),
+            plan_dead_reckoning: None,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1331,6 +1440,7 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
     // 655.35 s at 100 Hz is 65 535 ticks: refused.
     let too_long = GuidanceParams {
         max_scan_age: s(655.35),
+        plan_dead_reckoning: None,
         ..edge_params()
     };
     assert_eq!(
@@ -1340,6 +1450,7 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
     // 655.34 s is 65 534 ticks: accepted.
     let params = GuidanceParams {
         max_scan_age: s(655.34),
+        plan_dead_reckoning: None,
         ..edge_params()
     };
     let config = GuidanceConfig::new(&params).unwrap();
@@ -1512,6 +1623,7 @@ fn declared(
         stop_delay: params.stop_delay,
         plan_delay: params.plan_delay,
         max_scan_age: params.max_scan_age,
+        plan_dead_reckoning: params.plan_dead_reckoning,
     }
 }
 

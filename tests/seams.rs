@@ -459,6 +459,7 @@ fn a_pipeline_without_behaviour_slots_is_refused() {
         stop_delay: two.stop_delay,
         plan_delay: None,
         max_scan_age: two.max_scan_age,
+        plan_dead_reckoning: None,
     };
     let e = GuidanceConfig::new(&none).unwrap_err();
     assert_eq!(e.requirement, "SW-MODES");

@@ -13,13 +13,17 @@
 
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
+use fieldguide::geometry::path::{PathConfig, ReferencePath};
+use fieldguide::perception::edge::Side;
 use fieldguide::perception::furrow::FurrowParams;
 use fieldguide::perception::{RangeLimits, Scan};
-use fieldguide::{Meters, Radians, Robot, Sensor, Transform2};
+use fieldguide::presets::{pierre2022_both, Pierre2022Params};
+use fieldguide::supervisor::switching::PlanTolerance;
+use fieldguide::{Meters, Point2, Radians, Robot, Seconds, Sensor, Transform2, World};
 
 // The furrow tests' exact ray caster over straight rows of square plants.
 #[path = "../../tests/furrow_common/mod.rs"]
-mod furrow_common;
+pub mod furrow_common;
 use furrow_common::{ridge_scan, Lidar, Ridge, SPACING};
 
 /// The horizontal LiDAR's mount: 1.2 m ahead of the rear axle, facing forward.
@@ -130,4 +134,28 @@ pub fn rows_scan(ranges: &[f64]) -> Scan<'_> {
         ranges,
         limits: RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(20.0).unwrap()).unwrap(),
     }
+}
+
+/// The full tick's pipeline: both behaviours of the presets, furrow pursuing
+/// first, the plan checked for both at the robot and 2 m ahead
+/// (SW-PLAN-AHEAD), as in exp2-acre.
+pub fn pipeline_params() -> Pierre2022Params {
+    let mut params = pierre2022_both(Side::Left, hedge_mount()).unwrap();
+    let tolerance = PlanTolerance::new(Meters::new(0.5).unwrap(), Radians::new(0.3).unwrap())
+        .unwrap()
+        .with_lookahead(Meters::new(2.0).unwrap())
+        .unwrap();
+    for behaviour in &mut params.behaviours {
+        behaviour.plan = Some(tolerance);
+    }
+    params.plan_delay = Some(Seconds::new(1.0).unwrap());
+    params
+}
+
+/// A straight path of 401 waypoints 0.5 m apart along the world's x axis.
+pub fn straight_path() -> ReferencePath<512> {
+    let waypoints: Vec<Point2<World>> = (0..=400)
+        .map(|i| Point2::new(0.5 * f64::from(i), 0.0).unwrap())
+        .collect();
+    ReferencePath::from_waypoints(&waypoints, PathConfig::default()).unwrap()
 }

@@ -7,7 +7,7 @@
 
 pub mod pipeline;
 
-use fieldguide::guidance::{Mode, RoutedScan};
+use fieldguide::guidance::{Mode, PlanPose, RoutedScan};
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::{MetersPerSecond, Precondition, TrackingError, Verdict};
 
@@ -49,6 +49,8 @@ pub struct Command {
     pub sideslip_used: Sideslip,
     /// What a row detector reported, when the guidance has one.
     pub detector: Option<DetectorStatus>,
+    /// The pose the plan check judged the lines from (GD-PLAN-DEAD-RECKONING).
+    pub plan_pose: PlanPose,
 }
 
 impl Command {

@@ -16,7 +16,7 @@
 
 mod common;
 
-use fieldguide::guidance::Mode;
+use fieldguide::guidance::{Mode, PlanPose};
 use fieldguide::Verdict;
 use fieldguide_sim::guidance::pipeline::{EDGE, FURROW};
 use fieldguide_sim::rng::SimRng;
@@ -536,4 +536,87 @@ fn in_the_shared_world_the_inclined_lidar_sees_the_hedge() {
         .scan(&in_maize, &without, &mut rng, &mut ranges)
         .unwrap();
     assert!(ranges.iter().all(|r| r.is_infinite()), "{ranges:?}");
+}
+
+/// The time the robot passes the end of plot `plot` (along its heading).
+fn time_at_plot_end(setup: &Setup, out: &RunOutput, plot: usize) -> f64 {
+    let spec = &setup.world.plots[plot].spec;
+    let (xe, ye, he) = spec.centre_line(spec.length);
+    out.trace
+        .iter()
+        .find(|r| {
+            let (dx, dy) = (r.truth.position.x() - xe, r.truth.position.y() - ye);
+            dx.hypot(dy) < 3.0 && dx * he.cos() + dy * he.sin() >= 0.0
+        })
+        .unwrap()
+        .t_s
+}
+
+//= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+//= type=test
+//# When a dead-reckoning distance is configured and a tick has no GNSS pose,
+//# the plan consistency of GD-PLAN MUST be judged from the pose of the last
+//# fix moved by odometry: the tick's odometry pose in the robot frame of the
+//# fix's odometry pose, placed at the fix, as long as the odometry distance
+//# summed over the ticks since the fix is at most the configured distance;
+//# beyond it, and before the first fix, the check MUST NOT judge.
+/// The fix is lost 2.6 s before the third plot ends, where volunteer plants
+/// continue its rows 6 m into the headland, and comes back 12 s later.
+/// Without a pose the plan cannot be checked and furrow pursuing follows the
+/// volunteers towards the turn; with the last fix carried 20 m by odometry,
+/// the volunteers' line is rejected at the plot's end, the robot stops (no
+/// source is left without a fix) and, once the fix is back, path tracking
+/// takes the turn from where it stopped.
+#[test]
+fn exp2_plan_checked_by_dead_reckoning_through_an_outage_at_the_plot_end() {
+    let mut worst = (f64::NEG_INFINITY, 0.0f64);
+    let mut least_off = f64::INFINITY;
+    for seed in [2022, 1, 2, 3, 4, 5, 6, 7] {
+        let (setup, clear) = run_seed("exp2-acre", seed);
+        let t_end = time_at_plot_end(&setup, &clear, 2);
+        let outage = move |t: String, carry: bool| {
+            let t = if carry {
+                t.replace(
+                    "plan_lookahead_m = 2.0",
+                    "plan_lookahead_m = 2.0\nplan_dead_reckoning_m = 20.0",
+                )
+            } else {
+                t
+            };
+            format!(
+                "{t}\n[gnss]\noutages_s = [[{:.2}, {:.2}]]\n",
+                t_end - 2.6,
+                t_end + 9.4
+            )
+        };
+        let (_, carried) = run_edited("exp2-acre", seed, |t| outage(t, true));
+        let (_, blind) = run_edited("exp2-acre", seed, |t| outage(t, false));
+        let (exc_on, past_on) = excursion_after(&setup, &carried, 2);
+        let (exc_off, past_off) = excursion_after(&setup, &blind, 2);
+        eprintln!(
+            "exp2 seed {seed}, outage from {:.1} s: furrow until {past_on:.2} m past the plot's \
+             end, excursion {exc_on:.3} m with dead reckoning; {past_off:.2} m, {exc_off:.3} m \
+             without",
+            t_end - 2.6
+        );
+        // Without a pose to check against, the volunteers are followed past the end.
+        assert!(past_off > 1.0, "seed {seed}: {past_off}");
+        // Carried by odometry, the line is left before the turn begins, the
+        // robot stops and resumes without swinging more than 0.2 m.
+        assert!(past_on < 0.5, "seed {seed}: {past_on}");
+        assert!(exc_on < 0.2, "seed {seed}: {exc_on}");
+        assert_eq!(carried.plants_crushed, 0, "seed {seed}");
+        // The dead-reckoned check is reported while the fix is lost.
+        assert!(carried
+            .trace
+            .iter()
+            .any(|r| matches!(r.command.plan_pose, PlanPose::DeadReckoned { .. })));
+        worst = (worst.0.max(past_on), worst.1.max(exc_on));
+        least_off = least_off.min(past_off);
+    }
+    eprintln!(
+        "exp2 outage at the third plot's end, 8 seeds: with dead reckoning at most {:.2} m of \
+         furrow past the end and {:.3} m of excursion; without, at least {least_off:.2} m",
+        worst.0, worst.1
+    );
 }

@@ -432,6 +432,7 @@ impl Guidance for Straight {
             estimated_error: None,
             sideslip_used: fieldguide::model::bicycle::Sideslip::ZERO,
             detector: None,
+            plan_pose: fieldguide::guidance::PlanPose::Unjudged,
         })
     }
 }

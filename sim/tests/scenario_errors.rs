@@ -921,6 +921,14 @@ fn switching_fields_are_checked_and_named() {
     assert_field(&e, "switching.plan_max_offset_m", "look-ahead");
     let e = error_of(with("plan_max_offset_m = 0.2\nplan_lookahead_m = -1.0"));
     assert_field(&e, "switching.plan_lookahead_m", "");
+    let e = error_of(with("plan_dead_reckoning_m = 20.0"));
+    assert_field(&e, "switching.plan_max_offset_m", "dead reckoning");
+    for bad in ["0.0", "-5.0", "1001.0", "nan"] {
+        let e = error_of(move |t: String| {
+            format!("{t}\n[switching]\nplan_max_offset_m = 0.2\nplan_dead_reckoning_m = {bad}\n")
+        });
+        assert_field(&e, "switching.plan_dead_reckoning_m", "");
+    }
     // Defaults: Tables 1-2 and no plan check.
     let source = Source {
         origin: "edited.toml".into(),

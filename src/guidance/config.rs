@@ -88,6 +88,10 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// How long a detection is carried by odometry between scans, s, ≥ 0
     /// (GD-SCAN-AGE).
     pub max_scan_age: Seconds,
+    /// How far odometry carries the last GNSS fix for the plan check while
+    /// the fix is lost, m, > 0 (GD-PLAN-DEAD-RECKONING); `None`: the plan is
+    /// checked only in ticks with a fix.
+    pub plan_dead_reckoning: Option<Meters>,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -212,7 +216,9 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     ///   overflows);
     /// - `GD-LOCALISATION` when the search window is not positive;
     /// - `GD-SCAN-AGE` when the maximal scan age is negative or longer than
-    ///   65 534 ticks.
+    ///   65 534 ticks;
+    /// - `GD-PLAN-DEAD-RECKONING` when the dead-reckoning distance is not
+    ///   positive.
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -280,6 +286,15 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             ));
         }
         let max_scan_age_ticks = scan_age_ticks(params.max_scan_age, params.period)?;
+        //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+        //# A dead-reckoning distance that is not positive MUST be refused with
+        //# `GD-PLAN-DEAD-RECKONING`.
+        if params.plan_dead_reckoning.is_some_and(|d| d.get() <= 0.0) {
+            return Err(Precondition::new(
+                "GD-PLAN-DEAD-RECKONING",
+                "plan_dead_reckoning must be > 0",
+            ));
+        }
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,

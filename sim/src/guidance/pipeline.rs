@@ -111,6 +111,7 @@ pub fn params(
         stop_delay: Seconds::new(sw.stop_delay_s)?,
         plan_delay: sw.plan.map(|p| p.delay),
         max_scan_age: Seconds::new(sw.max_scan_age_s)?,
+        plan_dead_reckoning: sw.plan.and_then(|p| p.dead_reckoning),
     })
 }
 
@@ -205,6 +206,7 @@ impl Guidance for Pipeline<'_> {
             estimated_error,
             sideslip_used,
             detector,
+            plan_pose: out.path.plan_pose,
         };
         self.last = Some(out);
         Ok(command)

@@ -93,6 +93,10 @@ pub struct SwitchingSection {
     /// Plan consistency: how far ahead along the path the line's offset is
     /// also checked, m (default 0: only at the robot; SW-PLAN-AHEAD).
     pub plan_lookahead_m: Option<f64>,
+    /// Plan consistency through a GNSS outage: how far odometry carries the
+    /// last fix for the check, m, in (0, 1000] (default: not carried;
+    /// GD-PLAN-DEAD-RECKONING).
+    pub plan_dead_reckoning_m: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

@@ -14,7 +14,9 @@ use core::cmp::Ordering;
 use heapless::Vec;
 
 use super::config::{EdgeConfig, Side};
-use super::search::{contact_angle, cos_below_pi, Half, Limit, Near, Step, CANDIDATES, SEEDS};
+use super::search::{
+    blocks, contact_angle, cos_below_pi, Half, Limit, Near, Step, CANDIDATES, SEEDS,
+};
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::{Meters, Radians};
 
@@ -297,6 +299,7 @@ pub fn build_chain_into<const M: usize>(
     }
 
     near.sort_unstable_by(|a, b| a.x.total_cmp(&b.x));
+    let blocks = blocks(&near);
 
     // Rotation (EDGE-CHAIN-ROTATE) until a limit (EDGE-CHAIN-STOP).
     let theta_max = config.max_rotation().get();
@@ -339,23 +342,8 @@ pub fn build_chain_into<const M: usize>(
                     step.consider(n.index, n.x, n.y);
                 }
             }
-            let (below, above) = near.split_at(pos.min(near.len()));
-            for n in above {
-                let dx = n.x - step.mid.0;
-                if dx > 0.0 && dx * dx >= step.bound2 {
-                    break;
-                }
-                if n.index != pivot_index {
-                    step.consider(n.index, n.x, n.y);
-                }
-            }
-            for n in below.iter().rev() {
-                let dx = step.mid.0 - n.x;
-                if dx > 0.0 && dx * dx >= step.bound2 {
-                    break;
-                }
-                step.consider(n.index, n.x, n.y);
-            }
+            step.sweep_up(&near, &blocks, pos, pivot_index);
+            step.sweep_down(&near, &blocks, pos.min(near.len()));
         }
         let Some(next) = step.best else {
             chain.end = ChainEnd::RotationLimit;

@@ -5,6 +5,8 @@
 use core::cmp::Ordering;
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
+use heapless::Vec;
+
 use crate::geometry::frame::{Point2, Robot};
 
 /// The best contact so far: the point's index, its angle and its squared
@@ -22,11 +24,56 @@ pub(super) const CANDIDATES: usize = 512;
 /// How many scan-order neighbours on each side of the pivot are tried first.
 pub(super) const SEEDS: usize = 2;
 
+/// Consecutive candidates (in x order) that share one bounding box.
+const BLOCK: usize = 16;
+
 /// A candidate point, copied out and sorted by x for a bounded sweep.
 pub(super) struct Near {
     pub(super) x: f64,
     pub(super) y: f64,
     pub(super) index: usize,
+}
+
+/// The bounding box of `BLOCK` consecutive candidates (sorted by x), so that a
+/// sweep skips every point of a block the distance bound excludes as a whole:
+/// a thin block along a hedge, 1 m from the circle's centre, is rejected by
+/// one test instead of sixteen.
+pub(super) struct Block {
+    start: usize,
+    end: usize,
+    x_lo: f64,
+    x_hi: f64,
+    y_lo: f64,
+    y_hi: f64,
+}
+
+/// The blocks of a sorted candidate list.
+pub(super) type Blocks = Vec<Block, { CANDIDATES / BLOCK }>;
+
+/// Cuts `near` (sorted by x) into blocks of `BLOCK` candidates.
+pub(super) fn blocks(near: &[Near]) -> Blocks {
+    let mut blocks = Blocks::new();
+    let mut start = 0_usize;
+    for chunk in near.chunks(BLOCK) {
+        let (Some(first), Some(last)) = (chunk.first(), chunk.last()) else {
+            continue;
+        };
+        let (y_lo, y_hi) = chunk
+            .iter()
+            .fold((first.y, first.y), |(lo, hi), n| (lo.min(n.y), hi.max(n.y)));
+        let end = start.saturating_add(chunk.len());
+        // At most CANDIDATES / BLOCK chunks: the push cannot fail.
+        let _ = blocks.push(Block {
+            start,
+            end,
+            x_lo: first.x,
+            x_hi: last.x,
+            y_lo,
+            y_hi,
+        });
+        start = end;
+    }
+    blocks
 }
 
 /// The search for the next contact about one pivot: the best candidate so
@@ -126,6 +173,101 @@ impl Step {
         );
         let reach = self.r * (1.0 + 2.0 * h.sin4.max(0.0)) * (1.0 + 1e-9);
         self.bound2 = reach * reach;
+    }
+
+    /// Whether every point of `block` lies outside the distance bound: its
+    /// box is. Rounding is monotone, so a point's computed distance is never
+    /// below its box's, and skipping the block changes nothing.
+    fn excludes(&self, block: &Block) -> bool {
+        let dx = (block.x_lo - self.mid.0)
+            .max(self.mid.0 - block.x_hi)
+            .max(0.0);
+        let dy = (block.y_lo - self.mid.1)
+            .max(self.mid.1 - block.y_hi)
+            .max(0.0);
+        dx * dx + dy * dy >= self.bound2
+    }
+
+    /// Whether no point of `block` can beat the best so far because each lies
+    /// on the exiting side of the pivot (s (w × u) ≥ 0, where a contact needs
+    /// θ ≥ π/2) and the angle to beat is at most π/2. The half-plane is
+    /// convex, so the box lies in it when its corners do; the margin, far
+    /// above the rounding of w × u, keeps every point's computed side the
+    /// same as its box's.
+    fn behind(&self, block: &Block) -> bool {
+        let to_beat = self.best.as_ref().map_or(self.theta_max, |b| b.theta);
+        if to_beat > FRAC_PI_2 {
+            return false;
+        }
+        let (p, u, s) = (self.pivot, self.u, self.s);
+        let scale = 1.0
+            + libm::fabs(p.0).max(libm::fabs(p.1))
+            + libm::fabs(block.x_lo).max(libm::fabs(block.x_hi))
+            + libm::fabs(block.y_lo).max(libm::fabs(block.y_hi));
+        let margin = 1e-9 * self.r * scale;
+        [
+            (block.x_lo, block.y_lo),
+            (block.x_lo, block.y_hi),
+            (block.x_hi, block.y_lo),
+            (block.x_hi, block.y_hi),
+        ]
+        .iter()
+        .all(|&(x, y)| s * ((x - p.0) * u.1 - (y - p.1) * u.0) > margin)
+    }
+
+    /// Whether `block` can be skipped: outside the distance bound, or behind.
+    fn skips(&self, block: &Block) -> bool {
+        self.excludes(block) || self.behind(block)
+    }
+
+    /// Considers the candidates from `pos` upwards in x (all but the pivot),
+    /// stopping where |x − mid_x| alone puts every further point outside the
+    /// bound, and skipping the blocks outside it.
+    pub(super) fn sweep_up(&mut self, near: &[Near], blocks: &[Block], pos: usize, pivot: usize) {
+        for block in blocks.iter().filter(|b| b.end > pos) {
+            if self.skips(block) {
+                let dx = block.x_lo - self.mid.0;
+                if dx > 0.0 && dx * dx >= self.bound2 {
+                    return;
+                }
+                continue;
+            }
+            for n in near.get(block.start.max(pos)..block.end).unwrap_or(&[]) {
+                let dx = n.x - self.mid.0;
+                if dx > 0.0 && dx * dx >= self.bound2 {
+                    return;
+                }
+                if n.index != pivot {
+                    self.consider(n.index, n.x, n.y);
+                }
+            }
+        }
+    }
+
+    /// Considers the candidates below `end` downwards in x, the mirror of
+    /// [`Step::sweep_up`].
+    pub(super) fn sweep_down(&mut self, near: &[Near], blocks: &[Block], end: usize) {
+        for block in blocks.iter().rev().filter(|b| b.start < end) {
+            if self.skips(block) {
+                let dx = self.mid.0 - block.x_hi;
+                if dx > 0.0 && dx * dx >= self.bound2 {
+                    return;
+                }
+                continue;
+            }
+            for n in near
+                .get(block.start..block.end.min(end))
+                .unwrap_or(&[])
+                .iter()
+                .rev()
+            {
+                let dx = self.mid.0 - n.x;
+                if dx > 0.0 && dx * dx >= self.bound2 {
+                    return;
+                }
+                self.consider(n.index, n.x, n.y);
+            }
+        }
     }
 
     /// Takes the point `(x, y)` (index `i`, not the pivot) into account.

@@ -24,6 +24,9 @@ pub struct PlanSetup {
     pub tolerance: PlanTolerance,
     /// How long a line may disagree before its behaviour is left.
     pub delay: Seconds,
+    /// How far odometry carries the last fix for the check through an
+    /// outage (GD-PLAN-DEAD-RECKONING); `None`: not carried.
+    pub dead_reckoning: Option<Meters>,
 }
 
 /// `[switching]`, typed (defaults: Tables 1-2 and the library's GD-CONFIG).
@@ -78,10 +81,11 @@ pub(super) fn switching(
             if s.plan_max_heading_deg.is_some()
                 || s.plan_delay_s.is_some()
                 || s.plan_lookahead_m.is_some()
+                || s.plan_dead_reckoning_m.is_some()
             {
                 return Err(check.error(
                     "switching.plan_max_offset_m",
-                    "plan consistency needs its offset when its heading, delay or look-ahead is set",
+                    "plan consistency needs its offset when its heading, delay, look-ahead or dead reckoning is set",
                 ));
             }
             None
@@ -101,6 +105,17 @@ pub(super) fn switching(
             )?;
             let err =
                 |f: &'static str| move |e: fieldguide::Precondition| check.error(f, &e.to_string());
+            let dead_reckoning = s
+                .plan_dead_reckoning_m
+                .map(|d| {
+                    let field = "switching.plan_dead_reckoning_m";
+                    let d = check.range(field, d, 0.0, 1000.0)?;
+                    if d <= 0.0 {
+                        return Err(check.error(field, &format!("must be > 0, got {d}")));
+                    }
+                    Meters::new(d).map_err(err(field))
+                })
+                .transpose()?;
             Some(PlanSetup {
                 tolerance: PlanTolerance::new(
                     Meters::new(offset).map_err(err("switching.plan_max_offset_m"))?,
@@ -111,6 +126,7 @@ pub(super) fn switching(
                 .with_lookahead(Meters::new(lookahead).map_err(err("switching.plan_lookahead_m"))?)
                 .map_err(err("switching.plan_lookahead_m"))?,
                 delay: Seconds::new(delay).map_err(err("switching.plan_delay_s"))?,
+                dead_reckoning,
             })
         }
     };
