@@ -17,6 +17,8 @@ pub enum ScenarioError {
         requested: String,
         /// The built-in names, for the message.
         builtins: Vec<&'static str>,
+        /// The built-in name closest to `requested`, when one is close.
+        suggestion: Option<&'static str>,
     },
     /// A file (scenario or waypoint CSV) could not be read.
     Read {
@@ -60,11 +62,18 @@ impl fmt::Display for ScenarioError {
             Self::NotFound {
                 requested,
                 builtins,
-            } => write!(
-                f,
-                "scenario `{requested}` is neither a built-in scenario ({}) nor a readable file",
-                builtins.join(", ")
-            ),
+                suggestion,
+            } => {
+                write!(
+                    f,
+                    "scenario `{requested}` is neither a built-in scenario ({}) nor a file",
+                    builtins.join(", ")
+                )?;
+                match suggestion {
+                    Some(name) => write!(f, "; did you mean `{name}`?"),
+                    None => Ok(()),
+                }
+            }
             Self::Read { file, source } => {
                 write!(f, "cannot read `{}`: {source}", file.display())
             }

@@ -1,7 +1,8 @@
 //! The `fieldguide` program: runs simulator scenarios and writes their traces,
 //! summaries and plots.
 //!
-//! - `fieldguide` runs every built-in scenario and prints a summary table;
+//! - `fieldguide` (no command) runs every built-in scenario and prints a
+//!   summary table, its columns explained and each failure's reason;
 //! - `fieldguide list` lists the built-in scenarios;
 //! - `fieldguide run <name or file.toml> [--out DIR]` runs one scenario;
 //! - `fieldguide sweep <name or file.toml> --seeds FIRST..=LAST [--out DIR]`
@@ -34,7 +35,10 @@ use fieldguide_sim::{output, runner, SimError};
 #[command(
     name = "fieldguide",
     version,
-    about = "Closed-loop simulations of fieldguide's guidance laws"
+    about = "Closed-loop simulations of fieldguide's guidance laws",
+    long_about = "Closed-loop simulations of fieldguide's guidance laws.\n\n\
+        With no command, runs every built-in scenario, writes each one's trace, \
+        summary and plots to <out>/<scenario>/ and prints a summary table."
 )]
 struct Cli {
     /// Folder receiving one sub-folder per scenario.
@@ -102,6 +106,14 @@ fn list() {
 fn run_one(scenario: &str, out: &Path) -> Result<Summary, SimError> {
     let source = Source::resolve(scenario)?;
     let (setup, mut rng) = runner::prepare(&source)?;
+    if source.base_dir.is_some() && Source::builtin(&setup.name).is_some() {
+        eprintln!(
+            "warning: {} keeps the built-in name `{}`: its output replaces the built-in's in {}",
+            source.origin,
+            setup.name,
+            out.join(&setup.name).display()
+        );
+    }
     let run = runner::run(&setup, &mut rng);
     let summary = summarize(&setup, &run);
     let dir = output::write_run(out, &setup, &run, &summary)?;
@@ -203,37 +215,48 @@ fn show(cell: Cell) -> String {
     }
 }
 
+/// The summary table: one row per scenario, the columns explained below
+/// it, and each failed run's broken bounds.
 fn print_table(summaries: &[Summary]) {
     println!(
-        "{:32} {:>12} {:>12} {:>11} {:>19} {:>17} {:>8}",
-        "scenario",
-        "distance (m)",
-        "mean |y| (m)",
-        "max |y| (m)",
-        "converged after (m)",
-        "true-line max (m)",
-        "success"
+        "{:32} {:>8} {:>9} {:>10} {:>9} {:>10} {:>8}",
+        "scenario", "distance", "converged", "mean |y|", "max |y|", "true line", "success"
     );
+    let metres = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |v| format!("{v:.4}"));
     for s in summaries {
         let converged = s
             .converged_after_m
             .map_or_else(|| "never".to_owned(), |d| format!("{d:.2}"));
+        let after = s.lateral_error_after_convergence_m;
         // The error to the true line a specialised behaviour follows: the
         // rows' centre line inside the plots, or a hedge's offset line
         // (after convergence) beside it.
-        let in_plot = s
+        let true_line = s
             .in_plot_lateral_error_m
             .or(s.along_hedge_after_convergence_m)
-            .map_or_else(|| "-".to_owned(), |e| format!("{:.4}", e.max_abs));
+            .map(|e| e.max_abs);
         println!(
-            "{:32} {:>12.2} {:>12.4} {:>11.4} {:>19} {:>17} {:>8}",
+            "{:32} {:>8.2} {:>9} {:>10} {:>9} {:>10} {:>8}",
             s.scenario,
             s.distance_m,
-            s.lateral_error_m.mean_abs,
-            s.lateral_error_m.max_abs,
             converged,
-            in_plot,
+            metres(after.map(|e| e.mean_abs)),
+            metres(after.map(|e| e.max_abs)),
+            metres(true_line),
             if s.success { "yes" } else { "NO" }
         );
+    }
+    println!(
+        "\n  distance   m travelled by O (the rear axle's centre)\n  \
+         converged  m travelled until |y| entered the band and stayed in it\n  \
+         mean |y|, max |y|  m, error of O to the reference path from convergence on (ground truth)\n  \
+         true line  m, max error to the line a behaviour follows: the rows' centre inside the plots,\n             \
+         or a hedge's offset line after convergence\n  \
+         success    every bound of the scenario's [metrics] held; otherwise the bounds broken:"
+    );
+    for s in summaries.iter().filter(|s| !s.success) {
+        for why in &s.failures {
+            println!("  {}: {why}", s.scenario);
+        }
     }
 }

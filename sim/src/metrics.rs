@@ -158,6 +158,8 @@ pub struct Summary {
     pub aborted: Option<String>,
     /// See the module documentation.
     pub success: bool,
+    /// Why the run failed: each bound it broke, in words (empty on success).
+    pub failures: Vec<String>,
 }
 
 /// The metrics of one crop plot or one hedge: the stretch where a
@@ -320,27 +322,17 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
     };
     let first_m = first.and_then(distance_at);
     let converged_m = converged.and_then(distance_at);
-    let within = |bound: Option<f64>, value: Option<f64>| match (bound, value) {
-        (None, _) => true,
-        (Some(b), Some(v)) => v <= b,
-        (Some(_), None) => false,
-    };
-    let success = reached_end
-        && converged_m.is_some_and(|d| d <= setup.metrics.converge_within_m)
-        && output.plants_crushed == 0
-        && within(
-            setup.metrics.in_plot_mean_abs_m,
-            in_plot.map(|e| e.mean_abs),
-        )
-        && within(setup.metrics.in_plot_max_abs_m, in_plot.map(|e| e.max_abs))
-        && within(
-            setup.metrics.along_hedge_mean_abs_m,
-            hedge_after.map(|e| e.mean_abs),
-        )
-        && within(
-            setup.metrics.along_hedge_max_abs_m,
-            hedge_after.map(|e| e.max_abs),
-        );
+    let failures = failures(&Verdicts {
+        setup,
+        end: &output.end,
+        reached_end,
+        converged_m,
+        band,
+        crushed: output.plants_crushed,
+        in_plot,
+        hedge_after,
+    });
+    let success = failures.is_empty();
     let zero = ErrorStats {
         mean_abs: 0.0,
         rms: 0.0,
@@ -395,7 +387,83 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
             _ => None,
         },
         success,
+        failures,
     }
+}
+
+/// What `success` is judged from.
+struct Verdicts<'a> {
+    setup: &'a Setup,
+    end: &'a RunEnd,
+    reached_end: bool,
+    converged_m: Option<f64>,
+    band: f64,
+    crushed: usize,
+    in_plot: Option<ErrorStats>,
+    hedge_after: Option<ErrorStats>,
+}
+
+/// The bounds a run broke, each in words naming the scenario field that set
+/// it (module documentation, `success`).
+fn failures(v: &Verdicts<'_>) -> Vec<String> {
+    let mut broken = Vec::new();
+    if !v.reached_end {
+        broken.push(match v.end {
+            RunEnd::Aborted(why) => format!("stopped early: {why}"),
+            RunEnd::PathEnd | RunEnd::Duration => "did not reach the path's end".to_owned(),
+        });
+    }
+    let within = v.setup.metrics.converge_within_m;
+    match v.converged_m {
+        None => broken.push(format!(
+            "|y| outside the {} m band (metrics.band_m) at the end",
+            v.band
+        )),
+        Some(d) if d > within => broken.push(format!(
+            "converged after {d:.2} m > metrics.converge_within_m = {within} m"
+        )),
+        Some(_) => {}
+    }
+    if v.crushed > 0 {
+        broken.push(format!("{} crop plants crushed", v.crushed));
+    }
+    let m = &v.setup.metrics;
+    let bounds = [
+        (
+            "in_plot_mean_abs_m",
+            m.in_plot_mean_abs_m,
+            v.in_plot.map(|e| e.mean_abs),
+            "in-plot mean |error|",
+        ),
+        (
+            "in_plot_max_abs_m",
+            m.in_plot_max_abs_m,
+            v.in_plot.map(|e| e.max_abs),
+            "in-plot max |error|",
+        ),
+        (
+            "along_hedge_mean_abs_m",
+            m.along_hedge_mean_abs_m,
+            v.hedge_after.map(|e| e.mean_abs),
+            "along-hedge mean |error| after convergence",
+        ),
+        (
+            "along_hedge_max_abs_m",
+            m.along_hedge_max_abs_m,
+            v.hedge_after.map(|e| e.max_abs),
+            "along-hedge max |error| after convergence",
+        ),
+    ];
+    for (field, bound, value, what) in bounds {
+        match (bound, value) {
+            (Some(b), Some(x)) if x > b => {
+                broken.push(format!("{what} {x:.4} m > metrics.{field} = {b} m"));
+            }
+            (Some(_), None) => broken.push(format!("no {what} (metrics.{field} is set)")),
+            _ => {}
+        }
+    }
+    broken
 }
 
 /// A convergence requirement on a run: from some distance travelled at most

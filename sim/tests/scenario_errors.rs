@@ -231,6 +231,90 @@ fn the_program_names_the_file_and_the_field_and_exits_non_zero() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// What a new user mistypes: a near-miss name gets the closest built-in, a
+/// folder or a missing path the operating system's reason, and a copied file
+/// that keeps its built-in's name a warning that it replaces that output.
+#[test]
+fn the_program_says_what_it_could_not_find_and_what_it_replaces() {
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_fieldguide"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let typo = run(&["run", "exp2-acr"]);
+    assert!(!typo.status.success());
+    let stderr = String::from_utf8_lossy(&typo.stderr);
+    assert!(stderr.contains("did you mean `exp2-acre`?"), "{stderr}");
+    let far = run(&["run", "orchard"]);
+    assert!(!String::from_utf8_lossy(&far.stderr).contains("did you mean"));
+    let dir = scratch("resolve");
+    let folder = run(&["run", dir.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&folder.stderr);
+    assert!(!folder.status.success());
+    assert!(
+        stderr.contains("cannot read") && stderr.contains("os error"),
+        "{stderr}"
+    );
+    let missing = dir.join("nowhere").join("x.toml");
+    let stderr =
+        String::from_utf8_lossy(&run(&["run", missing.to_str().unwrap()]).stderr).into_owned();
+    assert!(
+        stderr.contains("cannot read") && stderr.contains("os error"),
+        "{stderr}"
+    );
+    // A copy of the first built-in under its own name: run, with a warning.
+    let copy = dir.join("copy.toml");
+    std::fs::write(&copy, builtin_text()).unwrap();
+    let out = dir.join("out");
+    let copied = run(&[
+        "run",
+        copy.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(copied.status.success());
+    let stderr = String::from_utf8_lossy(&copied.stderr);
+    assert!(
+        stderr.contains("keeps the built-in name `path-tracking`"),
+        "{stderr}"
+    );
+}
+
+/// A failed run says which bound it broke, in the table and in
+/// `summary.json`.
+#[test]
+fn a_failed_run_names_the_bound_it_broke() {
+    let dir = scratch("failure");
+    let run = Command::new(env!("CARGO_BIN_EXE_fieldguide"))
+        .args([
+            "run",
+            "path-tracking-no-compensation",
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("path-tracking-no-compensation: converged after")
+            && stdout.contains("metrics.converge_within_m"),
+        "{stdout}"
+    );
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("path-tracking-no-compensation/summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(summary["success"], false);
+    let failures = summary["failures"].as_array().unwrap();
+    assert_eq!(failures.len(), 1, "{failures:?}");
+    assert!(failures[0]
+        .as_str()
+        .unwrap()
+        .contains("metrics.converge_within_m"));
+}
+
 #[test]
 fn the_program_lists_and_runs_a_scenario_file_with_a_csv_path() {
     let list = Command::new(env!("CARGO_BIN_EXE_fieldguide"))

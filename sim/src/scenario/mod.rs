@@ -105,18 +105,23 @@ impl Source {
         })
     }
 
-    /// A built-in name, else a file path; an error listing the built-ins when neither.
+    /// A built-in name, else a file path. Something that exists but cannot be
+    /// read (a folder, no permission) or that is written as a path
+    /// (`dir/x.toml`) gives the operating system's reason; otherwise the
+    /// error lists the built-ins and suggests the closest one.
     pub fn resolve(name_or_path: &str) -> Result<Self, ScenarioError> {
         if let Some(s) = Self::builtin(name_or_path) {
             return Ok(s);
         }
         let path = Path::new(name_or_path);
-        if path.is_file() {
+        let looks_like_a_path = path.extension().is_some() || path.components().count() > 1;
+        if path.exists() || looks_like_a_path {
             Self::file(path)
         } else {
             Err(ScenarioError::NotFound {
                 requested: name_or_path.to_owned(),
                 builtins: builtin_names(),
+                suggestion: closest_builtin(name_or_path),
             })
         }
     }
@@ -131,6 +136,38 @@ impl Source {
         let file = self.parse()?;
         build(&file, &self.origin, self.base_dir.as_deref(), rng)
     }
+}
+
+/// The built-in name nearest to `requested` in edits (insertions, deletions,
+/// substitutions of one character), when at most a third of its length.
+fn closest_builtin(requested: &str) -> Option<&'static str> {
+    let wanted: Vec<char> = requested.chars().collect();
+    BUILTIN
+        .iter()
+        .map(|(name, _)| {
+            let name_chars: Vec<char> = name.chars().collect();
+            (edits(&wanted, &name_chars), *name)
+        })
+        .filter(|(d, name)| *d <= (name.len() / 3).max(1))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, name)| name)
+}
+
+/// The Levenshtein distance between `a` and `b`.
+fn edits(a: &[char], b: &[char]) -> usize {
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
 }
 
 /// Parses scenario TOML `text` (`origin` names it in messages).
