@@ -958,7 +958,7 @@ fn the_program_writes_the_hedge_figures_and_summary() {
     assert!(trace.contains(",edge_following,enter,1,0.00,"));
     assert!(trace.contains(",hedge,"));
     let svg = std::fs::read_to_string(out.join("trajectory.svg")).unwrap();
-    assert!(svg.contains("edge_following") && svg.contains("true offset line"));
+    assert!(svg.contains("edge following") && svg.contains("true offset line"));
     let svg = std::fs::read_to_string(out.join("lateral_error.svg")).unwrap();
     assert!(svg.contains("beside a hedge: to the true offset line"));
     let _ = std::fs::remove_dir_all(&dir);

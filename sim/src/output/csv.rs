@@ -28,7 +28,7 @@ steering_cmd_rad,steering_rad,saturated,\
 beta_front_true_rad,beta_rear_true_rad,beta_front_used_rad,beta_rear_used_rad,\
 slip_patch,mode,switching_mode,\
 verdict,scanned,scan_age_s,scan_quality,plot,plot_s_m,plot_lateral_error_true_m,\
-hedge,hedge_s_m,hedge_lateral_error_true_m,hedge_angular_error_true_rad,plan_pose";
+hedge,hedge_s_m,hedge_lateral_error_true_m,hedge_angular_error_true_rad,plan_pose,gnss_valid";
 
 /// The whole trace as CSV text, header first.
 #[must_use]
@@ -97,7 +97,7 @@ pub fn trace_csv(
         // Writing into a String cannot fail.
         let _ = writeln!(
             out,
-            "{:.2},{:.4},{:.4},{:.5},{},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{},{},{}",
+            "{:.2},{:.4},{:.4},{:.5},{},{:.4},{:.4},{:.5},{:.4},{:.4},{:.5},{:.5},{:.5},{},{},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.5},{},{},{},{},{},{},{},{}",
             r.t_s,
             r.truth.position.x(),
             r.truth.position.y(),
@@ -127,6 +127,7 @@ pub fn trace_csv(
             plot,
             hedge,
             plan_pose_label(&r.command.plan_pose),
+            u8::from(r.readings.gnss.is_some()),
         );
     }
     out

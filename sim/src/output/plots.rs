@@ -20,6 +20,7 @@ const REFERENCE: Stroke<'static> = Stroke {
     dash: None,
 };
 const PATCH_COLOUR: &str = "#1f77b4";
+const OUTAGE_COLOUR: &str = "#7f7f7f";
 const CROP_COLOUR: &str = "#2ca02c";
 const GRASS_COLOUR: &str = "#bcbd22";
 const PLOT_COLOUR: &str = "#2ca02c";
@@ -61,6 +62,18 @@ fn runs_by_mode(trace: &[TickRecord]) -> Vec<(&'static str, &[TickRecord])> {
     runs
 }
 
+/// A mode's label in words for a legend (`furrow_pursuing` → `furrow
+/// pursuing`); a label the simulator does not know is shown as it is.
+fn in_words(label: &'static str) -> &'static str {
+    match label {
+        "path_tracking" => "path tracking",
+        "furrow_pursuing" => "furrow pursuing",
+        "edge_following" => "edge following",
+        "stop" => "stop (dots: where, and for how long)",
+        other => other,
+    }
+}
+
 /// Legend entries: the reference, each mode present, the slip patches if any.
 fn legend_entries<'a>(
     trace: &[TickRecord],
@@ -80,7 +93,7 @@ fn legend_entries<'a>(
                 dash: None,
             },
             false,
-            label,
+            in_words(label),
         ));
     }
     if has_patches {
@@ -214,6 +227,9 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             },
         );
     }
+    mark_stops(&mut svg, &axes, trace, setup.control.period_s, |r| {
+        (r.truth.position.x(), r.truth.position.y())
+    });
     if let Some(first) = trace.first() {
         let (px, py) = axes.px(first.truth.position.x(), first.truth.position.y());
         svg.text(px + 6.0, py + 14.0, "start", "start", 11.0);
@@ -304,25 +320,15 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     let axes = Axes::new((s_min, s_max), (y_lo, y_hi), 900.0, 420.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
-    // Shade the s-stretches spent on slipping ground.
-    let mut start: Option<f64> = None;
-    for (i, r) in trace.iter().enumerate() {
-        let on = r.patch.is_some();
-        let last = i + 1 == trace.len();
-        match (start, on) {
-            (None, true) => start = Some(r.s_m),
-            (Some(s0), false) => {
-                shade(&mut svg, &axes, s0, r.s_m);
-                start = None;
-            }
-            _ => {}
-        }
-        if last {
-            if let Some(s0) = start {
-                shade(&mut svg, &axes, s0, r.s_m);
-            }
-        }
-    }
+    // Shade the s-stretches spent on slipping ground and without a fix.
+    shade_runs(&mut svg, &axes, trace, |r| r.patch.is_some(), PATCH_COLOUR);
+    shade_runs(
+        &mut svg,
+        &axes,
+        trace,
+        |r| r.readings.gnss.is_none(),
+        OUTAGE_COLOUR,
+    );
     // Shade the s-stretches spent beside a hedge.
     let along_hedge = truth_pieces(trace, |r| r.hedge);
     for piece in &along_hedge {
@@ -398,6 +404,10 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
             },
         );
     }
+    // Stop covers no distance: a dot where each spell began, with its length.
+    mark_stops(&mut svg, &axes, trace, setup.control.period_s, |r| {
+        (r.s_m, r.lateral_error_m)
+    });
     // Inside the plots, the error to the true centre line of the followed
     // rows; beside the hedges, to the true offset line.
     let in_plot = truth_pieces(trace, |r| r.plot);
@@ -409,6 +419,17 @@ pub fn lateral_error_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     let mut entries = legend_entries(trace, has_patches, "");
     entries.remove(0);
     entries.push((dashed, false, &band_label));
+    if trace.iter().any(|r| r.readings.gnss.is_none()) {
+        entries.push((
+            Stroke {
+                colour: OUTAGE_COLOUR,
+                width: 1.0,
+                dash: None,
+            },
+            true,
+            "GNSS fix lost",
+        ));
+    }
     if !along_hedge.is_empty() {
         entries.push((TRUTH, false, "beside a hedge: to the true offset line"));
         entries.push((
@@ -560,7 +581,34 @@ pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     svg.finish()
 }
 
-fn shade(svg: &mut Svg, axes: &Axes, s0: f64, s1: f64) {
+/// Shades, in `fill`, each s-stretch of consecutive ticks where `on` holds.
+fn shade_runs(
+    svg: &mut Svg,
+    axes: &Axes,
+    trace: &[TickRecord],
+    on: impl Fn(&TickRecord) -> bool,
+    fill: &str,
+) {
+    let mut start: Option<f64> = None;
+    for (i, r) in trace.iter().enumerate() {
+        let last = i + 1 == trace.len();
+        match (start, on(r)) {
+            (None, true) => start = Some(r.s_m),
+            (Some(s0), false) => {
+                shade(svg, axes, s0, r.s_m, fill);
+                start = None;
+            }
+            _ => {}
+        }
+        if last {
+            if let Some(s0) = start {
+                shade(svg, axes, s0, r.s_m, fill);
+            }
+        }
+    }
+}
+
+fn shade(svg: &mut Svg, axes: &Axes, s0: f64, s1: f64, fill: &str) {
     svg.polygon(
         axes,
         &[
@@ -569,7 +617,52 @@ fn shade(svg: &mut Svg, axes: &Axes, s0: f64, s1: f64) {
             (s1, axes.y.1),
             (s0, axes.y.1),
         ],
-        PATCH_COLOUR,
+        fill,
         0.15,
     );
+}
+
+/// Each spell in Stop: the index of its first tick and how long it lasted, s.
+fn stops(trace: &[TickRecord], period_s: f64) -> Vec<(usize, f64)> {
+    let mut spells = Vec::new();
+    let mut current: Option<(usize, usize)> = None;
+    for (i, r) in trace.iter().enumerate() {
+        match (r.command.switching_mode == Mode::Stop, current.as_mut()) {
+            (true, Some((_, ticks))) => *ticks += 1,
+            (true, None) => current = Some((i, 1)),
+            (false, Some(&mut (first, ticks))) => {
+                spells.push((first, ticks as f64 * period_s));
+                current = None;
+            }
+            (false, None) => {}
+        }
+    }
+    if let Some((first, ticks)) = current {
+        spells.push((first, ticks as f64 * period_s));
+    }
+    spells
+}
+
+/// Marks each spell in Stop with a dot at `at(tick)` and its length.
+fn mark_stops(
+    svg: &mut Svg,
+    axes: &Axes,
+    trace: &[TickRecord],
+    period_s: f64,
+    at: impl Fn(&TickRecord) -> (f64, f64),
+) {
+    for (first, seconds) in stops(trace, period_s) {
+        if let Some(r) = trace.get(first) {
+            let (x, y) = at(r);
+            svg.dots(axes, &[(x, y)], 4.0, colour("stop"));
+            let (px, py) = axes.px(x, y);
+            svg.text(
+                px + 6.0,
+                py - 6.0,
+                &format!("stop {seconds:.1} s"),
+                "start",
+                11.0,
+            );
+        }
+    }
 }
