@@ -21,6 +21,7 @@
 //! the field, and exit code 2; so do an unknown scenario and a malformed or
 //! empty seed range (`--seeds 5..=4`).
 
+use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -149,7 +150,14 @@ fn run_sweep(scenario: &str, seeds: Seeds, out: &Path) -> Result<(), SimError> {
         "{}",
         line("seed", &mut COLUMNS.iter().map(|c| c.name.to_owned()))
     );
+    let total = seeds.iter().count();
+    let mut done = 0;
+    let progress = std::io::stderr().is_terminal();
     let result = sweep::sweep(&source, seeds, |s| {
+        done += 1;
+        if progress {
+            eprint!("\r{done}/{total} seeds\r");
+        }
         let row = line(
             &s.seed.to_string(),
             &mut COLUMNS.iter().map(|c| show((c.cell)(s))),

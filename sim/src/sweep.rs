@@ -113,8 +113,10 @@ pub struct Sweep {
 }
 
 /// Runs `source` once per seed of `seeds` (the closed loop of
-/// [`runner::run`], summarised by [`summarize`]) and calls `each` with every
-/// summary as soon as it is measured. A run the core stops early is a row
+/// [`runner::run`], summarised by [`summarize`]), the seeds shared out over
+/// every core, and calls `each` with every summary in seed order, as soon as
+/// it and every earlier seed's are measured (the rows are the same, in the
+/// same order, whatever the number of cores). A run the core stops early is a row
 /// like any other (its `aborted` and `success` say so); a seed whose world
 /// or path cannot be built stops the sweep with [`SimError::AtSeed`].
 pub fn sweep(
@@ -123,14 +125,53 @@ pub fn sweep(
     mut each: impl FnMut(&Summary),
 ) -> Result<Sweep, SimError> {
     let scenario = source.parse()?.name;
-    let mut rows = Vec::new();
-    for seed in seeds.iter() {
-        let (setup, mut rng) = runner::prepare_with_seed(source, seed)
-            .map_err(|source| SimError::AtSeed { seed, source })?;
-        let run = runner::run(&setup, &mut rng);
-        let summary = summarize(&setup, &run);
-        each(&summary);
-        rows.push(summary);
+    let all: Vec<u64> = seeds.iter().collect();
+    let workers = std::thread::available_parallelism()
+        .map_or(1, std::num::NonZeroUsize::get)
+        .min(all.len())
+        .max(1);
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let (send, receive) = std::sync::mpsc::channel();
+    let mut slots: Vec<Option<Result<Summary, SimError>>> = all.iter().map(|_| None).collect();
+    let mut rows = Vec::with_capacity(all.len());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let send = send.clone();
+            let (next, all) = (&next, &all);
+            scope.spawn(move || loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&seed) = all.get(k) else { break };
+                let result = runner::prepare_with_seed(source, seed)
+                    .map(|(setup, mut rng)| {
+                        let run = runner::run(&setup, &mut rng);
+                        summarize(&setup, &run)
+                    })
+                    .map_err(|source| SimError::AtSeed { seed, source });
+                if send.send((k, result)).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(send);
+        // Rows are handed on in seed order, each as soon as every earlier
+        // seed's is in.
+        let mut done = 0;
+        for (k, result) in receive {
+            if let Some(slot) = slots.get_mut(k) {
+                *slot = Some(result);
+            }
+            while let Some(Some(Ok(summary))) = slots.get(done) {
+                each(summary);
+                done += 1;
+            }
+        }
+    });
+    for slot in slots {
+        match slot {
+            Some(Ok(summary)) => rows.push(summary),
+            Some(Err(e)) => return Err(e),
+            None => unreachable!("every seed is run"),
+        }
     }
     Ok(Sweep { scenario, rows })
 }
