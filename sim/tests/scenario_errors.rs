@@ -116,6 +116,16 @@ fn unknown_fields_are_named() {
     assert_field(&e, "vehicle.track_width_m", "unknown field");
 }
 
+/// An empty key is named as TOML spells it, `""`: the field an error names
+/// is never blank (found by the loader's fuzz target, `tests/fuzz_loader.rs`).
+#[test]
+fn an_empty_key_is_named_as_toml_spells_it() {
+    let e = error_of(|t| format!("\"\" = \"\"\n{t}"));
+    assert_field(&e, "\"\"", "unknown field");
+    let e = error_of(|t| t.replace("track_m = 1.5", "track_m = 1.5\n\"\" = 1"));
+    assert_field(&e, "vehicle.\"\"", "unknown field");
+}
+
 #[test]
 fn out_of_range_fields_are_named() {
     let cases: [(&str, &str, &str); 9] = [

@@ -200,7 +200,8 @@ fn line_column(text: &str, offset: usize) -> String {
 }
 
 /// The dotted field an error is about: serde names a missing field in the
-/// message, relative to the table at `at`.
+/// message, relative to the table at `at`. An empty key (`"" = 1`) is
+/// spelled `""`, as TOML writes it, so that the field named is never blank.
 fn field_of(at: &str, message: &str) -> String {
     let missing = message
         .split("missing field `")
@@ -209,7 +210,12 @@ fn field_of(at: &str, message: &str) -> String {
     match (missing, at) {
         (Some(name), "." | "") => name.to_owned(),
         (Some(name), table) => format!("{table}.{name}"),
-        (None, field) => field.to_owned(),
+        (None, ".") => ".".to_owned(),
+        (None, field) => field
+            .split('.')
+            .map(|key| if key.is_empty() { "\"\"" } else { key })
+            .collect::<Vec<_>>()
+            .join("."),
     }
 }
 
@@ -240,6 +246,8 @@ mod tests {
             field_of("vehicle.wheelbase_m", "invalid type"),
             "vehicle.wheelbase_m"
         );
+        assert_eq!(field_of("", "unknown field ``"), "\"\"");
+        assert_eq!(field_of("vehicle.", "unknown field ``"), "vehicle.\"\"");
     }
 
     #[test]
