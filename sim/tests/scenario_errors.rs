@@ -1063,3 +1063,44 @@ fn counts_the_file_implies_are_bounded_and_delays_named_at_load() {
     let e = hedge_error_of(|t| format!("{t}\n[switching]\nstop_delay_s = 700.0\n"));
     assert_field(&e, "switching.stop_delay_s", "control ticks");
 }
+
+/// The built-in `tracking-v2-offset` (a speed schedule over 0.3-3 m/s)
+/// changed by `edit`.
+fn scheduled_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
+    let text = Source::builtin("tracking-v2-offset").unwrap().text;
+    edited_error_of(text, edit)
+}
+
+#[test]
+fn the_speed_schedule_and_the_steering_lag_are_checked() {
+    // A speed above the scheduled range (PT-SCHEDULE-RANGE).
+    let e = scheduled_error_of(|t| t.replace("speed_m_s = 2.0", "speed_m_s = 3.5"));
+    assert_field(&e, "control.speed_m_s", "PT-SCHEDULE-RANGE");
+    let e = scheduled_error_of(|t| t.replace("max_speed_m_s = 3.0", "max_speed_m_s = 0.2"));
+    assert_field(
+        &e,
+        "control.schedule.max_speed_m_s",
+        "must be >= control.schedule.min_speed_m_s",
+    );
+    let e = scheduled_error_of(|t| t.replace("min_speed_m_s = 0.3", "min_speed_m_s = 0.0"));
+    assert_field(&e, "control.schedule.min_speed_m_s", "");
+    let e = scheduled_error_of(|t| {
+        t.replace(
+            "max_speed_m_s = 3.0",
+            "max_speed_m_s = 3.0\nbandwidth_per_s = -1.0",
+        )
+    });
+    assert_field(&e, "control.schedule.bandwidth_per_s", "");
+    let e =
+        scheduled_error_of(|t| t.replace("max_speed_m_s = 3.0", "max_speed_m_s = 3.0\nrate = 1"));
+    assert!(e.to_string().contains("rate"), "{e}");
+    let e = scheduled_error_of(|t| t.replace("steering_lag_s = 0.3333", "steering_lag_s = -0.1"));
+    assert_field(&e, "control.steering_lag_s", "");
+    let e = scheduled_error_of(|t| t.replace("steering_lag_s = 0.3333", "steering_lag_s = 25.0"));
+    assert_field(&e, "control.steering_lag_s", "");
+    // The plant's lag is checked where it is configured.
+    let e = scheduled_error_of(|t| {
+        t.replace("steering_settling_s = 1.0", "steering_settling_s = 61.0")
+    });
+    assert_field(&e, "vehicle.steering_settling_s", "");
+}
