@@ -1073,34 +1073,58 @@ fn scheduled_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
 
 #[test]
 fn the_speed_schedule_and_the_steering_lag_are_checked() {
-    // A speed above the scheduled range (PT-SCHEDULE-RANGE).
-    let e = scheduled_error_of(|t| t.replace("speed_m_s = 2.0", "speed_m_s = 3.5"));
-    assert_field(&e, "control.speed_m_s", "PT-SCHEDULE-RANGE");
-    let e = scheduled_error_of(|t| t.replace("max_speed_m_s = 3.0", "max_speed_m_s = 0.2"));
-    assert_field(
-        &e,
-        "control.schedule.max_speed_m_s",
-        "must be >= control.schedule.min_speed_m_s",
-    );
-    let e = scheduled_error_of(|t| t.replace("min_speed_m_s = 0.3", "min_speed_m_s = 0.0"));
-    assert_field(&e, "control.schedule.min_speed_m_s", "");
-    let e = scheduled_error_of(|t| {
-        t.replace(
-            "max_speed_m_s = 3.0",
+    let schedule_end = "max_speed_m_s = 3.0";
+    // (text, its replacement, the field named, part of the reason)
+    let cases = [
+        // A speed above the scheduled range (PT-SCHEDULE-RANGE).
+        (
+            "speed_m_s = 2.0",
+            "speed_m_s = 3.5",
+            "control.speed_m_s",
+            "PT-SCHEDULE-RANGE",
+        ),
+        (
+            schedule_end,
+            "max_speed_m_s = 0.2",
+            "control.schedule.max_speed_m_s",
+            "must be >= control.schedule.min_speed_m_s",
+        ),
+        (
+            "min_speed_m_s = 0.3",
+            "min_speed_m_s = 0.0",
+            "control.schedule.min_speed_m_s",
+            "",
+        ),
+        (
+            schedule_end,
             "max_speed_m_s = 3.0\nbandwidth_per_s = -1.0",
-        )
-    });
-    assert_field(&e, "control.schedule.bandwidth_per_s", "");
-    let e =
-        scheduled_error_of(|t| t.replace("max_speed_m_s = 3.0", "max_speed_m_s = 3.0\nrate = 1"));
+            "control.schedule.bandwidth_per_s",
+            "",
+        ),
+        (
+            "steering_lag_s = 0.3333",
+            "steering_lag_s = -0.1",
+            "control.steering_lag_s",
+            "",
+        ),
+        (
+            "steering_lag_s = 0.3333",
+            "steering_lag_s = 25.0",
+            "control.steering_lag_s",
+            "",
+        ),
+        // The plant's lag is checked where it is configured.
+        (
+            "steering_settling_s = 1.0",
+            "steering_settling_s = 61.0",
+            "vehicle.steering_settling_s",
+            "",
+        ),
+    ];
+    for (from, to, field, reason) in cases {
+        let e = scheduled_error_of(|t| t.replace(from, to));
+        assert_field(&e, field, reason);
+    }
+    let e = scheduled_error_of(|t| t.replace(schedule_end, "max_speed_m_s = 3.0\nrate = 1"));
     assert!(e.to_string().contains("rate"), "{e}");
-    let e = scheduled_error_of(|t| t.replace("steering_lag_s = 0.3333", "steering_lag_s = -0.1"));
-    assert_field(&e, "control.steering_lag_s", "");
-    let e = scheduled_error_of(|t| t.replace("steering_lag_s = 0.3333", "steering_lag_s = 25.0"));
-    assert_field(&e, "control.steering_lag_s", "");
-    // The plant's lag is checked where it is configured.
-    let e = scheduled_error_of(|t| {
-        t.replace("steering_settling_s = 1.0", "steering_settling_s = 61.0")
-    });
-    assert_field(&e, "vehicle.steering_settling_s", "");
 }
