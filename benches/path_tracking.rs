@@ -50,6 +50,7 @@ fn bench_steering(c: &mut Criterion) {
         )
         .unwrap(),
         inversion: Inversion::Exact,
+        schedule: None,
     };
     let error = TrackingError {
         y: Meters::new(0.12).unwrap(),

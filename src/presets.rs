@@ -51,6 +51,7 @@ fn table_law(g: f64, ratio: f64) -> Result<BacksteppingConfig, Precondition> {
         gains: Gains::new(-g, -ratio * g, 2.0)?,
         vehicle: vehicle()?,
         inversion: Inversion::Exact,
+        schedule: None,
     })
 }
 
@@ -64,6 +65,7 @@ pub fn path_tracking() -> Result<PathTrackingParams<BacksteppingConfig>, Precond
         law: table_law(0.7, 4.0)?,
         speed: MetersPerSecond::new(0.8)?,
         horizon: Seconds::new(1.0)?,
+        steering_lag: Seconds::ZERO,
         compensation: true,
         search_window: Meters::new(3.0)?,
     })

@@ -5,12 +5,15 @@
 use approx::assert_relative_eq;
 use fieldguide::control::backstepping::{
     steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Gains,
-    Inversion,
+    Inversion, SpeedSchedule,
 };
+use fieldguide::control::ControlLaw;
 use fieldguide::model::bicycle::{
     frenet_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
 };
-use fieldguide::{Curvature, Meters, MetersPerSecond, Radians, TrackingError};
+use fieldguide::{
+    Curvature, Meters, MetersPerSecond, Radians, RadiansPerSecond, Seconds, TrackingError,
+};
 use proptest::prelude::*;
 
 fn tracking(y: f64, theta: f64, c: f64, c_ahead: f64) -> TrackingError {
@@ -32,6 +35,7 @@ fn config(k_y: f64, k_theta: f64, inversion: Inversion) -> BacksteppingConfig {
         )
         .unwrap(),
         inversion,
+        schedule: None,
     }
 }
 
@@ -412,6 +416,7 @@ proptest! {
                 gains: Gains::new(raw[6], raw[7], 1.0)?,
                 vehicle: Bicycle::new(Wheelbase::new(raw[8])?, SteeringLimit::new(raw[9])?, None)?,
                 inversion: Inversion::Exact,
+                schedule: None,
             };
             let v = MetersPerSecond::new(raw[10])?;
             let cmd = steering_command(&cfg, &error, slip, v)?;
@@ -474,6 +479,7 @@ fn edges_of_the_domain_give_values_or_errors() {
         )
         .unwrap(),
         inversion: Inversion::Exact,
+        schedule: None,
     };
     for (y, theta, c) in [
         (1e300, 0.0, 0.0),
@@ -491,4 +497,173 @@ fn edges_of_the_domain_give_values_or_errors() {
             Err(e) => assert!(!e.requirement.is_empty()),
         }
     }
+}
+
+/// The schedule of the Pierre 2022 tractor's steering (30°/s, 30°) for
+/// 0.3-3 m/s with a lag of time constant `tau`.
+fn tractor_schedule(tau: f64) -> SpeedSchedule {
+    let thirty = 30_f64.to_radians();
+    let vehicle = Bicycle::new(
+        Wheelbase::new(2.0).unwrap(),
+        SteeringLimit::new(thirty).unwrap(),
+        Some(RadiansPerSecond::new(thirty).unwrap()),
+    )
+    .unwrap();
+    SpeedSchedule::for_actuator(speed(0.3), speed(3.0), &vehicle, Seconds::new(tau).unwrap())
+        .unwrap()
+}
+
+//= spec/pierre2022.md#pt-schedule-speed-schedule-of-the-gains
+//= type=test
+//# A speed schedule MUST be refused at construction unless
+//# 0 < v_min ≤ v_max and Ω > 0.
+#[test]
+fn schedules_are_validated() {
+    let omega = RadiansPerSecond::new(2.0).unwrap();
+    assert!(SpeedSchedule::new(speed(0.3), speed(3.0), omega).is_ok());
+    assert!(SpeedSchedule::new(speed(1.0), speed(1.0), omega).is_ok());
+    for (lo, hi, w) in [
+        (0.0, 3.0, 2.0),
+        (-1.0, 3.0, 2.0),
+        (3.0, 0.3, 2.0),
+        (0.3, 3.0, 0.0),
+        (0.3, 3.0, -1.0),
+    ] {
+        let e = SpeedSchedule::new(speed(lo), speed(hi), RadiansPerSecond::new(w).unwrap())
+            .unwrap_err();
+        assert_eq!(e.requirement, "PT-SCHEDULE", "{lo} {hi} {w}");
+    }
+    // Derived from an actuator whose rate is unknown, or a negative lag.
+    let unknown = Bicycle::new(
+        Wheelbase::new(2.0).unwrap(),
+        SteeringLimit::new(0.5).unwrap(),
+        None,
+    )
+    .unwrap();
+    let e =
+        SpeedSchedule::for_actuator(speed(0.3), speed(3.0), &unknown, Seconds::ZERO).unwrap_err();
+    assert_eq!(e.requirement, "PT-SCHEDULE");
+    let known = Bicycle {
+        max_steering_rate: Some(RadiansPerSecond::new(0.5).unwrap()),
+        ..unknown
+    };
+    let e =
+        SpeedSchedule::for_actuator(speed(0.3), speed(3.0), &known, Seconds::new(-0.1).unwrap())
+            .unwrap_err();
+    assert_eq!(e.requirement, "PT-SCHEDULE");
+}
+
+//= spec/pierre2022.md#pt-schedule-speed-schedule-of-the-gains
+//= type=test
+//# A schedule derived from the actuator MUST take
+//# Ω = min(2 R / δ_max, 1 / τ) for a steering rate limit R, saturation
+//# δ_max and first-order time constant τ (the rate limit alone when τ = 0).
+#[test]
+fn the_actuator_gives_the_bandwidth() {
+    // 30°/s over 30°: 2 R / δ_max = 2 1/s; a 1 s settling (τ = 1/3 s) allows 3.
+    assert_relative_eq!(
+        tractor_schedule(0.0).bandwidth().get(),
+        2.0,
+        max_relative = 1e-12
+    );
+    assert_relative_eq!(
+        tractor_schedule(1.0 / 3.0).bandwidth().get(),
+        2.0,
+        max_relative = 1e-12
+    );
+    // A 2 s settling (τ = 2/3 s): 1 / τ = 1.5 1/s.
+    assert_relative_eq!(
+        tractor_schedule(2.0 / 3.0).bandwidth().get(),
+        1.5,
+        max_relative = 1e-12
+    );
+    let s = tractor_schedule(0.0);
+    assert_eq!((s.min_speed().get(), s.max_speed().get()), (0.3, 3.0));
+}
+
+//= spec/pierre2022.md#pt-schedule-speed-schedule-of-the-gains
+//= type=test
+//# At a speed v the law MUST use the gains per metre k_y, k_θ where
+//# v |k_θ| ≤ Ω, and both scaled by Ω / (v |k_θ|) where v |k_θ| > Ω.
+#[test]
+fn the_schedule_keeps_the_gains_below_v0_and_the_bandwidth_above() {
+    let gains = Gains::new(-0.7, -2.8, 2.0).unwrap();
+    let s = tractor_schedule(0.0);
+    // v0 = 2 / 2.8 = 0.714 m/s.
+    for v in [0.3, 0.5, 0.714] {
+        assert_eq!(s.gains_at(&gains, speed(v)).unwrap(), gains, "{v}");
+    }
+    for v in [0.8, 1.0, 2.0, 3.0] {
+        let g = s.gains_at(&gains, speed(v)).unwrap();
+        assert_relative_eq!(v * g.k_theta(), -2.0, max_relative = 1e-12);
+        assert_relative_eq!(g.k_theta() / g.k_y(), 4.0, max_relative = 1e-12);
+    }
+    // The law steers with the scheduled gains: the same command as the law
+    // without a schedule given those gains.
+    let mut law = config(-0.7, -2.8, Inversion::Exact);
+    law.schedule = Some(s);
+    let e = tracking(-0.3, 0.05, 0.02, 0.03);
+    let at_3 = BacksteppingConfig {
+        gains: s.gains_at(&gains, speed(3.0)).unwrap(),
+        schedule: None,
+        ..law
+    };
+    assert_eq!(
+        steering_command(&law, &e, Sideslip::ZERO, speed(3.0)).unwrap(),
+        steering_command(&at_3, &e, Sideslip::ZERO, speed(3.0)).unwrap()
+    );
+    assert_eq!(law.gains_at(speed(3.0)).unwrap(), at_3.gains);
+    assert_eq!(
+        config(-0.7, -2.8, Inversion::Exact)
+            .gains_at(speed(3.0))
+            .unwrap(),
+        gains
+    );
+}
+
+//= spec/pierre2022.md#pt-schedule-range-speeds-outside-the-schedule
+//= type=test
+//# A scheduled law MUST refuse a speed below v_min or above v_max with the
+//# `PT-SCHEDULE-RANGE` error instead of a value.
+#[test]
+fn speeds_outside_the_schedule_are_refused() {
+    let gains = Gains::new(-0.7, -2.8, 2.0).unwrap();
+    let s = tractor_schedule(0.0);
+    let mut law = config(-0.7, -2.8, Inversion::Exact);
+    law.schedule = Some(s);
+    let e = tracking(0.1, 0.0, 0.0, 0.0);
+    for v in [0.1, 0.299, 3.001, 20.0] {
+        assert_eq!(
+            s.gains_at(&gains, speed(v)).unwrap_err().requirement,
+            "PT-SCHEDULE-RANGE"
+        );
+        let err = steering_command(&law, &e, Sideslip::ZERO, speed(v)).unwrap_err();
+        assert_eq!(err.requirement, "PT-SCHEDULE-RANGE", "{v}");
+        assert_eq!(
+            law.check_speed(speed(v)).unwrap_err().requirement,
+            "PT-SCHEDULE-RANGE"
+        );
+    }
+    // v <= 0 stays PT-SPEED, with or without a schedule.
+    for v in [0.0, -1.0] {
+        assert_eq!(law.gains_at(speed(v)).unwrap_err().requirement, "PT-SPEED");
+        let plain = config(-0.7, -2.8, Inversion::Exact);
+        assert_eq!(
+            plain.gains_at(speed(v)).unwrap_err().requirement,
+            "PT-SPEED"
+        );
+    }
+    assert!(law.check_speed(speed(0.3)).is_ok() && law.check_speed(speed(3.0)).is_ok());
+    // Extreme gains: a scheduled gain that underflows is an error, not zero.
+    let huge = Gains::new(-1e-300, -1e300, 1.0).unwrap();
+    let wide = SpeedSchedule::new(
+        speed(1e-300),
+        speed(1e300),
+        RadiansPerSecond::new(1e-300).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        wide.gains_at(&huge, speed(1e300)).unwrap_err().requirement,
+        "LIB-FINITE"
+    );
 }

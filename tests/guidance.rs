@@ -178,6 +178,16 @@ fn odom(p: (f64, f64, f64)) -> Pose2<Odom> {
     Pose2::new(p.0, p.1, p.2).unwrap()
 }
 
+/// A speed schedule over [lo, hi] m/s of bandwidth 2 1/s.
+fn schedule(lo: f64, hi: f64) -> fieldguide::control::backstepping::SpeedSchedule {
+    fieldguide::control::backstepping::SpeedSchedule::new(
+        MetersPerSecond::new(lo).unwrap(),
+        MetersPerSecond::new(hi).unwrap(),
+        fieldguide::RadiansPerSecond::new(2.0).unwrap(),
+    )
+    .unwrap()
+}
+
 fn edge_params() -> Params {
     pierre2022_edge(Side::Left, mount()).unwrap()
 }
@@ -1350,6 +1360,16 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
             "GD-SPEED",
         ),
         (Box::new(|p| p.path.horizon = s(-0.1)), "GD-PREDICTION"),
+        (Box::new(|p| p.path.steering_lag = s(-0.1)), "GD-PREDICTION"),
+        // A desired speed outside its law's speed schedule (PT-SCHEDULE-RANGE).
+        (
+            Box::new(|p| p.path.law.schedule = Some(schedule(1.0, 3.0))),
+            "PT-SCHEDULE-RANGE",
+        ),
+        (
+            Box::new(|p| behaviour_mut(p, EDGE).law.schedule = Some(schedule(0.5, 3.0))),
+            "PT-SCHEDULE-RANGE",
+        ),
         (
             Box::new(|p| p.path.search_window = m(0.0)),
             "GD-LOCALISATION",
@@ -1528,6 +1548,15 @@ fn the_presets_are_tables_1_and_2() {
         .all(|l| l.vehicle == vehicle));
     let config = GuidanceConfig::new(&p).unwrap();
     assert_eq!(config.lookahead().get(), 0.8);
+    // The steering's lag adds to the horizon (PT-FEEDFORWARD-LAG), and a
+    // schedule holding the speeds is accepted.
+    let mut lagged = p.clone();
+    lagged.path.steering_lag = Seconds::new(0.25).unwrap();
+    lagged.path.law.schedule = Some(schedule(0.3, 3.0));
+    assert_eq!(
+        GuidanceConfig::new(&lagged).unwrap().lookahead().get(),
+        0.8 * 1.25
+    );
     // Priority furrow first: behaviour 0 is furrow (0.5 s / 0.3 s), 1 is edge
     // (0.4 s / 0.26 s), in ticks at 100 Hz.
     let ticks = config.switching().all_ticks();
@@ -1602,6 +1631,7 @@ fn declared(
             law: declare(params.path.law, path),
             speed: params.path.speed,
             horizon: params.path.horizon,
+            steering_lag: params.path.steering_lag,
             compensation: params.path.compensation,
             search_window: params.path.search_window,
         },

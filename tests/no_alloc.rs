@@ -106,6 +106,7 @@ fn path_tracking_tick_does_not_allocate() {
         )
         .unwrap(),
         inversion: Inversion::Exact,
+        schedule: None,
     };
     let speed = MetersPerSecond::new(0.8).unwrap();
     let slip = Sideslip::new(-0.03, -0.05).unwrap();

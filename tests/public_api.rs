@@ -40,7 +40,7 @@ use core::fmt::Debug;
 
 use fieldguide::control::backstepping::{
     steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Gains,
-    Inversion,
+    Inversion, SpeedSchedule,
 };
 use fieldguide::control::ControlLaw;
 use fieldguide::error::finite;
@@ -536,6 +536,7 @@ proptest! {
             gains,
             vehicle: presets::vehicle().unwrap(),
             inversion: if printed { Inversion::Printed } else { Inversion::Exact },
+            schedule: None,
         };
         let v = MetersPerSecond::new(speed).unwrap();
         let wild = Sideslip { front: slip.0, rear: slip.1 };
@@ -547,6 +548,52 @@ proptest! {
             check!("control::ControlLaw::command", config.command(&e, &s, v));
         }
         check!("control::ControlLaw::actuation", config.actuation());
+        check!("control::backstepping::BacksteppingConfig::gains_at", config.gains_at(v));
+    }
+
+    #[test]
+    fn speed_schedules(
+        bounds in (raw(), raw(), raw()), tau in raw(), rate in raw(), speed in raw(),
+        gains in (raw(), raw()),
+    ) {
+        let (lo, hi, w) = bounds;
+        let vehicle = presets::vehicle().unwrap();
+        let rated = RadiansPerSecond::new(rate)
+            .ok()
+            .and_then(|r| Bicycle::new(vehicle.wheelbase, vehicle.max_steering, Some(r)).ok());
+        let gains = Gains::new(gains.0, gains.1, 1.0).unwrap_or(Gains::new(-0.7, -2.8, 2.0).unwrap());
+        if let (Ok(lo), Ok(hi)) = (MetersPerSecond::new(lo), MetersPerSecond::new(hi)) {
+            let mut schedules = std::vec::Vec::new();
+            if let Ok(w) = RadiansPerSecond::new(w) {
+                schedules.extend(check!("control::backstepping::SpeedSchedule::new", SpeedSchedule::new(lo, hi, w)));
+            }
+            if let Ok(tau) = Seconds::new(tau) {
+                for b in [vehicle].into_iter().chain(rated) {
+                    schedules.extend(check!(
+                        "control::backstepping::SpeedSchedule::for_actuator",
+                        SpeedSchedule::for_actuator(lo, hi, &b, tau)
+                    ));
+                }
+            }
+            for sched in schedules {
+                check!("control::backstepping::SpeedSchedule::min_speed", sched.min_speed());
+                check!("control::backstepping::SpeedSchedule::max_speed", sched.max_speed());
+                check!("control::backstepping::SpeedSchedule::bandwidth", sched.bandwidth());
+                for v in [speed, lo.get(), hi.get(), 0.5 * (lo.get() + hi.get())] {
+                    if let Ok(v) = MetersPerSecond::new(v) {
+                        check!("control::backstepping::SpeedSchedule::gains_at", sched.gains_at(&gains, v));
+                        let law = BacksteppingConfig {
+                            gains,
+                            vehicle,
+                            inversion: Inversion::Exact,
+                            schedule: Some(sched),
+                        };
+                        check!("control::ControlLaw::check_speed", law.check_speed(v));
+                        check!("control::backstepping::BacksteppingConfig::gains_at", law.gains_at(v));
+                    }
+                }
+            }
+        }
     }
 
     #[test]

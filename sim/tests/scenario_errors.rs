@@ -1165,3 +1165,68 @@ fn counts_the_file_implies_are_bounded_and_delays_named_at_load() {
     let e = hedge_error_of(|t| format!("{t}\n[switching]\nstop_delay_s = 700.0\n"));
     assert_field(&e, "switching.stop_delay_s", "control ticks");
 }
+
+/// The built-in `tracking-v2-offset` (a speed schedule over 0.3-3 m/s)
+/// changed by `edit`.
+fn scheduled_error_of(edit: impl Fn(String) -> String) -> ScenarioError {
+    let text = Source::builtin("tracking-v2-offset").unwrap().text;
+    edited_error_of(text, edit)
+}
+
+#[test]
+fn the_speed_schedule_and_the_steering_lag_are_checked() {
+    let schedule_end = "max_speed_m_s = 3.0";
+    // (text, its replacement, the field named, part of the reason)
+    let cases = [
+        // A speed above the scheduled range (PT-SCHEDULE-RANGE).
+        (
+            "speed_m_s = 2.0",
+            "speed_m_s = 3.5",
+            "control.speed_m_s",
+            "PT-SCHEDULE-RANGE",
+        ),
+        (
+            schedule_end,
+            "max_speed_m_s = 0.2",
+            "control.schedule.max_speed_m_s",
+            "must be >= control.schedule.min_speed_m_s",
+        ),
+        (
+            "min_speed_m_s = 0.3",
+            "min_speed_m_s = 0.0",
+            "control.schedule.min_speed_m_s",
+            "",
+        ),
+        (
+            schedule_end,
+            "max_speed_m_s = 3.0\nbandwidth_per_s = -1.0",
+            "control.schedule.bandwidth_per_s",
+            "",
+        ),
+        (
+            "steering_lag_s = 0.3333",
+            "steering_lag_s = -0.1",
+            "control.steering_lag_s",
+            "",
+        ),
+        (
+            "steering_lag_s = 0.3333",
+            "steering_lag_s = 25.0",
+            "control.steering_lag_s",
+            "",
+        ),
+        // The plant's lag is checked where it is configured.
+        (
+            "steering_settling_s = 1.0",
+            "steering_settling_s = 61.0",
+            "vehicle.steering_settling_s",
+            "",
+        ),
+    ];
+    for (from, to, field, reason) in cases {
+        let e = scheduled_error_of(|t| t.replace(from, to));
+        assert_field(&e, field, reason);
+    }
+    let e = scheduled_error_of(|t| t.replace(schedule_end, "max_speed_m_s = 3.0\nrate = 1"));
+    assert!(e.to_string().contains("rate"), "{e}");
+}

@@ -22,7 +22,7 @@
 
 use crate::error::{finite, Precondition};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
+use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond, Seconds};
 use crate::model::bicycle::{check_denominator, check_heading, check_speed, Bicycle, Sideslip};
 use crate::model::{Actuation, Command, Saturated};
 
@@ -101,6 +101,177 @@ impl Gains {
     }
 }
 
+/// How much faster than the steering's rate limit allows at full lock the
+/// heading loop may be: its time-domain gain v |k_θ| is at most
+/// `RATE_FACTOR` times max rate / max steering, so that the law's steering
+/// rate, v |k_θ| δ in the linearised loop, stays within the rate limit for
+/// steering excursions up to half the saturation (PT-SCHEDULE).
+pub const SCHEDULE_RATE_FACTOR: f64 = 2.0;
+
+/// The largest product v |k_θ| τ of the heading loop's time-domain gain and
+/// the steering's time constant: at 1, the loop through a first-order lag
+/// keeps a phase margin of at least 45° (PT-SCHEDULE).
+pub const SCHEDULE_LAG_PRODUCT: f64 = 1.0;
+
+/// A speed schedule of the gains (PT-SCHEDULE): the range of speeds the law
+/// is valid for, and the largest time-domain heading gain v |k_θ| (1/s, held
+/// as a rate in rad/s per radian of heading error) the steering actuator can
+/// follow.
+///
+/// Below v₀ = bandwidth / |k_θ| the gains per metre apply as they are
+/// (convergence in distance, eqs. 2 and 4); above it both gains are scaled
+/// by v₀ / v, so that their ratio (the loop's damping) is kept and the
+/// time-domain bandwidth stays at the bandwidth: gains per metre would ask
+/// the steering for a rate that grows like v k_θ².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpeedSchedule {
+    min_speed: MetersPerSecond,
+    max_speed: MetersPerSecond,
+    bandwidth: RadiansPerSecond,
+}
+
+impl SpeedSchedule {
+    /// The schedule valid for speeds in [`min_speed`, `max_speed`] whose
+    /// heading loop is at most `bandwidth` fast in time.
+    ///
+    /// # Errors
+    /// `PT-SCHEDULE` unless 0 < `min_speed` ≤ `max_speed` and `bandwidth` > 0.
+    //= spec/pierre2022.md#pt-schedule-speed-schedule-of-the-gains
+    //# A speed schedule MUST be refused at construction unless
+    //# 0 < v_min ≤ v_max and Ω > 0.
+    pub fn new(
+        min_speed: MetersPerSecond,
+        max_speed: MetersPerSecond,
+        bandwidth: RadiansPerSecond,
+    ) -> Result<Self, Precondition> {
+        if !(min_speed.get() > 0.0 && max_speed.get() >= min_speed.get()) {
+            return Err(Precondition::new(
+                "PT-SCHEDULE",
+                "need 0 < min_speed <= max_speed",
+            ));
+        }
+        if bandwidth.get() <= 0.0 {
+            return Err(Precondition::new(
+                "PT-SCHEDULE",
+                "the schedule's bandwidth must be > 0",
+            ));
+        }
+        Ok(Self {
+            min_speed,
+            max_speed,
+            bandwidth,
+        })
+    }
+
+    /// The schedule of the steering actuator of `vehicle` (its rate limit
+    /// and saturation) with first-order time constant `time_constant`:
+    /// Ω = min(2 R / δ_max, 1 / τ) ([`SCHEDULE_RATE_FACTOR`],
+    /// [`SCHEDULE_LAG_PRODUCT`]; τ = 0: the rate limit alone).
+    ///
+    /// # Errors
+    /// `PT-SCHEDULE` when the vehicle's steering rate is unknown, the time
+    /// constant is negative or the speeds are out of order.
+    //= spec/pierre2022.md#pt-speed-range-path-tracking-over-the-speed-range
+    //# From 0.8 m off a straight, and from 1.5 m off heading 20° away from it,
+    //# path tracking with a schedule derived from the actuator MUST converge
+    //# (|y| < 0.05 m and staying) within the longest of 10 m, 5 s of travel and
+    //# 1.3 times the linearised loop's time, with an overshoot below 10 % of the
+    //# initial error from 0.8 m and 12 % from 1.5 m, at every speed of the schedule.
+    //= spec/pierre2022.md#pt-schedule-speed-schedule-of-the-gains
+    //# A schedule derived from the actuator MUST take
+    //# Ω = min(2 R / δ_max, 1 / τ) for a steering rate limit R, saturation
+    //# δ_max and first-order time constant τ (the rate limit alone when τ = 0).
+    pub fn for_actuator(
+        min_speed: MetersPerSecond,
+        max_speed: MetersPerSecond,
+        vehicle: &Bicycle,
+        time_constant: Seconds,
+    ) -> Result<Self, Precondition> {
+        let Some(rate) = vehicle.max_steering_rate else {
+            return Err(Precondition::new(
+                "PT-SCHEDULE",
+                "the schedule needs the vehicle's steering rate limit",
+            ));
+        };
+        let tau = time_constant.get();
+        if tau < 0.0 {
+            return Err(Precondition::new(
+                "PT-SCHEDULE",
+                "the steering's time constant must not be negative",
+            ));
+        }
+        let by_rate = finite(
+            SCHEDULE_RATE_FACTOR * rate.get() / vehicle.max_steering.get().get(),
+            "schedule bandwidth overflows",
+        )?;
+        let bandwidth = if tau > 0.0 {
+            libm::fmin(by_rate, SCHEDULE_LAG_PRODUCT / tau)
+        } else {
+            by_rate
+        };
+        Self::new(
+            min_speed,
+            max_speed,
+            RadiansPerSecond::new(finite(bandwidth, "schedule bandwidth overflows")?)?,
+        )
+    }
+
+    /// The lowest speed the schedule is valid for.
+    #[must_use]
+    pub const fn min_speed(&self) -> MetersPerSecond {
+        self.min_speed
+    }
+
+    /// The highest speed the schedule is valid for.
+    #[must_use]
+    pub const fn max_speed(&self) -> MetersPerSecond {
+        self.max_speed
+    }
+
+    /// The largest time-domain heading gain Ω = v |k_θ|.
+    #[must_use]
+    pub const fn bandwidth(&self) -> RadiansPerSecond {
+        self.bandwidth
+    }
+
+    /// The gains to apply at `speed`: `gains` when v |k_θ| ≤ Ω, else both
+    /// scaled by Ω / (v |k_θ|).
+    ///
+    /// # Errors
+    /// `PT-SPEED` when v ≤ 0, `PT-SCHEDULE-RANGE` when v is outside the
+    /// schedule's range, `LIB-FINITE` when a scaled gain would under- or
+    /// overflow.
+    //= spec/pierre2022.md#pt-schedule-speed-schedule-of-the-gains
+    //# At a speed v the law MUST use the gains per metre k_y, k_θ where
+    //# v |k_θ| ≤ Ω, and both scaled by Ω / (v |k_θ|) where v |k_θ| > Ω.
+    //= spec/pierre2022.md#pt-schedule-range-speeds-outside-the-schedule
+    //# A scheduled law MUST refuse a speed below v_min or above v_max with the
+    //# `PT-SCHEDULE-RANGE` error instead of a value.
+    pub fn gains_at(&self, gains: &Gains, speed: MetersPerSecond) -> Result<Gains, Precondition> {
+        let v = check_speed(speed)?;
+        if v < self.min_speed.get() || v > self.max_speed.get() {
+            return Err(Precondition::new(
+                "PT-SCHEDULE-RANGE",
+                "speed outside the range of the gains' speed schedule",
+            ));
+        }
+        let demand = finite(v * libm::fabs(gains.k_theta), "v |k_theta| overflows")?;
+        if demand <= self.bandwidth.get() {
+            return Ok(*gains);
+        }
+        let factor = self.bandwidth.get() / demand;
+        let (k_y, k_theta) = (gains.k_y * factor, gains.k_theta * factor);
+        if k_y < 0.0 && k_theta < 0.0 {
+            Ok(Gains { k_y, k_theta })
+        } else {
+            Err(Precondition::new(
+                "LIB-FINITE",
+                "a scheduled gain underflows to zero",
+            ))
+        }
+    }
+}
+
 /// Which reading of eq. 6 the steering law implements (see the errata in
 /// `spec/pierre2022.md`, PT-STEERING).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -127,6 +298,24 @@ pub struct BacksteppingConfig {
     pub vehicle: Bicycle,
     /// Which reading of eq. 6.
     pub inversion: Inversion,
+    /// The speed schedule of the gains (PT-SCHEDULE); `None`: the gains per
+    /// metre at every speed, as the paper writes them.
+    pub schedule: Option<SpeedSchedule>,
+}
+
+impl BacksteppingConfig {
+    /// The gains the law applies at `speed`: the configured ones, or those
+    /// of the speed schedule (PT-SCHEDULE).
+    ///
+    /// # Errors
+    /// `PT-SPEED` when v ≤ 0; with a schedule, `PT-SCHEDULE-RANGE` outside
+    /// its range and `LIB-FINITE`.
+    pub fn gains_at(&self, speed: MetersPerSecond) -> Result<Gains, Precondition> {
+        match self.schedule {
+            Some(schedule) => schedule.gains_at(&self.gains, speed),
+            None => check_speed(speed).map(|_| self.gains),
+        }
+    }
 }
 
 /// The output of the steering law for one tick.
@@ -230,8 +419,11 @@ pub fn yaw_rate_objective(
 ///
 /// With β_F = β_R = 0 and c(s + vT) = c(s) this is the classical law
 /// δ = arctan(L [k_θ e + c] cos θ̃ / (1 − y c(s))) (exact reading).
+/// The gains are those of [`BacksteppingConfig::gains_at`] at `speed`.
+///
 /// Errors: `PT-DENOM` (1 − y c(s) ≤ 0), `PT-HEADING` (cos θ̃₂ ≤ 0), `PT-SPEED`
-/// (v ≤ 0), `PT-SIDESLIP` (|β| ≥ π/2), `LIB-FINITE` on overflow.
+/// (v ≤ 0), `PT-SIDESLIP` (|β| ≥ π/2), `PT-SCHEDULE-RANGE` (a speed outside
+/// the schedule), `LIB-FINITE` on overflow.
 //= spec/pierre2022.md#pt-steering-steering-law-with-sideslip-compensation
 //# The steering angle MUST be
 //# δ = arctan(tan β_R + L [k_θ e + c(s + vT)] cos θ̃₂ / ((1 − y c(s)) cos β_R)) − β_F
@@ -245,7 +437,8 @@ pub fn steering_command(
     sideslip: Sideslip,
     speed: MetersPerSecond,
 ) -> Result<SteeringCommand, Precondition> {
-    let terms = LawTerms::new(&config.gains, error, sideslip, speed)?;
+    let gains = config.gains_at(speed)?;
+    let terms = LawTerms::new(&gains, error, sideslip, speed)?;
     let beta_r = sideslip.rear.get();
     let factor = match config.inversion {
         Inversion::Exact => libm::cos(terms.theta2) / libm::cos(beta_r),
@@ -280,6 +473,10 @@ impl super::ControlLaw for BacksteppingConfig {
 
     fn check_extra(extra: &Sideslip) -> Result<(), Precondition> {
         extra.check()
+    }
+
+    fn check_speed(&self, speed: MetersPerSecond) -> Result<(), Precondition> {
+        self.gains_at(speed).map(|_| ())
     }
 
     fn command(

@@ -33,6 +33,17 @@ pub trait ControlLaw {
     /// The requirement the input breaks.
     fn check_extra(extra: &Self::Extra) -> Result<(), Precondition>;
 
+    /// Checks a desired speed once, when a configuration is built: a law
+    /// valid over a range of speeds refuses the others (for backstepping
+    /// with a speed schedule, PT-SCHEDULE-RANGE). Every speed by default.
+    ///
+    /// # Errors
+    /// The requirement the speed breaks.
+    fn check_speed(&self, speed: MetersPerSecond) -> Result<(), Precondition> {
+        let _ = speed;
+        Ok(())
+    }
+
     /// The command for `error` at the desired `speed`, within the vehicle's
     /// limits.
     ///

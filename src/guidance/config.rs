@@ -29,9 +29,14 @@ pub struct PathTrackingParams<L> {
     pub law: L,
     /// Desired speed v, m/s, > 0 (GD-SPEED).
     pub speed: MetersPerSecond,
-    /// Prediction horizon T, s, ≥ 0: the curvature is fed forward at s + v T
-    /// (eq. 7; GD-PREDICTION).
+    /// Prediction horizon T, s, ≥ 0: the curvature is fed forward at
+    /// s + v (T + τ) (eq. 7; GD-PREDICTION, PT-FEEDFORWARD-LAG).
     pub horizon: Seconds,
+    /// Time constant τ of the steering's first-order lag, s, ≥ 0 (a 5 %
+    /// settling time T_s gives τ = T_s / 3), added to the horizon: the
+    /// steering reaches a command τ late on average (PT-FEEDFORWARD-LAG).
+    /// 0: the horizon alone, as the paper writes it.
+    pub steering_lag: Seconds,
     /// Whether the law reads the tick's extra input (for backstepping the
     /// sideslip estimate, eq. 6); without it the law gets its neutral input
     /// (GD-PREDICTION).
@@ -211,9 +216,11 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     ///   or longer than 65 535 ticks; `SW-STOP`, `SW-PLAN-CONSISTENCY` for the
     ///   Stop and plan delays (a plan tolerance without a plan delay is the
     ///   latter);
-    /// - `GD-SPEED` when a desired speed is not positive;
-    /// - `GD-PREDICTION` when the horizon is negative (`LIB-FINITE` if v T
-    ///   overflows);
+    /// - `GD-SPEED` when a desired speed is not positive, or the law's
+    ///   error when it refuses that speed (`PT-SCHEDULE-RANGE` outside a
+    ///   backstepping law's speed schedule);
+    /// - `GD-PREDICTION` when the horizon or the steering lag is negative
+    ///   (`LIB-FINITE` if v (T + τ) overflows);
     /// - `GD-LOCALISATION` when the search window is not positive;
     /// - `GD-SCAN-AGE` when the maximal scan age is negative or longer than
     ///   65 534 ticks;
@@ -266,18 +273,32 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             params.plan_delay,
         )?;
         positive_speed(params.path.speed, "path.speed must be > 0")?;
+        params.path.law.check_speed(params.path.speed)?;
         for b in &ordered {
             positive_speed(b.speed, "a behaviour's speed must be > 0")?;
+            b.law.check_speed(b.speed)?;
         }
-        if params.path.horizon.get() < 0.0 {
+        if params.path.horizon.get() < 0.0 || params.path.steering_lag.get() < 0.0 {
             return Err(Precondition::new(
                 "GD-PREDICTION",
-                "path.horizon must not be negative",
+                "path.horizon and path.steering_lag must not be negative",
             ));
         }
+        //= spec/pierre2022.md#pt-speed-range-path-tracking-over-the-speed-range
+        //# Started on the path, |y| MUST stay below the larger of 0.05 m and 1.25
+        //# times the offset Δκ d² / 24 of a rate-limited ramp through each curvature
+        //# step Δκ, and below the larger of 0.05 m and 1.25 times the drift of a
+        //# sideslip step.
+        //= spec/pierre2022.md#pt-feedforward-lag-feed-forward-timed-for-the-steering-lag
+        //# The curvature MUST be fed forward at s + v (T + τ), with T the
+        //# prediction horizon and τ ≥ 0 the steering's configured time constant.
+        let lead = finite(
+            params.path.horizon.get() + params.path.steering_lag.get(),
+            "path look-ahead time T + tau overflows",
+        )?;
         let lookahead = Meters::new(finite(
-            params.path.speed.get() * params.path.horizon.get(),
-            "path look-ahead v T overflows",
+            params.path.speed.get() * lead,
+            "path look-ahead v (T + tau) overflows",
         )?)?;
         if params.path.search_window.get() <= 0.0 {
             return Err(Precondition::new(
@@ -330,7 +351,8 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
         &self.switching
     }
 
-    /// The look-ahead v T of path tracking's feed-forward, m (GD-PREDICTION).
+    /// The look-ahead v (T + τ) of path tracking's feed-forward, m
+    /// (GD-PREDICTION, PT-FEEDFORWARD-LAG).
     #[must_use]
     pub const fn lookahead(&self) -> Meters {
         self.lookahead

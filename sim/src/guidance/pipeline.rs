@@ -103,6 +103,7 @@ pub fn params(
             law: c.backstepping,
             speed: c.speed,
             horizon: Seconds::new(c.horizon_s)?,
+            steering_lag: Seconds::new(c.steering_lag_s)?,
             compensation: c.sideslip_compensation,
             search_window: Meters::new(SEARCH_WINDOW_M)?,
         },

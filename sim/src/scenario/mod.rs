@@ -56,6 +56,58 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "gnss-outage",
         include_str!("../../scenarios/gnss-outage.toml"),
     ),
+    (
+        "tracking-v0_3-offset",
+        include_str!("../../scenarios/tracking-v0_3-offset.toml"),
+    ),
+    (
+        "tracking-v1-offset",
+        include_str!("../../scenarios/tracking-v1-offset.toml"),
+    ),
+    (
+        "tracking-v2-offset",
+        include_str!("../../scenarios/tracking-v2-offset.toml"),
+    ),
+    (
+        "tracking-v3-offset",
+        include_str!("../../scenarios/tracking-v3-offset.toml"),
+    ),
+    (
+        "tracking-v0_3-heading",
+        include_str!("../../scenarios/tracking-v0_3-heading.toml"),
+    ),
+    (
+        "tracking-v1-heading",
+        include_str!("../../scenarios/tracking-v1-heading.toml"),
+    ),
+    (
+        "tracking-v2-heading",
+        include_str!("../../scenarios/tracking-v2-heading.toml"),
+    ),
+    (
+        "tracking-v3-heading",
+        include_str!("../../scenarios/tracking-v3-heading.toml"),
+    ),
+    (
+        "tracking-sbend-v1_5",
+        include_str!("../../scenarios/tracking-sbend-v1_5.toml"),
+    ),
+    (
+        "tracking-sbend-v3",
+        include_str!("../../scenarios/tracking-sbend-v3.toml"),
+    ),
+    (
+        "tracking-uturn",
+        include_str!("../../scenarios/tracking-uturn.toml"),
+    ),
+    (
+        "tracking-slip",
+        include_str!("../../scenarios/tracking-slip.toml"),
+    ),
+    (
+        "tracking-lag-2s",
+        include_str!("../../scenarios/tracking-lag-2s.toml"),
+    ),
 ];
 
 /// The names of the built-in scenarios.

@@ -215,12 +215,35 @@ pub struct ControlSection {
     pub heading_gain: f64,
     /// Minimum ratio g_θ / g_y the core accepts (|k_θ| ≫ |k_y|).
     pub min_gain_ratio: f64,
-    /// Prediction horizon T, seconds: the curvature is fed forward at s + v T.
+    /// Prediction horizon T, seconds: the curvature is fed forward at s + v (T + τ).
     pub horizon_s: f64,
+    /// The steering's time constant τ the law is told, seconds (default 0):
+    /// added to the horizon (PT-FEEDFORWARD-LAG) and, without a bandwidth,
+    /// to the schedule's derivation (PT-SCHEDULE).
+    #[serde(default)]
+    pub steering_lag_s: f64,
+    /// The speed schedule of the gains (`[control.schedule]`, optional: the
+    /// gains per metre at every speed without it).
+    #[serde(default)]
+    pub schedule: Option<ScheduleSection>,
     /// Whether the law uses the sideslip observer's estimate (false: β = 0 in the law).
     pub sideslip_compensation: bool,
     /// `"exact"` or `"printed"` reading of eq. 6.
     pub inversion: InversionName,
+}
+
+/// `[control.schedule]`: the range of speeds the gains are scheduled for.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScheduleSection {
+    /// Lowest speed the law accepts, m/s.
+    pub min_speed_m_s: f64,
+    /// Highest speed the law accepts, m/s.
+    pub max_speed_m_s: f64,
+    /// Largest time-domain heading gain v g_θ, 1/s; default derived from
+    /// the steering's rate limit, saturation and `control.steering_lag_s`.
+    #[serde(default)]
+    pub bandwidth_per_s: Option<f64>,
 }
 
 /// `[terrain]`: sideslip everywhere, and patches where it differs.

@@ -5,7 +5,7 @@ use fieldguide::control::backstepping::BacksteppingConfig;
 use fieldguide::perception::edge::{EdgeConfig, EdgeParameters, Side};
 use fieldguide::MetersPerSecond;
 
-use super::control::{forward_speed, gains};
+use super::control::{forward_speed, gains, within_schedule};
 use super::lidar::HorizontalLidarSetup;
 use crate::capacity::{EDGE_CHAIN, EDGE_RAYS};
 use crate::error::ScenarioError;
@@ -43,6 +43,7 @@ pub(super) fn edge(
         ));
     }
     let speed = forward_speed(check, "edge", e.speed_m_s)?;
+    within_schedule(check, "edge", path_law, speed)?;
     let gains = gains(
         check,
         "edge",

@@ -5,7 +5,7 @@ use fieldguide::control::backstepping::BacksteppingConfig;
 use fieldguide::perception::furrow::{FurrowConfig, FurrowParams, Rows};
 use fieldguide::{Meters, MetersPerSecond, Radians};
 
-use super::control::{forward_speed, gains};
+use super::control::{forward_speed, gains, within_schedule};
 use super::lidar::LidarSetup;
 use crate::capacity::{FURROW_RAYS, FURROW_SCANS};
 use crate::error::ScenarioError;
@@ -35,6 +35,7 @@ pub(super) fn furrow(
     check: &Checker<'_>,
 ) -> Result<FurrowSetup, ScenarioError> {
     let speed = forward_speed(check, "furrow", f.speed_m_s)?;
+    within_schedule(check, "furrow", path_law, speed)?;
     let gains = gains(
         check,
         "furrow",
