@@ -114,7 +114,7 @@ fn legend_entries<'a>(
 fn plant_legend(setup: &Setup) -> Vec<(Stroke<'static>, bool, &'static str)> {
     [
         (PlantKind::Crop, CROP_COLOUR, "crop plants"),
-        (PlantKind::Grass, GRASS_COLOUR, "grass"),
+        (PlantKind::Grass, GRASS_COLOUR, "grass and weeds"),
     ]
     .into_iter()
     .filter(|(kind, _, _)| setup.world.plants.iter().any(|p| p.kind == *kind))
@@ -504,7 +504,14 @@ pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     };
     let s_lo = trace.first().map_or(0.0, |r| r.s_m);
     let s_hi = trace.last().map_or(path.length().get(), |r| r.s_m);
-    let half_width = setup.vehicle.track_m / 2.0 + setup.vehicle.tyre_width_m + 0.3;
+    // Wide enough for the rows beside the wheels and for the widest swing of
+    // O off the path (an excursion stays in the frame), at most 6 m.
+    let wheels = setup.vehicle.track_m / 2.0 + setup.vehicle.tyre_width_m + 0.3;
+    let swing = trace
+        .iter()
+        .map(|r| r.lateral_error_m.abs())
+        .fold(0.0, f64::max);
+    let half_width = (swing + wheels).min(6.0).max(wheels);
     let axes = Axes::new((s_lo, s_hi), (-half_width, half_width), 1400.0, 420.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
@@ -576,8 +583,37 @@ pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     }
     let mut entries = legend_entries(trace, false, "");
     entries.remove(0);
+    entries.push((
+        Stroke {
+            colour: "#888",
+            width: 1.0,
+            dash: None,
+        },
+        true,
+        "wheel tracks (tyre width), coloured by mode",
+    ));
+    entries.push((
+        Stroke {
+            colour: "#888",
+            width: 1.0,
+            dash: Some("4 3"),
+        },
+        false,
+        "rear-axle centre O",
+    ));
     entries.extend(plant_legend(setup));
-    svg.legend(&axes, &entries, &[]);
+    let occupied: Vec<(f64, f64)> = trace
+        .iter()
+        .map(|r| (r.s_m, r.lateral_error_m))
+        .chain(
+            setup
+                .world
+                .plants
+                .iter()
+                .filter_map(|p| frenet(p.position.x(), p.position.y(), None)),
+        )
+        .collect();
+    svg.legend(&axes, &entries, &occupied);
     svg.finish()
 }
 
