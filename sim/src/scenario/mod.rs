@@ -193,33 +193,12 @@ impl Source {
 /// The built-in name nearest to `requested` in edits (insertions, deletions,
 /// substitutions of one character), when at most a third of its length.
 fn closest_builtin(requested: &str) -> Option<&'static str> {
-    let wanted: Vec<char> = requested.chars().collect();
     BUILTIN
         .iter()
-        .map(|(name, _)| {
-            let name_chars: Vec<char> = name.chars().collect();
-            (edits(&wanted, &name_chars), *name)
-        })
+        .map(|(name, _)| (strsim::levenshtein(requested, name), *name))
         .filter(|(d, name)| *d <= (name.len() / 3).max(1))
         .min_by_key(|(d, _)| *d)
         .map(|(_, name)| name)
-}
-
-/// The Levenshtein distance between `a` and `b`.
-fn edits(a: &[char], b: &[char]) -> usize {
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
 }
 
 /// Parses scenario TOML `text` (`origin` names it in messages).
