@@ -152,3 +152,29 @@ fn the_rows_steer_through_a_lost_fix_and_the_robot_stops_when_nothing_is_left() 
     let summary = summarize(&setup, &out);
     assert_eq!((summary.gnss_lost_s, summary.stop_s), (0.0, 0.0));
 }
+
+/// The plots show what happened: the outages shaded and named in the
+/// legend of `lateral_error.svg`, and each spell in Stop marked on both
+/// plots with its length, which the trace confirms.
+#[test]
+fn the_plots_shade_the_outages_and_mark_each_stop_with_its_length() {
+    let (setup, out) = run("gnss-outage");
+    let period = setup.control.period_s;
+    let stopped = out
+        .trace
+        .iter()
+        .filter(|r| r.command.switching_mode == Mode::Stop)
+        .count();
+    assert!(stopped > 0);
+    // One spell here: its length as the plots print it.
+    let label = format!("stop {:.1} s", stopped as f64 * period);
+    let lateral = fieldguide_sim::output::plots::lateral_error_svg(&setup, &out.trace);
+    assert!(lateral.contains("GNSS fix lost"), "no outage in the legend");
+    assert!(lateral.contains(&label), "{label} missing");
+    let trajectory = fieldguide_sim::output::plots::trajectory_svg(&setup, &out.trace);
+    assert!(trajectory.contains(&label), "{label} missing");
+    // The path-tracking field has no outage and no stop: neither is drawn.
+    let (clear, clear_out) = run("path-tracking");
+    let lateral = fieldguide_sim::output::plots::lateral_error_svg(&clear, &clear_out.trace);
+    assert!(!lateral.contains("GNSS fix lost") && !lateral.contains("stop "));
+}
