@@ -8,6 +8,7 @@
 pub mod detector;
 pub mod edge;
 pub mod furrow;
+pub mod rows;
 pub mod scan;
 
 pub use detector::{AnyDetector, AnyDetectorConfig, AnyLine, Detection, Detector, HeldLine};
