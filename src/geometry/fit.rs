@@ -48,7 +48,8 @@ pub struct ParabolaFit {
     pub c: f64,
 }
 
-/// Means and spread of the x and y coordinates of a point set (first pass).
+/// Weighted means and spread of the x and y coordinates of a point set
+/// (first pass).
 struct Moments {
     count: f64,
     mean_x: f64,
@@ -57,21 +58,29 @@ struct Moments {
     half_spread: f64,
 }
 
-/// First pass: count, means and the spread of x. `LIB-FINITE` on overflow.
+/// First pass: count, weighted means and the spread of x. `FIT-WEIGHTS` on
+/// a weight that is not finite and > 0, `LIB-FINITE` on overflow.
 fn moments<F, I, P>(points: I) -> Result<Moments, Precondition>
 where
     F: Frame,
-    I: Iterator<Item = P> + Clone,
+    I: Iterator<Item = (P, f64)> + Clone,
     P: Borrow<Point2<F>>,
 {
-    let mut count = 0.0_f64;
+    let (mut count, mut weight) = (0.0_f64, 0.0_f64);
     let (mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64);
     let (mut min_x, mut max_x) = (f64::INFINITY, f64::NEG_INFINITY);
-    for p in points {
+    for (p, w) in points {
         let p = *p.borrow();
+        if !(w.is_finite() && w > 0.0) {
+            return Err(Precondition::new(
+                "FIT-WEIGHTS",
+                "a fit weight must be finite and > 0",
+            ));
+        }
         count += 1.0;
-        sum_x += p.x();
-        sum_y += p.y();
+        weight += w;
+        sum_x += w * p.x();
+        sum_y += w * p.y();
         min_x = min_x.min(p.x());
         max_x = max_x.max(p.x());
     }
@@ -83,8 +92,8 @@ where
             half_spread: 0.0,
         });
     }
-    let mean_x = finite(sum_x / count, "mean x of the fitted points overflows")?;
-    let mean_y = finite(sum_y / count, "mean y of the fitted points overflows")?;
+    let mean_x = finite(sum_x / weight, "mean x of the fitted points overflows")?;
+    let mean_y = finite(sum_y / weight, "mean y of the fitted points overflows")?;
     let half_spread = finite(
         (max_x - mean_x).max(mean_x - min_x),
         "spread of x of the fitted points overflows",
@@ -99,16 +108,16 @@ where
 
 /// The moments of `points`, checked for a fit of `needed` coefficients
 /// (`few`: the message when there are fewer points), and the points centred
-/// and scaled, (u, v) = ((x − x̄)/h, y − ȳ) with u ∈ [−1, 1], which keeps both
-/// fits well conditioned far from the origin.
+/// and scaled, (u, v, w) = ((x − x̄)/h, y − ȳ, w) with u ∈ [−1, 1], which
+/// keeps both fits well conditioned far from the origin.
 fn centred<F, I, P>(
     points: I,
     needed: f64,
     few: &'static str,
-) -> Result<(Moments, impl Iterator<Item = (f64, f64)>), Precondition>
+) -> Result<(Moments, impl Iterator<Item = (f64, f64, f64)>), Precondition>
 where
     F: Frame,
-    I: IntoIterator<Item = P>,
+    I: IntoIterator<Item = (P, f64)>,
     I::IntoIter: Clone,
     P: Borrow<Point2<F>>,
 {
@@ -116,9 +125,9 @@ where
     let m = moments(points.clone())?;
     check_spread(&m, needed, few)?;
     let (mean_x, mean_y, h) = (m.mean_x, m.mean_y, m.half_spread);
-    let centred = points.map(move |p| {
+    let centred = points.map(move |(p, w)| {
         let p = *p.borrow();
-        ((p.x() - mean_x) / h, p.y() - mean_y)
+        ((p.x() - mean_x) / h, p.y() - mean_y, w)
     });
     Ok((m, centred))
 }
@@ -158,15 +167,40 @@ where
     I::IntoIter: Clone,
     P: Borrow<Point2<F>>,
 {
+    fit_line_weighted(points.into_iter().map(|p| (p, 1.0)))
+}
+
+/// Weighted least-squares line y = a x + b through `points`, each given with
+/// its weight w > 0: minimises Σ w (p_y − a p_x − b)². With every weight 1 it
+/// is [`fit_line`], bit for bit.
+///
+/// Errors: a weight that is not finite and > 0 (`FIT-WEIGHTS`); otherwise
+/// those of [`fit_line`].
+//= spec/geometry.md#fit-weights-weighted-least-squares-line
+//# `fit_line_weighted` MUST return the coefficients (a, b) that minimise
+//# Σ w (p_y − a p_x − b)² over the given points and weights, and MUST
+//# return the `FIT-WEIGHTS` error when a weight is not finite and > 0.
+pub fn fit_line_weighted<F, I, P>(points: I) -> Result<LineFit, Precondition>
+where
+    F: Frame,
+    I: IntoIterator<Item = (P, f64)>,
+    I::IntoIter: Clone,
+    P: Borrow<Point2<F>>,
+{
     let (m, centred) = centred(points, 2.0, "a line fit needs at least 2 points")?;
     let h = m.half_spread;
     // v = α u.
     let (mut suu, mut suv) = (0.0_f64, 0.0_f64);
-    for (u, v) in centred {
-        suu += u * u;
-        suv += u * v;
+    for (u, v, w) in centred {
+        suu += w * u * u;
+        suv += w * u * v;
     }
-    // suu ≥ 1: at least one point has |u| = 1.
+    if suu.is_nan() || suu <= 0.0 {
+        return Err(Precondition::new(
+            "FIT-DEGENERATE",
+            "the weighted spread of x vanishes",
+        ));
+    }
     let alpha = suv / suu;
     let a = finite(alpha / h, "line slope overflows")?;
     let b = finite(m.mean_y - a * m.mean_x, "line intercept overflows")?;
@@ -201,12 +235,16 @@ where
     I::IntoIter: Clone,
     P: Borrow<Point2<F>>,
 {
-    let (m, centred) = centred(points, 3.0, "a parabola fit needs at least 3 points")?;
+    let (m, centred) = centred(
+        points.into_iter().map(|p| (p, 1.0)),
+        3.0,
+        "a parabola fit needs at least 3 points",
+    )?;
     let h = m.half_spread;
     // Basis (u², u, 1).
     let mut normal = Matrix3::<f64>::zeros();
     let mut rhs = Vector3::<f64>::zeros();
-    for (u, v) in centred {
+    for (u, v, _) in centred {
         let row = Vector3::new(u * u, u, 1.0);
         normal.ger(1.0, &row, &row, 1.0);
         rhs.axpy(v, &row, 1.0);

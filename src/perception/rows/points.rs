@@ -1,1 +1,125 @@
-//! (being written)
+//! A horizontal scan's rays as robot-frame points (ROWS-POINTS), and the
+//! one-point merge of Ruby Genetic One Point (Guyonneau 2022, section 2.2.2,
+//! Alg. 2; RUBY-ONE-POINT).
+
+use heapless::Vec;
+
+use crate::error::Precondition;
+use crate::geometry::frame::{Point2, Robot, Sensor, Transform2};
+use crate::geometry::units::Meters;
+use crate::perception::Scan;
+
+/// A point of Z or Z*: a position in the robot frame and the number of
+/// returns it stands for (1 in Z; the size of its run in Z*).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowPoint {
+    /// Position in the robot frame, m.
+    pub position: Point2<Robot>,
+    /// Returns merged into it (≥ 1).
+    pub returns: u16,
+}
+
+/// The points of one scan, at most `N`, in ray order.
+pub type Points<const N: usize> = Vec<RowPoint, N>;
+
+/// What [`scan_points`] kept and what it had no room for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Gathered {
+    /// Valid returns kept as points.
+    pub kept: usize,
+    /// Valid returns dropped because the buffer was full.
+    pub dropped: usize,
+}
+
+/// The scan's valid returns as robot-frame points through the sensor mount,
+/// in ray order, appended to `out` (cleared first).
+///
+/// A ray is used only when the scan's limits accept its range (LIB-SCAN);
+/// a valid return beyond `out`'s capacity is counted in
+/// [`Gathered::dropped`], never lost silently. Errors with `LIB-FINITE` only
+/// when a transformed point overflows.
+//= spec/guyonneau2022.md#rows-points-scan-points-in-the-robot-frame
+//# Every ray whose range the scan's limits accept MUST become the point
+//# (r cos φ, r sin φ) of the sensor frame, φ = start + k · increment, moved into
+//# the robot frame through the sensor's mount; rays are kept in ray order.
+//= spec/guyonneau2022.md#rows-points-scan-points-in-the-robot-frame
+//# A valid return that does not fit in the point buffer MUST be counted as
+//# dropped in the result.
+pub fn scan_points<const N: usize>(
+    scan: &Scan<'_>,
+    mount: &Transform2<Sensor, Robot>,
+    out: &mut Points<N>,
+) -> Result<Gathered, Precondition> {
+    out.clear();
+    let mut dropped = 0_usize;
+    let (start, step) = (scan.start.get(), scan.increment.get());
+    let mut angle = start;
+    for &range in scan.ranges {
+        if scan.limits.accepts(range) {
+            let p = Point2::<Sensor>::new(range * libm::cos(angle), range * libm::sin(angle))?;
+            let point = RowPoint {
+                position: mount.apply(p)?,
+                returns: 1,
+            };
+            if out.push(point).is_err() {
+                dropped = dropped.saturating_add(1);
+            }
+        }
+        angle += step;
+    }
+    Ok(Gathered {
+        kept: out.len(),
+        dropped,
+    })
+}
+
+/// Z* from Z (Alg. 2): consecutive points, in ray order, closer than
+/// `merge_distance` to the running centroid of their run are merged into it,
+/// in place; the centroid weighs every return of the run equally.
+//= spec/guyonneau2022.md#ruby-one-point-consecutive-returns-merged
+//# With the one-point refinement, each point of Z, in ray order, MUST join the
+//# current run when it lies strictly closer than the merge distance to the
+//# run's centroid, and MUST start a new run otherwise; Z* MUST hold one point
+//# per run, at the centroid of the run's returns, weighted by their counts.
+pub fn merge_runs<const N: usize>(points: &mut Points<N>, merge_distance: Meters) {
+    let limit = merge_distance.get();
+    let mut runs = 0_usize;
+    let mut current: Option<(f64, f64, u16)> = None;
+    let mut index = 0_usize;
+    while let Some(p) = points.get(index).copied() {
+        let (x, y) = (p.position.x(), p.position.y());
+        current = match current {
+            Some((cx, cy, n)) if libm::hypot(x - cx, y - cy) < limit => {
+                let total = n.saturating_add(p.returns);
+                let share = f64::from(p.returns) / f64::from(total);
+                Some((cx + (x - cx) * share, cy + (y - cy) * share, total))
+            }
+            previous => {
+                if let Some(run) = previous {
+                    store_run(points, runs, run);
+                    runs = runs.saturating_add(1);
+                }
+                Some((x, y, p.returns))
+            }
+        };
+        index = index.saturating_add(1);
+    }
+    if let Some(run) = current {
+        store_run(points, runs, run);
+        runs = runs.saturating_add(1);
+    }
+    points.truncate(runs);
+}
+
+/// Writes the centroid `(x, y)` of run `slot` and its count of returns over
+/// `points[slot]` (every run starts at or after its slot, so nothing unread
+/// is overwritten).
+fn store_run<const N: usize>(
+    points: &mut Points<N>,
+    slot: usize,
+    (x, y, returns): (f64, f64, u16),
+) {
+    if let (Some(p), Ok(position)) = (points.get_mut(slot), Point2::new(x, y)) {
+        *p = RowPoint { position, returns };
+    }
+}

@@ -1,1 +1,918 @@
-//! (being written)
+//! Ruby's multi-line fitting (Guyonneau 2022, section 2.1, Alg. 1, eqs. 1-9)
+//! and its refinements (section 2.2: eq. 10, Algs. 2-3) as options of one
+//! algorithm (`spec/guyonneau2022.md`, RUBY-*).
+//!
+//! A set of models holds at most [`MAX_MODELS`] lines in fixed slots; which
+//! models a point belongs to is a bit mask per point (one bit for Ruby, RG,
+//! RGOP and RGOPPN; any number for RGOPPNI), so merging, deleting and
+//! re-attaching never move a model and never allocate.
+
+use heapless::Vec;
+use rand_core::{RngCore, SeedableRng};
+use rand_xoshiro::Xoshiro128PlusPlus;
+
+use super::points::RowPoint;
+use crate::error::Precondition;
+use crate::geometry::fit::{fit_line, fit_line_weighted};
+use crate::geometry::frame::{Point2, Robot};
+use crate::geometry::units::Meters;
+use crate::perception::furrow::lines::RowLine;
+
+/// Models a set holds at most (the width of a point's mask).
+pub const MAX_MODELS: usize = 64;
+
+/// The smallest residual a re-weighting divides by, m (RUBY-FIT).
+pub const LAD_FLOOR: f64 = 1.0e-3;
+
+/// Points a new model is seeded with (Alg. 1, line 6), and the fewest a
+/// model keeps after re-attachment (RUBY-REATTACH).
+pub const SEED_POINTS: usize = 3;
+
+/// The line-finding algorithms of the paper (section 4.2), each a set of
+/// refinements of Ruby (RUBY-VARIANT).
+//= spec/guyonneau2022.md#ruby-variant-one-algorithm-five-variants
+//# The line finder MUST run one algorithm whose refinements are chosen by the
+//# variant: Ruby (deletion by eq. 7, on Z), RG (deletion by the fitness of
+//# eq. 10, on Z), RGOP (RG on Z*), RGOPPN (RGOP with seeds sampled left and right
+//# separately) and RGOPPNI (RGOPPN where a point may belong to several models).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// Ruby (Alg. 1): deletion by eq. 7.
+    Ruby,
+    /// Ruby Genetic: deletion by the fitness of eq. 10.
+    Rg,
+    /// Ruby Genetic One Point: RG on Z* (Alg. 2).
+    Rgop,
+    /// RGOP with the search split left and right of the robot (Alg. 3).
+    Rgoppn,
+    /// RGOPPN where a point may belong to several models.
+    Rgoppni,
+}
+
+impl Variant {
+    /// Every variant, in the paper's order.
+    pub const ALL: [Self; 5] = [
+        Self::Ruby,
+        Self::Rg,
+        Self::Rgop,
+        Self::Rgoppn,
+        Self::Rgoppni,
+    ];
+
+    /// The paper's name of the variant.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Ruby => "Ruby",
+            Self::Rg => "RG",
+            Self::Rgop => "RGOP",
+            Self::Rgoppn => "RGOPPN",
+            Self::Rgoppni => "RGOPPNI",
+        }
+    }
+
+    /// The variant of a name, as [`Variant::name`] spells it, case ignored.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|v| v.name().eq_ignore_ascii_case(name))
+    }
+
+    /// Deletion by fitness (eq. 10) instead of eq. 7.
+    #[must_use]
+    pub const fn genetic(self) -> bool {
+        !matches!(self, Self::Ruby)
+    }
+
+    /// Z* instead of Z (Alg. 2).
+    #[must_use]
+    pub const fn one_point(self) -> bool {
+        matches!(self, Self::Rgop | Self::Rgoppn | Self::Rgoppni)
+    }
+
+    /// Seeds sampled left and right of the robot separately (Alg. 3).
+    #[must_use]
+    pub const fn split_sides(self) -> bool {
+        matches!(self, Self::Rgoppn | Self::Rgoppni)
+    }
+
+    /// A point may belong to several models (section 2.2.4).
+    #[must_use]
+    pub const fn shared_points(self) -> bool {
+        matches!(self, Self::Rgoppni)
+    }
+}
+
+/// The line finder's constants as a user writes them; [`RubyParams::authors`]
+/// gives the defaults of the authors' implementation (RUBY-DEFAULTS).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RubyParams {
+    /// Which refinements run.
+    pub variant: Variant,
+    /// ρ, the energy of one outlier (eq. 2), > 0.
+    pub outlier_energy: f64,
+    /// λ, the weight of the neighbourhood penalty (eq. 3), ≥ 0.
+    pub neighbour_penalty: f64,
+    /// ζ, the distance scale of the neighbour weight (eq. 5), m, > 0.
+    pub neighbour_scale: Meters,
+    /// A point farther than this from every model is an outlier (Alg. 1,
+    /// line 23), m, > 0.
+    pub outlier_distance: Meters,
+    /// β: models are parallel when their slopes differ by less (eq. 9), > 0.
+    pub parallel_slope: f64,
+    /// Parallel models whose intercepts differ by less are one model (Alg. 1,
+    /// line 13), m, > 0.
+    pub same_intercept: Meters,
+    /// α of eq. 7 (Ruby's deletion), > 0.
+    pub alpha: f64,
+    /// τ of eq. 10 (the genetic fitness), ≥ 0.
+    pub fitness_weight: f64,
+    /// Share of the models the genetic deletion keeps, in (0, 1].
+    pub kept_share: f64,
+    /// The fewest models the genetic deletion keeps (when there are as many).
+    pub min_kept: u8,
+    /// Iterations of Alg. 1 per scan, ≥ 1.
+    pub iterations: u16,
+    /// New models seeded per iteration at most, ≥ 1.
+    pub models_per_iteration: u16,
+    /// The search stops once the outliers left are at most this share of
+    /// those it started with (Alg. 1, line 5), in [0, 1).
+    pub search_until: f64,
+    /// Z*'s merge distance (Alg. 2, line 8), m, > 0.
+    pub merge_distance: Meters,
+    /// Re-weightings of each model fit towards least absolute deviations
+    /// (RUBY-FIT); 0 keeps plain least squares.
+    pub fit_rounds: u8,
+    /// The seed of the detector's random generator.
+    pub seed: u64,
+}
+
+impl RubyParams {
+    /// The constants of the authors' implementation for `variant`
+    /// (RUBY-DEFAULTS): ρ = 3, λ = 4, ζ = 3 m, outliers beyond 0.2 m,
+    /// parallel below 0.1 in slope, the same model below 0.2 m in intercept
+    /// as well, α = 0.7, τ = 10, the best quarter kept (at least 6 for RG,
+    /// 4 for the one-point variants), 10 iterations, 40 models per
+    /// iteration, Z* merge distance 0.05 m; the search runs until half the
+    /// outliers are attached.
+    //= spec/guyonneau2022.md#ruby-defaults-constants-of-the-authors-implementation
+    //# `RubyParams::authors` MUST give ρ = 3, λ = 4, ζ = 3 m, an outlier distance of
+    //# 0.2 m, β = 0.1, a same-model intercept of 0.2 m, α = 0.7, τ = 10, a kept share
+    //# of a quarter with at least 6 models for RG and 4 for the one-point variants,
+    //# 10 iterations, 40 models per iteration, a search share of one half and a Z*
+    //# merge distance of 0.05 m.
+    #[must_use]
+    pub const fn authors(variant: Variant) -> Self {
+        Self {
+            variant,
+            outlier_energy: 3.0,
+            neighbour_penalty: 4.0,
+            neighbour_scale: Meters(3.0),
+            outlier_distance: Meters(0.2),
+            parallel_slope: 0.1,
+            same_intercept: Meters(0.2),
+            alpha: 0.7,
+            fitness_weight: 10.0,
+            kept_share: 0.25,
+            min_kept: if matches!(variant, Variant::Rg) { 6 } else { 4 },
+            iterations: 10,
+            models_per_iteration: 40,
+            search_until: 0.5,
+            merge_distance: Meters(0.05),
+            fit_rounds: 4,
+            seed: 0x5EED_0F_2022,
+        }
+    }
+}
+
+/// Validated [`RubyParams`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RubyConfig {
+    params: RubyParams,
+}
+
+impl RubyConfig {
+    /// Checks every constant's domain (RUBY-PARAMS).
+    ///
+    /// # Errors
+    /// `RUBY-PARAMS`, naming the constant out of its domain.
+    //= spec/guyonneau2022.md#ruby-params-constants-checked-once
+    //# A line finder MUST be refused at construction, with an error naming
+    //# RUBY-PARAMS, unless ρ, ζ, the outlier distance, β, the same-model
+    //# intercept, α and the merge distance are finite and > 0, λ and τ are
+    //# finite and ≥ 0, the kept share is in (0, 1], the search share is in
+    //# [0, 1), and the iterations and models per iteration are ≥ 1.
+    pub fn new(params: RubyParams) -> Result<Self, Precondition> {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        let non_negative = |v: f64| v.is_finite() && v >= 0.0;
+        let checks = [
+            (
+                positive(params.outlier_energy),
+                "ρ (outlier energy) must be > 0",
+            ),
+            (
+                non_negative(params.neighbour_penalty),
+                "λ (neighbour penalty) must be ≥ 0",
+            ),
+            (
+                positive(params.neighbour_scale.get()),
+                "ζ (neighbour scale) must be > 0",
+            ),
+            (
+                positive(params.outlier_distance.get()),
+                "the outlier distance must be > 0",
+            ),
+            (
+                positive(params.parallel_slope),
+                "β (parallel slope) must be > 0",
+            ),
+            (
+                positive(params.same_intercept.get()),
+                "the same-model intercept must be > 0",
+            ),
+            (positive(params.alpha), "α must be > 0"),
+            (non_negative(params.fitness_weight), "τ must be ≥ 0"),
+            (
+                positive(params.kept_share) && params.kept_share <= 1.0,
+                "the kept share must be in (0, 1]",
+            ),
+            (
+                non_negative(params.search_until) && params.search_until < 1.0,
+                "the search share must be in [0, 1)",
+            ),
+            (params.iterations >= 1, "at least one iteration"),
+            (
+                params.models_per_iteration >= 1,
+                "at least one model per iteration",
+            ),
+            (
+                positive(params.merge_distance.get()),
+                "the merge distance must be > 0",
+            ),
+        ];
+        match checks.into_iter().find(|(ok, _)| !ok) {
+            Some((_, why)) => Err(Precondition::new("RUBY-PARAMS", why)),
+            None => Ok(Self { params }),
+        }
+    }
+
+    /// The constants.
+    #[must_use]
+    pub const fn params(&self) -> &RubyParams {
+        &self.params
+    }
+}
+
+/// A line y = a x + b with its normalisation 1 / sqrt(a² + 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Line {
+    a: f64,
+    b: f64,
+    inv_norm: f64,
+}
+
+impl Line {
+    const NONE: Self = Self {
+        a: 0.0,
+        b: 0.0,
+        inv_norm: 1.0,
+    };
+
+    fn new(a: f64, b: f64) -> Option<Self> {
+        let inv_norm = 1.0 / libm::sqrt(a * a + 1.0);
+        (a.is_finite() && b.is_finite() && inv_norm > 0.0).then_some(Self { a, b, inv_norm })
+    }
+
+    /// ‖p − L‖, the Euclidean distance of `p` to the line (eq. 6).
+    fn distance(&self, p: Point2<Robot>) -> f64 {
+        libm::fabs(self.a * p.x() + self.b - p.y()) * self.inv_norm
+    }
+
+    /// The line of least absolute deviations in y through `points`, by
+    /// `rounds` re-weightings of a least-squares start (RUBY-FIT), if
+    /// determined.
+    //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
+    //# A model's line MUST be fitted to its points by iteratively reweighted
+    //# least squares: a least-squares start (FIT-LINE), then the configured
+    //# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
+    //# point's residual in y to the line before.
+    fn fit<I>(points: I, rounds: u8) -> Option<Self>
+    where
+        I: Iterator<Item = Point2<Robot>> + Clone,
+    {
+        let mut line = fit_line(points.clone()).ok()?;
+        for _ in 0..rounds {
+            let weighted = points.clone().map(|p| {
+                let r = libm::fabs(p.y() - line.a * p.x() - line.b);
+                (p, 1.0 / r.max(LAD_FLOOR))
+            });
+            match fit_line_weighted(weighted) {
+                Ok(next) => line = next,
+                Err(_) => break,
+            }
+        }
+        Self::new(line.a, line.b)
+    }
+}
+
+/// One model of a set, with its points' count and energy (eq. 6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Model {
+    /// The line, robot frame.
+    pub line: RowLine,
+    /// |P(L)|, the points attached to it.
+    pub points: usize,
+    /// E_L(L) = Σ ‖p − L‖ over its points (eq. 6), m.
+    pub energy: f64,
+}
+
+/// What one call of [`Ruby::find`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Found {
+    /// E(L) of the returned set on this scan's points (eq. 1).
+    pub energy: f64,
+    /// E(L) of the set it started from (the previous scan's lines on this
+    /// scan's points).
+    pub start_energy: f64,
+    /// The points it worked on (|Z| or |Z*|).
+    pub points: usize,
+    /// Iterations whose set was kept (Alg. 1, lines 26-27).
+    pub accepted: u16,
+}
+
+/// Bit `k` of a mask.
+fn bit(k: usize) -> u64 {
+    u32::try_from(k)
+        .ok()
+        .and_then(|k| 1_u64.checked_shl(k))
+        .unwrap_or(0)
+}
+
+/// The slots set in `mask`, ascending.
+fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
+    let mut rest = mask;
+    core::iter::from_fn(move || {
+        if rest == 0 {
+            None
+        } else {
+            let k = rest.trailing_zeros();
+            rest &= rest.wrapping_sub(1);
+            usize::try_from(k).ok()
+        }
+    })
+}
+
+/// A set of models and which points belong to each.
+#[derive(Debug, Clone)]
+struct ModelSet<const N: usize> {
+    alive: u64,
+    /// Models whose line is the fit of their points as they are (a refit
+    /// would give the same line, so it is skipped).
+    fitted: u64,
+    lines: [Line; MAX_MODELS],
+    masks: [u64; N],
+}
+
+/// Per-model sums of one pass over the points: |P(L)| and E_L(L).
+#[derive(Debug, Clone, Copy)]
+struct Stats {
+    count: [usize; MAX_MODELS],
+    energy: [f64; MAX_MODELS],
+}
+
+impl Stats {
+    const ZERO: Self = Self {
+        count: [0; MAX_MODELS],
+        energy: [0.0; MAX_MODELS],
+    };
+
+    fn add(&mut self, k: usize, distance: f64) {
+        if let (Some(c), Some(e)) = (self.count.get_mut(k), self.energy.get_mut(k)) {
+            *c = c.saturating_add(1);
+            *e += distance;
+        }
+    }
+
+    fn clear(&mut self, k: usize) {
+        if let (Some(c), Some(e)) = (self.count.get_mut(k), self.energy.get_mut(k)) {
+            *c = 0;
+            *e = 0.0;
+        }
+    }
+}
+
+impl<const N: usize> ModelSet<N> {
+    fn line(&self, k: usize) -> Line {
+        self.lines.get(k).copied().unwrap_or(Line::NONE)
+    }
+
+    fn stats(&self, points: &[RowPoint]) -> Stats {
+        let mut s = Stats::ZERO;
+        for (p, &mask) in points.iter().zip(self.masks.iter()) {
+            for k in slots(mask & self.alive) {
+                s.add(k, self.line(k).distance(p.position));
+            }
+        }
+        s
+    }
+
+    /// Copies `other`'s models and the masks of its first `n` points.
+    fn copy_from(&mut self, other: &Self, n: usize) {
+        self.alive = other.alive;
+        self.fitted = other.fitted;
+        self.lines = other.lines;
+        for (m, o) in self.masks.iter_mut().zip(other.masks.iter()).take(n) {
+            *m = *o;
+        }
+    }
+
+    /// Copies the points of model `k` into `out`, which it returns cut to
+    /// their number.
+    fn members<'a>(
+        &self,
+        points: &[RowPoint],
+        k: usize,
+        out: &'a mut [Point2<Robot>; N],
+    ) -> &'a [Point2<Robot>] {
+        let b = bit(k);
+        let mut count = 0_usize;
+        for (p, _) in points
+            .iter()
+            .zip(self.masks.iter())
+            .filter(|(_, &m)| m & b != 0)
+        {
+            if let Some(slot) = out.get_mut(count) {
+                *slot = p.position;
+                count = count.saturating_add(1);
+            }
+        }
+        out.get(..count).unwrap_or(&[])
+    }
+
+    /// Removes the models of `gone` and detaches their points.
+    fn remove(&mut self, gone: u64, n: usize) {
+        self.alive &= !gone;
+        self.fitted &= !gone;
+        for m in self.masks.iter_mut().take(n) {
+            *m &= !gone;
+        }
+    }
+}
+
+/// Ruby's line finder with its seeded generator and the set it carries from
+/// scan to scan; `N` points at most per scan.
+#[derive(Debug, Clone)]
+pub struct Ruby<const N: usize> {
+    config: RubyConfig,
+    rng: Xoshiro128PlusPlus,
+    models: Vec<Model, MAX_MODELS>,
+    /// Working sets, kept here so a call needs no large stack frame.
+    best: ModelSet<N>,
+    candidate: ModelSet<N>,
+    /// w_pq of each pair of consecutive points (eq. 5).
+    weights: [f64; N],
+    /// One model's points, gathered for its fit.
+    scratch: [Point2<Robot>; N],
+}
+
+impl<const N: usize> Ruby<N> {
+    /// A line finder with no lines yet, its generator seeded from the
+    /// configuration.
+    //= spec/guyonneau2022.md#ruby-random-a-seeded-generator
+    //# The line finder's random draws MUST come from a generator held in its
+    //# state and seeded from its configuration, so that the same seed and the same
+    //# scans give the same lines, bit for bit.
+    #[must_use]
+    pub fn new(config: RubyConfig) -> Self {
+        let empty = ModelSet {
+            alive: 0,
+            fitted: 0,
+            lines: [Line::NONE; MAX_MODELS],
+            masks: [0; N],
+        };
+        Self {
+            config,
+            rng: Xoshiro128PlusPlus::seed_from_u64(config.params.seed),
+            models: Vec::new(),
+            best: empty.clone(),
+            candidate: empty,
+            weights: [0.0; N],
+            scratch: [Point2::origin(); N],
+        }
+    }
+
+    /// The constants.
+    #[must_use]
+    pub const fn config(&self) -> &RubyConfig {
+        &self.config
+    }
+
+    /// The set returned by the last call, in slot order.
+    #[must_use]
+    pub fn models(&self) -> &[Model] {
+        &self.models
+    }
+
+    /// Forgets the lines carried from the last scan (the next call starts
+    /// from the empty set).
+    pub fn reset(&mut self) {
+        self.models.clear();
+    }
+
+    /// Alg. 1 on `points` (Z, or Z* for the one-point variants: the caller
+    /// merges them, see [`super::points::merge_runs`]), seeded by the last
+    /// call's set. Points beyond `N` are ignored (the caller sized the buffer
+    /// to `N`).
+    //= spec/guyonneau2022.md#ruby-bound-bounded-work-per-scan
+    //# Every loop of the line finder MUST have a bound fixed by its configuration
+    //# and capacities: at most `N` points, 64 models, the configured iterations,
+    //# and per iteration at most the model budget of draws, at most 64 merge
+    //# passes, one pass of deletion and one of re-attachment.
+    //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
+    //# Each call MUST start from the previous call's set of lines (the empty
+    //# set on the first call), refitted to the points they attach on this scan,
+    //# and
+    //# MUST run the configured number of iterations, each of which seeds new
+    //# models, merges, re-attaches, deletes and re-attaches again, and is kept
+    //# only when its energy is not above the energy of the set kept before it.
+    pub fn find(&mut self, points: &[RowPoint]) -> Found {
+        let points = points.get(..N.min(points.len())).unwrap_or(&[]);
+        let n = points.len();
+        let p = self.config.params;
+        self.neighbour_weights(points);
+
+        self.best.alive = 0;
+        self.best.fitted = 0;
+        for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
+            if let (Some(slot), Some(line)) = (
+                self.best.lines.get_mut(k),
+                Line::new(m.line.slope(), m.line.intercept().get()),
+            ) {
+                *slot = line;
+                self.best.alive |= bit(k);
+            }
+        }
+        // The previous lines, refitted to the points they attach on this
+        // scan (RUBY-ITERATION).
+        reattach(&mut self.best, points, &p);
+        merge(&mut self.best, points, &mut self.scratch, &p);
+        let mut stats = reattach(&mut self.best, points, &p);
+        let start_energy = energy(&self.best, &stats, n, &self.weights, &p);
+        let mut best_energy = start_energy;
+        let mut accepted = 0_u16;
+
+        for _ in 0..p.iterations {
+            self.candidate.copy_from(&self.best, n);
+            search(&mut self.candidate, points, &mut self.rng, &p);
+            merge(&mut self.candidate, points, &mut self.scratch, &p);
+            reattach(&mut self.candidate, points, &p);
+            delete(&mut self.candidate, points, &p);
+            let candidate_stats = reattach(&mut self.candidate, points, &p);
+            let e = energy(&self.candidate, &candidate_stats, n, &self.weights, &p);
+            //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
+            //# An iteration whose set has a higher energy than the set kept
+            //# before it MUST be discarded (Alg. 1, lines 26-27).
+            if e <= best_energy {
+                core::mem::swap(&mut self.best, &mut self.candidate);
+                best_energy = e;
+                stats = candidate_stats;
+                accepted = accepted.saturating_add(1);
+            }
+        }
+
+        self.models.clear();
+        for k in slots(self.best.alive) {
+            let line = self.best.line(k);
+            if let Ok(row) = Meters::new(line.b).and_then(|b| RowLine::new(line.a, b)) {
+                let _ = self.models.push(Model {
+                    line: row,
+                    points: stats.count.get(k).copied().unwrap_or(0),
+                    energy: stats.energy.get(k).copied().unwrap_or(0.0),
+                });
+            }
+        }
+        Found {
+            energy: best_energy,
+            start_energy,
+            points: n,
+            accepted,
+        }
+    }
+
+    /// w_pq = exp(−‖p − q‖² / ζ²) of each pair of consecutive points (eq. 5).
+    fn neighbour_weights(&mut self, points: &[RowPoint]) {
+        let zeta = self.config.params.neighbour_scale.get();
+        for (w, pair) in self.weights.iter_mut().zip(points.windows(2)) {
+            *w = match pair {
+                [p, q] => {
+                    let dx = p.position.x() - q.position.x();
+                    let dy = p.position.y() - q.position.y();
+                    libm::exp(-(dx * dx + dy * dy) / (zeta * zeta))
+                }
+                _ => 0.0,
+            };
+        }
+    }
+}
+
+/// E(L) of eq. 1: ρ·|P(L∅)| (eq. 2) + λ Σ w_pq δ≠ over consecutive points
+/// (eqs. 3-5) + Σ_j E_L(L_j) (eq. 6).
+//= spec/guyonneau2022.md#ruby-energy-energy-of-a-set-of-models
+//# The energy of a set MUST be ρ times the number of outliers, plus λ times
+//# the sum over consecutive points p, q of exp(−‖p − q‖²/ζ²) for each pair
+//# whose models differ, plus the sum over models of the distances of their
+//# points to them.
+fn energy<const N: usize>(
+    set: &ModelSet<N>,
+    stats: &Stats,
+    n: usize,
+    weights: &[f64; N],
+    p: &RubyParams,
+) -> f64 {
+    let masks = set.masks.get(..n).unwrap_or(&[]);
+    let outliers = masks.iter().filter(|&&m| m & set.alive == 0).count();
+    let mut neighbour = 0.0;
+    for (w, pair) in weights.iter().zip(masks.windows(2)) {
+        if let [m, q] = pair {
+            if (m & set.alive) != (q & set.alive) {
+                neighbour += w;
+            }
+        }
+    }
+    let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
+    p.outlier_energy * count_f64(outliers) + p.neighbour_penalty * neighbour + models
+}
+
+/// A count as f64 (exact below 2⁵³, far beyond any buffer here).
+fn count_f64(n: usize) -> f64 {
+    u32::try_from(n).map_or(f64::from(u32::MAX), f64::from)
+}
+
+/// A uniform index below `len` (> 0) from 32 random bits (Lemire's
+/// multiply-shift; the bias is below len / 2³², negligible for len ≤ 2¹⁶).
+fn pick(rng: &mut Xoshiro128PlusPlus, len: usize) -> usize {
+    let len64 = u64::try_from(len).unwrap_or(u64::MAX);
+    let r = u64::from(rng.next_u32());
+    usize::try_from(r.wrapping_mul(len64) >> 32).unwrap_or(0)
+}
+
+/// Seeds new models from triples of outliers (Alg. 1, lines 5-10; Alg. 3
+/// with split sides).
+//= spec/guyonneau2022.md#ruby-search-new-models-from-outliers
+//# The search MUST draw three distinct outliers at random with the
+//# detector's generator, remove them from the outliers and add the
+//# least-squares line through them as a new model holding them, until the
+//# outliers left are at most the search share of those it started with,
+//# fewer than three remain, the iteration's model budget is spent or the set
+//# is full.
+fn search<const N: usize>(
+    set: &mut ModelSet<N>,
+    points: &[RowPoint],
+    rng: &mut Xoshiro128PlusPlus,
+    p: &RubyParams,
+) {
+    if p.variant.split_sides() {
+        //= spec/guyonneau2022.md#ruby-split-sides-seeds-left-and-right
+        //# With split sides, the search MUST run on the outliers left of the
+        //# robot (y > 0), then on those right of it (y < 0), each with half
+        //# the iteration's model budget, rounded up.
+        let budget = p.models_per_iteration.div_ceil(2);
+        search_side(set, points, rng, p, budget, |y| y > 0.0);
+        search_side(set, points, rng, p, budget, |y| y < 0.0);
+    } else {
+        search_side(set, points, rng, p, p.models_per_iteration, |_| true);
+    }
+}
+
+fn search_side<const N: usize>(
+    set: &mut ModelSet<N>,
+    points: &[RowPoint],
+    rng: &mut Xoshiro128PlusPlus,
+    p: &RubyParams,
+    budget: u16,
+    side: impl Fn(f64) -> bool,
+) {
+    let mut outliers: Vec<u16, N> = Vec::new();
+    for (i, (pt, &m)) in points.iter().zip(set.masks.iter()).enumerate() {
+        if m & set.alive == 0 && side(pt.position.y()) {
+            if let Ok(i) = u16::try_from(i) {
+                let _ = outliers.push(i);
+            }
+        }
+    }
+    let stop = p.search_until * count_f64(outliers.len());
+    let mut added = 0_u16;
+    while outliers.len() >= SEED_POINTS && count_f64(outliers.len()) > stop && added < budget {
+        let free = !set.alive;
+        if free == 0 {
+            break;
+        }
+        let slot = usize::try_from(free.trailing_zeros()).unwrap_or(MAX_MODELS);
+        let mut seed = [0_usize; SEED_POINTS];
+        for s in &mut seed {
+            *s = usize::from(outliers.swap_remove(pick(rng, outliers.len())));
+        }
+        added = added.saturating_add(1);
+        let seeds = seed.map(|i| points.get(i).map(|q| q.position));
+        if let [Some(a), Some(b), Some(c)] = seeds {
+            if let (Some(line), Some(l)) = (
+                Line::fit([a, b, c].into_iter(), p.fit_rounds),
+                set.lines.get_mut(slot),
+            ) {
+                *l = line;
+                set.alive |= bit(slot);
+                set.fitted |= bit(slot);
+                for i in seed {
+                    if let Some(m) = set.masks.get_mut(i) {
+                        *m = bit(slot);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Whether two models are one (Alg. 1, line 13).
+fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
+    libm::fabs(x.a - y.a) < p.parallel_slope && libm::fabs(x.b - y.b) < p.same_intercept.get()
+}
+
+/// Merges models that are the same and refits every model to its points
+/// (Alg. 1, lines 11-16), then merges again, refitting each merged model,
+/// until no two are the same.
+//= spec/guyonneau2022.md#ruby-merge-close-models-merged
+//# Two models whose slopes differ by less than β and whose intercepts differ
+//# by less than the same-model intercept MUST be merged: the lower slot takes
+//# the other's points and is refitted by least squares over them; merging
+//# MUST repeat until no two models of the set are the same, so that merging a
+//# merged set changes nothing.
+//= spec/guyonneau2022.md#ruby-merge-close-models-merged
+//# Every model MUST be refitted by least squares to its points in each
+//# iteration's first merge pass, merged or not.
+fn merge<const N: usize>(
+    set: &mut ModelSet<N>,
+    points: &[RowPoint],
+    scratch: &mut [Point2<Robot>; N],
+    p: &RubyParams,
+) {
+    let n = points.len();
+    // Each pass after the first removes a model: at most MAX_MODELS passes.
+    for pass in 0..MAX_MODELS {
+        let mut merged_any = false;
+        for j in slots(set.alive) {
+            if set.alive & bit(j) == 0 {
+                continue;
+            }
+            let mut absorbed = 0_u64;
+            let lj = set.line(j);
+            for k in slots(set.alive & !bit(j)).filter(|&k| k > j) {
+                if same(&lj, &set.line(k), p) {
+                    absorbed |= bit(k);
+                }
+            }
+            if absorbed != 0 {
+                merged_any = true;
+                for m in set.masks.iter_mut().take(n) {
+                    if *m & absorbed != 0 {
+                        *m = (*m & !absorbed) | bit(j);
+                    }
+                }
+                set.alive &= !absorbed;
+            }
+            if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
+                let members = set.members(points, j, scratch).iter().copied();
+                if let Some(line) = Line::fit(members, p.fit_rounds) {
+                    if let Some(l) = set.lines.get_mut(j) {
+                        *l = line;
+                    }
+                }
+                set.fitted |= bit(j);
+            }
+        }
+        if !merged_any {
+            break;
+        }
+    }
+}
+
+/// ψ(L_j) of eq. 8, counting the model itself: the models whose slope
+/// differs from `a` by less than β (eq. 9).
+fn parallel_count<const N: usize>(set: &ModelSet<N>, a: f64, p: &RubyParams) -> f64 {
+    count_f64(
+        slots(set.alive)
+            .filter(|&k| libm::fabs(set.line(k).a - a) < p.parallel_slope)
+            .count(),
+    )
+}
+
+/// Deletes models (Alg. 1, lines 17-20): by eq. 7 for Ruby, by the fitness
+/// of eq. 10 for the genetic variants.
+fn delete<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyParams) {
+    let stats = set.stats(points);
+    let score = |k: usize| -> Option<f64> {
+        let n = count_f64(stats.count.get(k).copied().unwrap_or(0));
+        let e = stats.energy.get(k).copied().unwrap_or(0.0);
+        let line = set.line(k);
+        let psi = parallel_count(set, line.a, p);
+        (n > 0.0).then(|| {
+            if p.variant.genetic() {
+                (line.b * line.b + p.fitness_weight * e) / (n * n * psi)
+            } else {
+                e / (psi * n)
+            }
+        })
+    };
+    let mut gone = 0_u64;
+    if p.variant.genetic() {
+        //= spec/guyonneau2022.md#ruby-fitness-genetic-deletion
+        //# The genetic variants MUST keep the models of lowest fitness
+        //# φ = (b² + τ E_L) / (n² ψ), n the model's points and ψ the models
+        //# parallel to it, itself included: the kept share of the models,
+        //# rounded up, and at least the configured fewest when there are as
+        //# many, ties going to the lower slot; the others MUST be deleted.
+        let mut ranked: Vec<(f64, usize), MAX_MODELS> = Vec::new();
+        for k in slots(set.alive) {
+            match score(k) {
+                Some(phi) if phi.is_finite() => {
+                    let _ = ranked.push((phi, k));
+                }
+                _ => gone |= bit(k),
+            }
+        }
+        ranked.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        let share = libm::ceil(p.kept_share * count_f64(ranked.len()));
+        let keep = (0..=ranked.len())
+            .find(|&k| count_f64(k) >= share)
+            .unwrap_or(ranked.len())
+            .max(usize::from(p.min_kept));
+        for &(_, k) in ranked.iter().skip(keep) {
+            gone |= bit(k);
+        }
+    } else {
+        //= spec/guyonneau2022.md#ruby-delete-deletion-by-eq-7
+        //# Ruby MUST delete every model with E_L / (ψ n) − α ≥ 0, n its
+        //# points and ψ the models parallel to it, itself included, and every
+        //# model with no point.
+        for k in slots(set.alive) {
+            match score(k) {
+                Some(s) if s - p.alpha < 0.0 => {}
+                _ => gone |= bit(k),
+            }
+        }
+    }
+    set.remove(gone, points.len());
+}
+
+/// Re-attaches every point (Alg. 1, lines 21-24), then removes the models
+/// left with fewer than [`SEED_POINTS`] points.
+//= spec/guyonneau2022.md#ruby-reattach-points-re-attached
+//# Every point MUST be attached to the model closest to it, or to several
+//# models (every model within the outlier distance) when points are shared,
+//# and MUST be an outlier when no model lies within the outlier distance;
+//# a model left with fewer than three points MUST then be removed and its
+//# points made outliers.
+fn reattach<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyParams) -> Stats {
+    let limit = p.outlier_distance.get();
+    let alive = set.alive;
+    let lines = set.lines;
+    let mut stats = Stats::ZERO;
+    let mut changed = 0_u64;
+    for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
+        let mut mask = 0_u64;
+        let mut closest = f64::INFINITY;
+        for k in slots(alive) {
+            let d = lines
+                .get(k)
+                .map_or(f64::INFINITY, |l| l.distance(pt.position));
+            if d <= limit {
+                if p.variant.shared_points() {
+                    mask |= bit(k);
+                    stats.add(k, d);
+                } else if d < closest {
+                    closest = d;
+                    mask = bit(k);
+                }
+            }
+        }
+        if !p.variant.shared_points() && mask != 0 {
+            stats.add(
+                usize::try_from(mask.trailing_zeros()).unwrap_or(MAX_MODELS),
+                closest,
+            );
+        }
+        changed |= *m ^ mask;
+        *m = mask;
+    }
+    set.fitted &= !changed;
+    let few = slots(set.alive)
+        .filter(|&k| stats.count.get(k).copied().unwrap_or(0) < SEED_POINTS)
+        .fold(0_u64, |acc, k| acc | bit(k));
+    if few != 0 {
+        set.remove(few, points.len());
+        for k in slots(few) {
+            stats.clear(k);
+        }
+    }
+    stats
+}
