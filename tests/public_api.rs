@@ -77,6 +77,12 @@ use fieldguide::perception::furrow::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing,
 };
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams, RowLines, Rows};
+use fieldguide::perception::rows::filter::{
+    side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig, RowFilter,
+};
+use fieldguide::perception::rows::spacing::{
+    closest_pair, row_distance, SpacingConfig, SpacingEstimator,
+};
 use fieldguide::perception::{
     AnyDetector, AnyDetectorConfig, AnyLine, Better, Detection, Detector, HeldLine,
     QualityThresholds, RangeLimits, Scan, Verdict,
@@ -1046,6 +1052,72 @@ proptest! {
             for p in &moves {
                 check!("perception::detector::HeldLine::error_at", line.error_at(p));
             }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- rows
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn rows_initialisation_and_filter(
+        spacing in (raw(), raw(), 0..12_usize, 0..10_usize),
+        filtering in (raw(), raw(), 0..18_usize, 0..4_u32, meters()),
+        lines in prop::collection::vec((raw(), meters()), 0..10),
+        k in 0..20_usize, scans in 1..4_usize,
+    ) {
+        let lines: Vec<RowLine> = lines
+            .iter()
+            .map(|&(a, b)| RowLine::new(a, b).unwrap_or(RowLine::new(0.0, b).unwrap()))
+            .collect();
+        // Initialisation.
+        check!("perception::rows::spacing::SpacingConfig::new", SpacingConfig::new(spacing.0, spacing.1, spacing.2, spacing.3));
+        let config = SpacingConfig::new(spacing.0, spacing.1, spacing.2, spacing.3).unwrap_or_default();
+        check!("perception::rows::spacing::SpacingConfig::max_slope", config.max_slope());
+        check!("perception::rows::spacing::SpacingConfig::equidistance", config.equidistance());
+        check!("perception::rows::spacing::SpacingConfig::estimates", config.estimates());
+        check!("perception::rows::spacing::SpacingConfig::rows", config.rows());
+        let pair = check!("perception::rows::spacing::closest_pair", closest_pair(&lines, &config));
+        if let Some(pair) = pair {
+            check!("perception::rows::spacing::row_distance", row_distance(&pair));
+        }
+        let mut estimator = check!("perception::rows::spacing::SpacingEstimator::new", SpacingEstimator::new(config));
+        check!("perception::rows::spacing::SpacingEstimator::config", estimator.config());
+        for _ in 0..scans {
+            check!("perception::rows::spacing::SpacingEstimator::observe", estimator.observe(&lines));
+        }
+        check!("perception::rows::spacing::SpacingEstimator::count", estimator.count());
+        check!("perception::rows::spacing::SpacingEstimator::is_ready", estimator.is_ready());
+        check!("perception::rows::spacing::SpacingEstimator::distance", estimator.distance());
+        check!("perception::rows::spacing::SpacingEstimator::initial_rows", estimator.initial_rows());
+
+        // The filter, from the lines themselves as previous rows.
+        let (d_min, d_max, steps, lost_after, d) = filtering;
+        check!("perception::rows::filter::FilterConfig::new", FilterConfig::new(d_min, d_max, steps, lost_after));
+        let config = FilterConfig::new(d_min, d_max, steps, lost_after).unwrap_or_default();
+        check!("perception::rows::filter::FilterConfig::delta_min", config.delta_min());
+        check!("perception::rows::filter::FilterConfig::delta_max", config.delta_max());
+        check!("perception::rows::filter::FilterConfig::steps", config.steps());
+        check!("perception::rows::filter::FilterConfig::lost_after", config.lost_after());
+        check!("perception::rows::filter::FilterConfig::tolerance", config.tolerance(k));
+        check!("perception::rows::filter::side_indices", side_indices(&lines));
+        check!("perception::rows::filter::side_rows", side_rows(&lines));
+        check!("perception::rows::filter::tracking_error", rows_tracking_error(&lines));
+        check!("perception::rows::filter::RowFilter::new", RowFilter::new(d, &lines, config));
+        if let Ok(mut filter) = RowFilter::new(d, &lines, config) {
+            for _ in 0..scans {
+                let outcome = check!("perception::rows::filter::RowFilter::update", filter.update(&lines[..k.min(lines.len())]));
+                check!("perception::rows::filter::Outcome::matched", outcome.matched());
+                check!("perception::rows::filter::Outcome::verdict", outcome.verdict());
+            }
+            check!("perception::rows::filter::RowFilter::rows", filter.rows());
+            check!("perception::rows::filter::RowFilter::distance", filter.distance());
+            check!("perception::rows::filter::RowFilter::config", filter.config());
+            check!("perception::rows::filter::RowFilter::misses", filter.misses());
+            check!("perception::rows::filter::RowFilter::is_lost", filter.is_lost());
+            check!("perception::rows::filter::RowFilter::sides", filter.sides());
         }
     }
 }
