@@ -9,8 +9,8 @@ mod crop_scans;
 use core::f64::consts::{FRAC_PI_2, PI};
 
 use crop_scans::{
-    crop, crop1, crop4, paper_mounts, Field, FieldSpec, Lidar, Mount, Pose, Row, Stem, NO_RETURN,
-    STEM_RADIUS,
+    crop, crop1, crop4, paper_mounts, uneven, Field, FieldSpec, Lidar, Mount, Pose, Row, Stem,
+    NO_RETURN, STEM_RADIUS,
 };
 
 /// A field of the given stems and no rows.
@@ -165,7 +165,7 @@ fn row_lines_in_the_robot_frame_by_hand() {
 
 #[test]
 fn row_lines_pass_through_their_plants_in_the_robot_frame() {
-    let mut skewed = crop4(11, 1.2);
+    let mut skewed = uneven(11, 1.2);
     skewed.direction = 0.3;
     for spec in [crop1(3, 0.9), skewed] {
         let field = spec.build();
@@ -285,14 +285,19 @@ fn presets_have_their_features() {
                 .iter()
                 .all(|s| s.row.is_none() && (0.01..=0.02).contains(&s.r)));
         }
-        // Crop 4: fewer plants, rows not evenly spaced nor parallel.
+        // Crop 4: fewer plants, rows evenly spaced and parallel; the uneven
+        // field moves and turns them.
         let f = &fields[3].1;
         assert!(f.plants < 5 * 51 - 5 * 3 - 10, "{}", f.plants);
-        let offsets: Vec<f64> = f.rows.iter().map(|r: &Row| r.y0).collect();
-        assert!(offsets
-            .windows(2)
-            .any(|w| ((w[1] - w[0]) - 0.75).abs() > 0.005));
-        assert!(f.rows.iter().any(|r| r.direction.abs() > 1e-4));
+        let even = |f: &Field| {
+            let offsets: Vec<f64> = f.rows.iter().map(|r: &Row| r.y0).collect();
+            offsets
+                .windows(2)
+                .all(|w| ((w[1] - w[0]) - 0.75).abs() < 1e-12)
+                && f.rows.iter().all(|r| r.direction == 0.0)
+        };
+        assert!(even(f));
+        assert!(!even(&uneven(seed, 0.75).build()));
         for h in &fields[3].0.holes {
             assert!(!f.stems[..f.plants].iter().any(|s| {
                 let row = &f.rows[h.row];

@@ -38,6 +38,12 @@ pub const DEFAULT_TOLERANCE_STEPS: usize = 6;
 pub const INTERCEPT_GATE: f64 = 1.2;
 /// K, the scans without a match before the filter is lost: 0.5 s at 40 Hz.
 pub const DEFAULT_LOST_AFTER: u32 = 20;
+/// A found row agrees with the reference row when their slopes differ by
+/// less than this (ROWS-FILTER-CONSENSUS).
+pub const CONSENSUS_SLOPE: f64 = 0.05;
+/// ... and its intercept is within this share of d of where the reference
+/// and d put it (ROWS-FILTER-CONSENSUS).
+pub const CONSENSUS_SHARE: f64 = 0.2;
 
 /// A row index or a count of at most [`MAX_ROWS`] as an `f64`.
 pub(crate) fn index_value(i: usize) -> f64 {
@@ -216,7 +222,7 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
         }
         //= spec/guyonneau2022.md#rows-filter-missing-computed-rows-eqs-15-17
         //# The best match i_best MUST be the found row whose line has the smallest D to
-        //# its previous row.
+        //# its previous row, unless ROWS-FILTER-CONSENSUS names another.
         assignment.best.get_or_insert(i);
     }
     assignment
@@ -381,17 +387,77 @@ impl RowFilter {
         self.outcome([false; MAX_ROWS], None, None)
     }
 
-    /// The assignment at the first tolerance with a match, and that tolerance.
+    /// The assignment at the tolerance where the most found rows agree (the
+    /// smallest such tolerance), and that tolerance.
     //= spec/guyonneau2022.md#rows-filter-match-lines-matched-to-the-expected-rows-alg-4-lines-4-8
-    //# The tolerance MUST be the first of δ_k = δ_min + (δ_max − δ_min) k/(s − 1),
-    //# k = 0, …, s − 1 (δ_min alone when s = 1), at which at least one line matches
-    //# a row.
+    //# The tolerance MUST be, among δ_k = δ_min + (δ_max − δ_min) k/(s − 1),
+    //# k = 0, …, s − 1 (δ_min alone when s = 1), the smallest at which the most
+    //# found rows agree (ROWS-FILTER-CONSENSUS), when any line matches a row.
     fn first_match(&self, lines: &[RowLine]) -> Option<(Assignment, f64)> {
-        (0..self.config.steps).find_map(|k| {
+        let mut best: Option<(Assignment, f64, usize)> = None;
+        for k in 0..self.config.steps {
             let delta = self.config.tolerance(k);
-            let assignment = assign(&self.rows, lines, delta);
-            assignment.best.is_some().then_some((assignment, delta))
-        })
+            let mut assignment = assign(&self.rows, lines, delta);
+            let agreeing = self.consensus(&mut assignment, lines);
+            //= spec/guyonneau2022.md#rows-filter-consensus-found-rows-agree-with-each-other
+            //# Beyond the first tolerance, a match MUST count only when at least two
+            //# found rows agree.
+            let counts = assignment.best.is_some() && (k == 0 || agreeing >= 2);
+            if counts && best.as_ref().is_none_or(|(_, _, most)| agreeing > *most) {
+                best = Some((assignment, delta, agreeing));
+            }
+        }
+        best.map(|(assignment, delta, _)| (assignment, delta))
+    }
+
+    /// Keeps only the found rows that agree with the reference row (the
+    /// found row most others agree with) on the crop's geometry, and makes
+    /// that row i_best; returns how many agree (the reference included).
+    //= spec/guyonneau2022.md#rows-filter-consensus-found-rows-agree-with-each-other
+    //# A found row i MUST be dropped (and computed instead) unless its slope
+    //# differs from the reference row r's by less than 0.05 and its intercept
+    //# lies within 0.2 d of b^r + d (r − i) sqrt(a^r² + 1); the reference MUST
+    //# be the found row with which the most found rows agree, ties going to the
+    //# earlier match, and it MUST be i_best.
+    fn consensus(&self, assignment: &mut Assignment, lines: &[RowLine]) -> usize {
+        let d = self.distance.get();
+        let agree = |r: usize, i: usize| -> bool {
+            match (assignment.line(r, lines), assignment.line(i, lines)) {
+                (Some(reference), Some(row)) => {
+                    let a = reference.slope();
+                    let offset = index_value(r) - index_value(i);
+                    let expected =
+                        reference.intercept().get() + d * offset * libm::sqrt(a * a + 1.0);
+                    libm::fabs(row.slope() - a) < CONSENSUS_SLOPE
+                        && libm::fabs(row.intercept().get() - expected) <= CONSENSUS_SHARE * d
+                }
+                _ => false,
+            }
+        };
+        let n = self.rows.len();
+        // The candidates in match order: i_best first, then by row index.
+        let order = assignment
+            .best
+            .into_iter()
+            .chain((0..n).filter(|&i| Some(i) != assignment.best));
+        let mut reference: Option<(usize, usize)> = None;
+        for r in order {
+            let votes = (0..n).filter(|&i| agree(r, i)).count();
+            if votes > 0 && reference.is_none_or(|(_, v)| votes > v) {
+                reference = Some((r, votes));
+            }
+        }
+        let Some((r, votes)) = reference else {
+            return 0;
+        };
+        let keep: [bool; MAX_ROWS] = core::array::from_fn(|i| agree(r, i));
+        for (slot, kept) in assignment.lines.iter_mut().zip(keep) {
+            if !kept {
+                *slot = None;
+            }
+        }
+        assignment.best = Some(r);
+        votes
     }
 
     /// The new rows: the found ones, and the others by eq. 15; `None` when a

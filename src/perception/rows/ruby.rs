@@ -514,6 +514,32 @@ impl<const N: usize> Ruby<N> {
         &self.models
     }
 
+    /// Adds `lines` to the set carried to the next call, each unless a
+    /// carried model is the same (RUBY-MERGE's test) or the set is full.
+    //= spec/guyonneau2022.md#ruby-seeded-expected-lines-carried-to-the-next-scan
+    //# Lines handed to the line finder between two calls MUST join the set the
+    //# next call starts from, except a line the same as one already in it and
+    //# any line beyond the set's capacity.
+    pub fn carry(&mut self, lines: &[RowLine]) {
+        let p = self.config.params;
+        for line in lines {
+            let Some(new) = Line::new(line.slope(), line.intercept().get()) else {
+                continue;
+            };
+            let known = self.models.iter().any(|m| {
+                Line::new(m.line.slope(), m.line.intercept().get())
+                    .is_some_and(|old| same(&old, &new, &p))
+            });
+            if !known {
+                let _ = self.models.push(Model {
+                    line: *line,
+                    points: 0,
+                    energy: 0.0,
+                });
+            }
+        }
+    }
+
     /// Forgets the lines carried from the last scan (the next call starts
     /// from the empty set).
     pub fn reset(&mut self) {

@@ -26,6 +26,8 @@ pub const DEFAULT_EQUIDISTANCE: f64 = 0.25;
 pub const DEFAULT_ESTIMATES: usize = 10;
 /// Number n of filtered rows (authors' implementation).
 pub const DEFAULT_ROWS: usize = 4;
+/// Default range of row distances a pair may show, m (ROWS-SPACING-RANGE).
+pub const DEFAULT_DISTANCE_RANGE: (f64, f64) = (0.3, 2.0);
 
 /// The parameters of the initialisation: a_max, ε, N and n (ROWS-SPACING-PARAMS).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,6 +36,7 @@ pub struct SpacingConfig {
     equidistance: f64,
     estimates: usize,
     rows: usize,
+    distance_range: (f64, f64),
 }
 
 impl SpacingConfig {
@@ -76,8 +79,33 @@ impl SpacingConfig {
                 equidistance,
                 estimates,
                 rows,
+                distance_range: DEFAULT_DISTANCE_RANGE,
             })
         }
+    }
+
+    /// The same with pairs counted only when their d lies in `[min, max]` m.
+    ///
+    /// Errors with `ROWS-SPACING-RANGE` unless `0 < min < max` are finite.
+    //= spec/guyonneau2022.md#rows-spacing-range-plausible-row-distances
+    //# A range of row distances MUST be refused with an error naming
+    //# ROWS-SPACING-RANGE unless 0 < d_min < d_max are finite.
+    pub fn with_distance_range(mut self, min: Meters, max: Meters) -> Result<Self, Precondition> {
+        let (min, max) = (min.get(), max.get());
+        if !(min > 0.0 && min < max && max.is_finite()) {
+            return Err(Precondition::new(
+                "ROWS-SPACING-RANGE",
+                "the row distances must satisfy 0 < d_min < d_max, finite",
+            ));
+        }
+        self.distance_range = (min, max);
+        Ok(self)
+    }
+
+    /// [d_min, d_max], m.
+    #[must_use]
+    pub const fn distance_range(&self) -> (f64, f64) {
+        self.distance_range
     }
 
     /// a_max, dimensionless.
@@ -113,6 +141,7 @@ impl Default for SpacingConfig {
             equidistance: DEFAULT_EQUIDISTANCE,
             estimates: DEFAULT_ESTIMATES,
             rows: DEFAULT_ROWS,
+            distance_range: DEFAULT_DISTANCE_RANGE,
         }
     }
 }
@@ -220,6 +249,12 @@ impl SpacingEstimator {
         }
         let pair = closest_pair(lines, &self.config)?;
         let d = row_distance(&pair).ok()?;
+        //= spec/guyonneau2022.md#rows-spacing-range-plausible-row-distances
+        //# A pair whose d lies outside [d_min, d_max] MUST NOT count.
+        let (min, max) = self.config.distance_range;
+        if !(min..=max).contains(&d.get()) {
+            return None;
+        }
         let middle = 0.5 * pair.left.intercept().get() + 0.5 * pair.right.intercept().get();
         let sums = (
             self.sum_distance + d.get(),
