@@ -114,7 +114,12 @@ fn mount(m: &Mount) -> Transform2<fieldguide::Sensor, fieldguide::Robot> {
 /// rows and midway between them, as the paper's initialisation assumes.
 fn pose(field: &Field, drive: &Drive, k: usize) -> Pose {
     let (amp, wave) = drive.weave;
-    let lateral = |u: f64| amp * u.min(1.0) * (TAU * u / wave).sin();
+    // A smooth ramp (3t² − 2t³): no step in heading where the weave starts.
+    let ramp = |u: f64| {
+        let t = u.min(1.0);
+        t * t * (3.0 - 2.0 * t)
+    };
+    let lateral = |u: f64| amp * ramp(u) * (TAU * u / wave).sin();
     let u = drive.step * k as f64;
     let h = 1e-4;
     let heading =

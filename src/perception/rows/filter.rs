@@ -18,6 +18,7 @@
 use heapless::Vec;
 
 use crate::error::Precondition;
+use crate::geometry::frame::{Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::Meters;
 use crate::perception::furrow::lines::{mean_tracking_error, RowLine};
@@ -351,6 +352,24 @@ impl RowFilter {
         self.lost
     }
 
+    /// Moves the rows into the frame of the robot at `motion` (its pose in
+    /// the frame of the last scan); rows left as they are if one of them
+    /// would be across the new robot frame (ROWS-MOTION).
+    //= spec/guyonneau2022.md#rows-motion-rows-moved-by-odometry-between-scans
+    //# Before a scan's lines are matched, the filter's rows MUST be carried by
+    //# the odometry motion since the last scan; when a row would be across
+    //# the new robot frame, the rows MUST be left as they were.
+    pub fn move_by(&mut self, motion: &Pose2<Robot>) {
+        let mut moved: Vec<RowLine, MAX_ROWS> = Vec::new();
+        for row in &self.rows {
+            match seen_from(row, motion) {
+                Some(line) if moved.push(line).is_ok() => {}
+                _ => return,
+            }
+        }
+        self.rows = moved;
+    }
+
     /// The rows left and right of the robot ([`side_rows`]).
     #[must_use]
     pub fn sides(&self) -> Option<Pair<RowLine>> {
@@ -510,6 +529,28 @@ impl RowFilter {
             lost: self.lost,
         }
     }
+}
+
+/// The line `line` of one robot frame as seen from the robot at `pose` of
+/// that frame: with n = (−a, 1) and c = b, the line n·p = c becomes
+/// (Rᵀn)·p′ = c − n·t; `None` when it would be parallel to the new y axis
+/// (no y = a x + b form) or not finite.
+//= spec/guyonneau2022.md#rows-motion-rows-moved-by-odometry-between-scans
+//# A line y = a x + b of the last scan's robot frame MUST be carried to the
+//# frame of the robot at pose (t, ψ) of that frame as the line of the same
+//# points: n′ = Rᵀ(ψ) n and c′ = c − n·t, with n = (−a, 1) and c = b.
+#[must_use]
+pub fn seen_from(line: &RowLine, pose: &Pose2<Robot>) -> Option<RowLine> {
+    let (nx, ny, c) = (-line.slope(), 1.0, line.intercept().get());
+    let (sin, cos) = libm::sincos(pose.heading.get());
+    let (tx, ty) = (pose.position.x(), pose.position.y());
+    let (mx, my) = (cos * nx + sin * ny, -sin * nx + cos * ny);
+    let c2 = c - (nx * tx + ny * ty);
+    if libm::fabs(my) < 1e-9 {
+        return None;
+    }
+    let b = Meters::new(c2 / my).ok()?;
+    RowLine::new(-mx / my, b).ok()
 }
 
 /// The indices of the rows left and right of the robot: the smallest

@@ -25,11 +25,12 @@ pub mod spacing;
 
 use heapless::Vec;
 
-use self::filter::{tracking_error, FilterConfig, Outcome, RowFilter};
+use self::filter::{seen_from, tracking_error, FilterConfig, Outcome, RowFilter};
 use self::points::{merge_runs, scan_points, Gathered, Points};
 use self::ruby::{Found, Ruby, RubyConfig, RubyParams, Variant, MAX_MODELS};
 use self::spacing::{SpacingConfig, SpacingEstimator};
 use crate::error::Precondition;
+use crate::geometry::carry::pose_in_scan_frame;
 use crate::geometry::frame::{Odom, Pose2, Robot, Sensor, Transform2};
 use crate::geometry::units::{Meters, Radians};
 use crate::perception::detector::{Detection, Detector};
@@ -181,6 +182,8 @@ pub struct RowsDetector<const POINTS: usize = 512> {
     points: Points<POINTS>,
     one: Points<POINTS>,
     phase: Phase,
+    /// The odometry pose of the last tick.
+    last: Option<Pose2<Odom>>,
 }
 
 impl<const POINTS: usize> RowsDetector<POINTS> {
@@ -193,6 +196,7 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
             one: Points::new(),
             phase: Phase::Measuring(SpacingEstimator::new(config.params.spacing), None, 0),
             config,
+            last: None,
         }
     }
 
@@ -253,6 +257,18 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
             ));
         }
         let p = self.config.params;
+        //= spec/guyonneau2022.md#rows-motion-rows-moved-by-odometry-between-scans
+        //# The line finder's carried lines MUST be carried by the same motion.
+        if let Some(motion) = self
+            .last
+            .and_then(|then| pose_in_scan_frame(&then, odometry).ok())
+        {
+            self.ruby.move_by(|line| seen_from(line, &motion));
+            if let Phase::Following(filter) = &mut self.phase {
+                filter.move_by(&motion);
+            }
+        }
+        self.last = Some(*odometry);
         let mut gathered = Gathered {
             kept: 0,
             dropped: 0,

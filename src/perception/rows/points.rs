@@ -53,10 +53,12 @@ pub fn scan_points<const N: usize>(
     out.clear();
     let mut dropped = 0_usize;
     let (start, step) = (scan.start.get(), scan.increment.get());
-    let mut angle = start;
+    // k as a float, exact for any slice length.
+    let mut k = 0.0_f64;
     for &range in scan.ranges {
         if scan.limits.accepts(range) {
-            let p = Point2::<Sensor>::new(range * libm::cos(angle), range * libm::sin(angle))?;
+            let (sin, cos) = libm::sincos(start + k * step);
+            let p = Point2::<Sensor>::new(range * cos, range * sin)?;
             let point = RowPoint {
                 position: mount.apply(p)?,
                 returns: 1,
@@ -65,7 +67,7 @@ pub fn scan_points<const N: usize>(
                 dropped = dropped.saturating_add(1);
             }
         }
-        angle += step;
+        k += 1.0;
     }
     Ok(Gathered {
         kept: out.len(),
@@ -83,13 +85,14 @@ pub fn scan_points<const N: usize>(
 //# per run, at the centroid of the run's returns, weighted by their counts.
 pub fn merge_runs<const N: usize>(points: &mut Points<N>, merge_distance: Meters) {
     let limit = merge_distance.get();
+    let limit_sq = limit * limit;
     let mut runs = 0_usize;
     let mut current: Option<(f64, f64, u16)> = None;
     let mut index = 0_usize;
     while let Some(p) = points.get(index).copied() {
         let (x, y) = (p.position.x(), p.position.y());
         current = match current {
-            Some((cx, cy, n)) if libm::hypot(x - cx, y - cy) < limit => {
+            Some((cx, cy, n)) if (x - cx) * (x - cx) + (y - cy) * (y - cy) < limit_sq => {
                 let total = n.saturating_add(p.returns);
                 let share = f64::from(p.returns) / f64::from(total);
                 Some((cx + (x - cx) * share, cy + (y - cy) * share, total))

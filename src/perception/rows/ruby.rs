@@ -407,16 +407,6 @@ impl<const N: usize> ModelSet<N> {
         self.lines.get(k).copied().unwrap_or(Line::NONE)
     }
 
-    fn stats(&self, points: &[RowPoint]) -> Stats {
-        let mut s = Stats::ZERO;
-        for (p, &mask) in points.iter().zip(self.masks.iter()) {
-            for k in slots(mask & self.alive) {
-                s.add(k, self.line(k).distance(p.position));
-            }
-        }
-        s
-    }
-
     /// Copies `other`'s models and the masks of its first `n` points.
     fn copy_from(&mut self, other: &Self, n: usize) {
         self.alive = other.alive;
@@ -540,6 +530,19 @@ impl<const N: usize> Ruby<N> {
         }
     }
 
+    /// Moves the lines carried to the next call into the frame of the robot
+    /// at `motion` (its pose in the frame of the last scan) with `moved`; a
+    /// line `moved` cannot carry is dropped.
+    pub fn move_by(&mut self, mut moved: impl FnMut(&RowLine) -> Option<RowLine>) {
+        let mut kept: Vec<Model, MAX_MODELS> = Vec::new();
+        for m in &self.models {
+            if let Some(line) = moved(&m.line) {
+                let _ = kept.push(Model { line, ..*m });
+            }
+        }
+        self.models = kept;
+    }
+
     /// Forgets the lines carried from the last scan (the next call starts
     /// from the empty set).
     pub fn reset(&mut self) {
@@ -553,8 +556,8 @@ impl<const N: usize> Ruby<N> {
     //= spec/guyonneau2022.md#ruby-bound-bounded-work-per-scan
     //# Every loop of the line finder MUST have a bound fixed by its configuration
     //# and capacities: at most `N` points, 64 models, the configured iterations,
-    //# and per iteration at most the model budget of draws, at most 64 merge
-    //# passes, one pass of deletion and one of re-attachment.
+    //# and per iteration at most the model budget of draws, at most 65 merge
+    //# passes, one pass of deletion and two of re-attachment.
     //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
     //# Each call MUST start from the previous call's set of lines (the empty
     //# set on the first call), refitted to the points they attach on this scan,
@@ -592,9 +595,9 @@ impl<const N: usize> Ruby<N> {
             self.candidate.copy_from(&self.best, n);
             search(&mut self.candidate, points, &mut self.rng, &p);
             merge(&mut self.candidate, points, &mut self.scratch, &p);
-            reattach(&mut self.candidate, points, &p);
-            delete(&mut self.candidate, points, &p);
-            let candidate_stats = reattach(&mut self.candidate, points, &p);
+            let mut candidate_stats = reattach(&mut self.candidate, points, &p);
+            let gone = delete(&self.candidate, &candidate_stats, &p);
+            reattach_deleted(&mut self.candidate, gone, points, &mut candidate_stats, &p);
             let e = energy(&self.candidate, &candidate_stats, n, &self.weights, &p);
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
@@ -742,10 +745,9 @@ fn search_side<const N: usize>(
         added = added.saturating_add(1);
         let seeds = seed.map(|i| points.get(i).map(|q| q.position));
         if let [Some(a), Some(b), Some(c)] = seeds {
-            if let (Some(line), Some(l)) = (
-                Line::fit([a, b, c].into_iter(), p.fit_rounds),
-                set.lines.get_mut(slot),
-            ) {
+            if let (Some(line), Some(l)) =
+                (Line::fit([a, b, c].into_iter(), 0), set.lines.get_mut(slot))
+            {
                 *l = line;
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
@@ -783,8 +785,9 @@ fn merge<const N: usize>(
     p: &RubyParams,
 ) {
     let n = points.len();
-    // Each pass after the first removes a model: at most MAX_MODELS passes.
-    for pass in 0..MAX_MODELS {
+    // The first pass refits; each later pass but the last merges, removing
+    // a model: at most MAX_MODELS + 1 passes.
+    for pass in 0..=MAX_MODELS {
         let mut merged_any = false;
         for j in slots(set.alive) {
             if set.alive & bit(j) == 0 {
@@ -810,6 +813,8 @@ fn merge<const N: usize>(
                 let members = set.members(points, j, scratch).iter().copied();
                 if let Some(line) = Line::fit(members, p.fit_rounds) {
                     if let Some(l) = set.lines.get_mut(j) {
+                        // A line moved may now be the same as one before it.
+                        merged_any |= *l != line;
                         *l = line;
                     }
                 }
@@ -834,8 +839,9 @@ fn parallel_count<const N: usize>(set: &ModelSet<N>, a: f64, p: &RubyParams) -> 
 
 /// Deletes models (Alg. 1, lines 17-20): by eq. 7 for Ruby, by the fitness
 /// of eq. 10 for the genetic variants.
-fn delete<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyParams) {
-    let stats = set.stats(points);
+/// Returns the models deleted; the caller re-attaches their points
+/// ([`reattach_deleted`]).
+fn delete<const N: usize>(set: &ModelSet<N>, stats: &Stats, p: &RubyParams) -> u64 {
     let score = |k: usize| -> Option<f64> {
         let n = count_f64(stats.count.get(k).copied().unwrap_or(0));
         let e = stats.energy.get(k).copied().unwrap_or(0.0);
@@ -887,7 +893,56 @@ fn delete<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyPa
             }
         }
     }
-    set.remove(gone, points.len());
+    gone
+}
+
+/// Removes the models of `gone` and re-attaches their points to the models
+/// left, updating `stats`: the same assignment as re-attaching every point
+/// (a point of a model left keeps it, being closest among more models;
+/// outliers stay outliers), at the cost of the points moved alone.
+fn reattach_deleted<const N: usize>(
+    set: &mut ModelSet<N>,
+    gone: u64,
+    points: &[RowPoint],
+    stats: &mut Stats,
+    p: &RubyParams,
+) {
+    if gone == 0 {
+        return;
+    }
+    set.alive &= !gone;
+    set.fitted &= !gone;
+    for k in slots(gone) {
+        stats.clear(k);
+    }
+    let limit = p.outlier_distance.get();
+    let mut packed: Vec<(u64, usize, Line), MAX_MODELS> = Vec::new();
+    for k in slots(set.alive) {
+        let _ = packed.push((bit(k), k, set.line(k)));
+    }
+    let mut gained = 0_u64;
+    for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
+        if *m & gone == 0 {
+            continue;
+        }
+        if p.variant.shared_points() {
+            *m &= !gone;
+            continue;
+        }
+        let mut closest = (f64::INFINITY, MAX_MODELS, 0_u64);
+        for &(b, k, line) in &packed {
+            let d = line.distance(pt.position);
+            if d <= limit && d < closest.0 {
+                closest = (d, k, b);
+            }
+        }
+        *m = closest.2;
+        if closest.2 != 0 {
+            stats.add(closest.1, closest.0);
+            gained |= closest.2;
+        }
+    }
+    set.fitted &= !gained;
 }
 
 /// Re-attaches every point (Alg. 1, lines 21-24), then removes the models
@@ -900,32 +955,31 @@ fn delete<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyPa
 //# points made outliers.
 fn reattach<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyParams) -> Stats {
     let limit = p.outlier_distance.get();
-    let alive = set.alive;
-    let lines = set.lines;
+    // The alive models, packed for the inner loop.
+    let mut packed: Vec<(u64, usize, Line), MAX_MODELS> = Vec::new();
+    for k in slots(set.alive) {
+        let _ = packed.push((bit(k), k, set.line(k)));
+    }
+    let shared = p.variant.shared_points();
     let mut stats = Stats::ZERO;
     let mut changed = 0_u64;
     for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
         let mut mask = 0_u64;
-        let mut closest = f64::INFINITY;
-        for k in slots(alive) {
-            let d = lines
-                .get(k)
-                .map_or(f64::INFINITY, |l| l.distance(pt.position));
+        let mut closest = (f64::INFINITY, MAX_MODELS);
+        for &(b, k, line) in &packed {
+            let d = line.distance(pt.position);
             if d <= limit {
-                if p.variant.shared_points() {
-                    mask |= bit(k);
+                if shared {
+                    mask |= b;
                     stats.add(k, d);
-                } else if d < closest {
-                    closest = d;
-                    mask = bit(k);
+                } else if d < closest.0 {
+                    closest = (d, k);
+                    mask = b;
                 }
             }
         }
-        if !p.variant.shared_points() && mask != 0 {
-            stats.add(
-                usize::try_from(mask.trailing_zeros()).unwrap_or(MAX_MODELS),
-                closest,
-            );
+        if !shared && mask != 0 {
+            stats.add(closest.1, closest.0);
         }
         changed |= *m ^ mask;
         *m = mask;

@@ -1,0 +1,148 @@
+//! Benchmark of the rows detector (Guyonneau 2022): one tick per variant on
+//! the paper's four crops, a 360-ray front LiDAR (0.1-4 m, σ = 1 cm) seen
+//! from between two rows 0.75 m apart as the robot drives (the scans of
+//! `tests/crop_scans`, the accuracy tests' ground truth).
+//!
+//! A tick's state depends on the scans before it, so the ticks run in the
+//! order of a 30 m drive along 40 m rows, each timed alone. `cargo bench
+//! --bench rows` prints, before the timings, the mean number of points after
+//! Z* per crop and variant.
+#![allow(
+    missing_docs,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::as_conversions,
+    clippy::arithmetic_side_effects,
+    clippy::cast_precision_loss
+)]
+
+use core::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use fieldguide::perception::rows::points::{merge_runs, scan_points, Points};
+use fieldguide::perception::rows::ruby::{RubyParams, Variant};
+use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
+use fieldguide::perception::Detector;
+use fieldguide::{Odom, Pose2, Transform2};
+
+#[path = "../tests/crop_scans/mod.rs"]
+mod crop_scans;
+
+use crop_scans::{crop, Lidar, Mount, Pose, RawScan};
+
+/// Scans at rest (the row distance), then scans along the drive.
+const STILL: usize = 40;
+const DRIVE: usize = 1200;
+
+type Rows = RowsDetector<512>;
+
+/// The detector once it follows the rows, the scans of a 30 m drive after
+/// that, and the mean number of points after Z* over the drive.
+fn drive(variant: Variant, n: usize) -> (Rows, Vec<(RawScan, Pose2<Odom>)>, f64) {
+    let mut spec = crop(n, 1, 0.75);
+    // 40 m rows, weeds as dense as on the 10 m preset.
+    spec.weeds *= 4;
+    spec.length = 40.0;
+    let field = spec.build();
+    let mount = Mount::front(0.3);
+    let lidar = Lidar::paper();
+    let params = RowsParams::authors(
+        variant,
+        Transform2::new(mount.x, mount.y, mount.yaw).unwrap(),
+    );
+    let mut detector = Rows::new(RowsConfig::new(params).unwrap());
+    let scan_at = |k: usize| {
+        let along = 1.0 + 0.025 * k.saturating_sub(STILL) as f64;
+        let robot =
+            field
+                .between(1, 2, along)
+                .compose(&Pose::new(0.0, 0.05 * (along * 1.5).sin(), 0.0));
+        let raw = field.cast(&robot, &mount, &lidar, k as u64);
+        (
+            raw,
+            Pose2::<Odom>::new(robot.x, robot.y, robot.heading).unwrap(),
+        )
+    };
+    // At rest until the row distance is known.
+    for k in 0..10 * STILL {
+        if detector.row_distance().is_some() {
+            break;
+        }
+        let (raw, odometry) = scan_at(0);
+        let _ = k;
+        detector.observe(&raw.scan(), &odometry).unwrap();
+    }
+    assert!(
+        detector.row_distance().is_some(),
+        "{} crop {n}",
+        variant.name()
+    );
+    let scans: Vec<_> = (STILL..STILL + DRIVE).map(scan_at).collect();
+    let mut probe = detector.clone();
+    let mut points = 0.0;
+    for (raw, odometry) in &scans {
+        probe.observe(&raw.scan(), odometry).unwrap();
+        points += probe.points().len() as f64;
+    }
+    (detector, scans, points / DRIVE as f64)
+}
+
+fn rows(c: &mut Criterion) {
+    let mut group = c.benchmark_group("rows");
+    for n in 1..=4 {
+        for variant in Variant::ALL {
+            let (start, scans, points) = drive(variant, n);
+            println!(
+                "rows/crop{n}/{}: {points:.1} points after Z*",
+                variant.name()
+            );
+            group.bench_function(format!("crop{n}/{}", variant.name()), |b| {
+                // Scans in the order of the drive, the detector warm; at the
+                // end of the drive (untimed) it starts again from the start.
+                b.iter_custom(|iters| {
+                    let mut total = Duration::ZERO;
+                    let mut detector = start.clone();
+                    let mut k = 0;
+                    for _ in 0..iters {
+                        if k == scans.len() {
+                            detector = start.clone();
+                            k = 0;
+                        }
+                        let (raw, odometry) = &scans[k];
+                        let scan = raw.scan();
+                        let t = Instant::now();
+                        black_box(detector.observe(black_box(&scan), odometry).unwrap());
+                        total += t.elapsed();
+                        k += 1;
+                    }
+                    total
+                });
+            });
+        }
+    }
+    // The share of a tick spent making Z* (the rays to points and the
+    // one-point merge), for the line finder's own cost.
+    let (_, scans, _) = drive(Variant::Rgop, 4);
+    let mount = Mount::front(0.3);
+    let mount = Transform2::new(mount.x, mount.y, mount.yaw).unwrap();
+    let mut k = 0;
+    group.bench_function("crop4/points_and_z_star", |b| {
+        let mut points = Points::<512>::new();
+        b.iter(|| {
+            k = (k + 1) % scans.len();
+            let scan = scans[k].0.scan();
+            scan_points(black_box(&scan), &mount, &mut points).unwrap();
+            merge_runs(
+                &mut points,
+                RubyParams::authors(Variant::Rgop).merge_distance,
+            );
+            black_box(points.len())
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, rows);
+criterion_main!(benches);
