@@ -441,7 +441,7 @@ proptest! {
     //# models (every model within the outlier distance) when points are shared,
     //# and MUST be an outlier when no model lies within the outlier distance;
     //# a model left with fewer than three points MUST then be removed and its
-    //# points made outliers.
+    //# points re-attached to the models left.
     //= spec/guyonneau2022.md#ruby-merge-close-models-merged
     //= type=test
     //# Two models whose slopes differ by less than β and whose intercepts differ

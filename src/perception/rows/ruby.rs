@@ -367,11 +367,17 @@ fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
 #[derive(Debug, Clone)]
 struct ModelSet<const N: usize> {
     alive: u64,
-    /// Models whose line is the fit of their points as they are (a refit
-    /// would give the same line, so it is skipped).
+    /// Models whose line is the fit of their points as `fit_masks` holds
+    /// them: unless their points changed since, a refit would give the same
+    /// line, so it is skipped.
     fitted: u64,
+    /// Models whose line (or points, by a merge) changed since the points
+    /// were last attached: only they can take a point from its model.
+    moved: u64,
     lines: [Line; MAX_MODELS],
     masks: [u64; N],
+    /// The masks when the models were last fitted.
+    fit_masks: [u64; N],
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
@@ -411,8 +417,12 @@ impl<const N: usize> ModelSet<N> {
     fn copy_from(&mut self, other: &Self, n: usize) {
         self.alive = other.alive;
         self.fitted = other.fitted;
+        self.moved = other.moved;
         self.lines = other.lines;
         for (m, o) in self.masks.iter_mut().zip(other.masks.iter()).take(n) {
+            *m = *o;
+        }
+        for (m, o) in self.fit_masks.iter_mut().zip(other.fit_masks.iter()).take(n) {
             *m = *o;
         }
     }
@@ -444,6 +454,7 @@ impl<const N: usize> ModelSet<N> {
     fn remove(&mut self, gone: u64, n: usize) {
         self.alive &= !gone;
         self.fitted &= !gone;
+        self.moved &= !gone;
         for m in self.masks.iter_mut().take(n) {
             *m &= !gone;
         }
@@ -478,8 +489,10 @@ impl<const N: usize> Ruby<N> {
         let empty = ModelSet {
             alive: 0,
             fitted: 0,
+            moved: 0,
             lines: [Line::NONE; MAX_MODELS],
             masks: [0; N],
+            fit_masks: [0; N],
         };
         Self {
             config,
@@ -573,6 +586,12 @@ impl<const N: usize> Ruby<N> {
 
         self.best.alive = 0;
         self.best.fitted = 0;
+        for m in self.best.masks.iter_mut().take(n) {
+            *m = 0;
+        }
+        for m in self.best.fit_masks.iter_mut().take(n) {
+            *m = 0;
+        }
         for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
             if let (Some(slot), Some(line)) = (
                 self.best.lines.get_mut(k),
@@ -582,6 +601,7 @@ impl<const N: usize> Ruby<N> {
                 self.best.alive |= bit(k);
             }
         }
+        self.best.moved = self.best.alive;
         // The previous lines, refitted to the points they attach on this
         // scan (RUBY-ITERATION).
         reattach(&mut self.best, points, &p);
@@ -751,8 +771,12 @@ fn search_side<const N: usize>(
                 *l = line;
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
+                set.moved |= bit(slot);
                 for i in seed {
                     if let Some(m) = set.masks.get_mut(i) {
+                        *m = bit(slot);
+                    }
+                    if let Some(m) = set.fit_masks.get_mut(i) {
                         *m = bit(slot);
                     }
                 }
@@ -785,6 +809,14 @@ fn merge<const N: usize>(
     p: &RubyParams,
 ) {
     let n = points.len();
+    // Models whose points changed since they were fitted.
+    let changed = set
+        .masks
+        .iter()
+        .zip(set.fit_masks.iter())
+        .take(n)
+        .fold(0_u64, |acc, (m, f)| acc | (m ^ f));
+    set.fitted &= !changed;
     // The first pass refits; each later pass but the last merges, removing
     // a model: at most MAX_MODELS + 1 passes.
     for pass in 0..=MAX_MODELS {
@@ -808,13 +840,17 @@ fn merge<const N: usize>(
                     }
                 }
                 set.alive &= !absorbed;
+                set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
                 let members = set.members(points, j, scratch).iter().copied();
                 if let Some(line) = Line::fit(members, p.fit_rounds) {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
-                        merged_any |= *l != line;
+                        if *l != line {
+                            merged_any = true;
+                            set.moved |= bit(j);
+                        }
                         *l = line;
                     }
                 }
@@ -825,6 +861,10 @@ fn merge<const N: usize>(
             break;
         }
     }
+    for (f, m) in set.fit_masks.iter_mut().zip(set.masks.iter()).take(n) {
+        *f = *m;
+    }
+    set.fitted = set.alive;
 }
 
 /// ψ(L_j) of eq. 8, counting the model itself: the models whose slope
@@ -920,7 +960,6 @@ fn reattach_deleted<const N: usize>(
     for k in slots(set.alive) {
         let _ = packed.push((bit(k), k, set.line(k)));
     }
-    let mut gained = 0_u64;
     for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
         if *m & gone == 0 {
             continue;
@@ -939,60 +978,74 @@ fn reattach_deleted<const N: usize>(
         *m = closest.2;
         if closest.2 != 0 {
             stats.add(closest.1, closest.0);
-            gained |= closest.2;
         }
     }
-    set.fitted &= !gained;
 }
 
 /// Re-attaches every point (Alg. 1, lines 21-24), then removes the models
-/// left with fewer than [`SEED_POINTS`] points.
+/// left with fewer than [`SEED_POINTS`] points and re-attaches theirs.
 //= spec/guyonneau2022.md#ruby-reattach-points-re-attached
 //# Every point MUST be attached to the model closest to it, or to several
 //# models (every model within the outlier distance) when points are shared,
 //# and MUST be an outlier when no model lies within the outlier distance;
 //# a model left with fewer than three points MUST then be removed and its
-//# points made outliers.
+//# points re-attached to the models left.
 fn reattach<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyParams) -> Stats {
     let limit = p.outlier_distance.get();
-    // The alive models, packed for the inner loop.
-    let mut packed: Vec<(u64, usize, Line), MAX_MODELS> = Vec::new();
-    for k in slots(set.alive) {
-        let _ = packed.push((bit(k), k, set.line(k)));
-    }
+    // The alive models and those that moved, packed for the inner loops.
+    let pack = |mask: u64| {
+        let mut packed: Vec<(u64, usize, Line), MAX_MODELS> = Vec::new();
+        for k in slots(mask) {
+            let _ = packed.push((bit(k), k, set.line(k)));
+        }
+        packed
+    };
+    let moved = set.moved & set.alive;
+    let (all, changed_lines) = (pack(set.alive), pack(moved));
     let shared = p.variant.shared_points();
-    let mut stats = Stats::ZERO;
-    let mut changed = 0_u64;
     for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
-        let mut mask = 0_u64;
-        let mut closest = (f64::INFINITY, MAX_MODELS);
-        for &(b, k, line) in &packed {
-            let d = line.distance(pt.position);
-            if d <= limit {
-                if shared {
-                    mask |= b;
-                    stats.add(k, d);
-                } else if d < closest.0 {
-                    closest = (d, k);
-                    mask = b;
+        let old = *m;
+        let mask = if shared {
+            // Models that did not move keep their points; the moved ones
+            // take those within the limit.
+            changed_lines
+                .iter()
+                .filter(|(_, _, line)| line.distance(pt.position) <= limit)
+                .fold(old & !moved, |acc, (b, _, _)| acc | b)
+        } else {
+            // A point of a model that did not move is closest to it among
+            // the models that did not move: only the moved ones can take it.
+            let (start, candidates) = if old & moved != 0 {
+                ((f64::INFINITY, MAX_MODELS, 0_u64), &all)
+            } else if old == 0 {
+                ((f64::INFINITY, MAX_MODELS, 0_u64), &changed_lines)
+            } else {
+                let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
+                ((set.lines.get(k).map_or(f64::INFINITY, |l| l.distance(pt.position)), k, old), &changed_lines)
+            };
+            let mut closest = start;
+            for &(b, k, line) in candidates {
+                let d = line.distance(pt.position);
+                // The closest, ties to the lower slot, as a scan of every
+                // model in slot order would find it.
+                if d <= limit && (d < closest.0 || (d <= closest.0 && k < closest.1)) {
+                    closest = (d, k, b);
                 }
             }
-        }
-        if !shared && mask != 0 {
-            stats.add(closest.1, closest.0);
-        }
-        changed |= *m ^ mask;
+            closest.2
+        };
         *m = mask;
     }
-    set.fitted &= !changed;
+    set.moved = 0;
+    let mut stats = Stats::ZERO;
+    for (pt, &m) in points.iter().zip(set.masks.iter()) {
+        for k in slots(m) {
+            stats.add(k, set.line(k).distance(pt.position));
+        }
+    }
     let few = slots(set.alive)
         .filter(|&k| stats.count.get(k).copied().unwrap_or(0) < SEED_POINTS)
         .fold(0_u64, |acc, k| acc | bit(k));
-    if few != 0 {
-        set.remove(few, points.len());
-        for k in slots(few) {
-            stats.clear(k);
-        }
-    }
+    reattach_deleted(set, few, points, &mut stats, p);
     stats
 }
