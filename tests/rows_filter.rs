@@ -386,6 +386,18 @@ fn the_tolerance_grows_until_a_match() {
     assert_eq!((out.tolerance, out.matched()), (None, 0));
 }
 
+/// Every tolerance of an accepted configuration is finite (LIB-FINITE),
+/// however wide the range δ_min..δ_max.
+#[test]
+#[ignore = "FilterConfig::tolerance multiplies the span by k before dividing by s − 1, which overflows"]
+fn every_tolerance_is_finite() {
+    let config = FilterConfig::new(9.3, f64::MAX, 13, 1).unwrap();
+    for k in 0..13 {
+        let delta = config.tolerance(k);
+        assert!(delta.is_finite() && delta >= 9.3, "δ_{k} = {delta}");
+    }
+}
+
 //= spec/guyonneau2022.md#rows-filter-match-lines-matched-to-the-expected-rows-alg-4-lines-4-8
 //= type=test
 //# Matches MUST be assigned in increasing distance
