@@ -358,6 +358,42 @@ fn blind_scans_exit_then_absent_when_lost_then_measured_again() {
     assert!((e - true_error(&field, &at)).abs() < 0.01, "{e}");
 }
 
+//= spec/guyonneau2022.md#rows-detector-one-tick-of-the-rows-detector
+//= type=test
+//# While it follows the rows, the detector MUST hand the filter's n rows
+//# to the line finder as lines carried to the next scan.
+#[test]
+fn the_filtered_rows_are_carried_to_the_next_scan() {
+    let field = field();
+    let at = robot(&field, 2.0, 0.0);
+    let mut d = detector();
+    measure(&mut d, &field, &at, 3 * N);
+    let blind = vec![f64::NAN; 360];
+    let raw = cast(&field, &at);
+    let scan = Scan {
+        ranges: &blind,
+        ..raw.scan()
+    };
+    // Following: after a blind scan the line finder's set is exactly the
+    // filter's rows (its own lines lost their points), carried as models
+    // holding no point yet.
+    tick(&mut d, &field, &at, &odometry(&at));
+    d.observe_scans(&[scan], &odometry(&at)).unwrap();
+    let rows = d.rows().unwrap().to_vec();
+    let models = d.line_finder().models();
+    assert_eq!(models.len(), rows.len());
+    for (m, r) in models.iter().zip(&rows) {
+        assert_eq!((m.line, m.points), (*r, 0));
+    }
+    // The next scan starts from them: the rows are found again at once.
+    let out = tick(&mut d, &field, &at, &odometry(&at));
+    assert_eq!(out.detection.verdict, Verdict::Enter);
+    // While measuring nothing is carried: a blind scan leaves no line.
+    let mut fresh = detector();
+    fresh.observe_scans(&[scan], &odometry(&at)).unwrap();
+    assert!(fresh.line_finder().models().is_empty());
+}
+
 //= spec/guyonneau2022.md#rows-mounts-one-scan-per-mounted-lidar
 //= type=test
 //# A tick MUST be refused with an error naming ROWS-MOUNTS unless it is
