@@ -45,7 +45,7 @@ use fieldguide::control::backstepping::{
 use fieldguide::control::ControlLaw;
 use fieldguide::error::finite;
 use fieldguide::geometry::carry::{moved_lateral, moved_line_error, pose_in_scan_frame, straight};
-use fieldguide::geometry::fit::{fit_line, fit_parabola, LineFit, ParabolaFit};
+use fieldguide::geometry::fit::{fit_line, fit_line_weighted, fit_parabola, LineFit, ParabolaFit};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::geometry::units::wrap_angle;
 use fieldguide::guidance::{
@@ -80,9 +80,12 @@ use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams,
 use fieldguide::perception::rows::filter::{
     side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig, RowFilter,
 };
+use fieldguide::perception::rows::points::{merge_runs, scan_points, Points, RowPoint};
+use fieldguide::perception::rows::ruby::{Ruby, RubyConfig, RubyParams, Variant};
 use fieldguide::perception::rows::spacing::{
     closest_pair, row_distance, SpacingConfig, SpacingEstimator,
 };
+use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
 use fieldguide::perception::{
     AnyDetector, AnyDetectorConfig, AnyLine, Better, Detection, Detector, HeldLine,
     QualityThresholds, RangeLimits, Scan, Verdict,
@@ -130,6 +133,19 @@ fn all_finite<T: Debug>(what: &str, value: &T) {
     if non_finite {
         let shown: String = text.chars().take(600).collect();
         panic!("{what} gave a non-finite value: {shown}");
+    }
+}
+
+/// Asserts that an error names a requirement, as `spec/` spells them
+/// (upper-case words joined by hyphens).
+fn names_a_requirement<T: Debug>(what: &str, result: &Result<T, Precondition>) {
+    if let Err(e) = result {
+        let id = e.requirement;
+        let spelt = id.contains('-')
+            && id
+                .chars()
+                .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '-');
+        assert!(spelt, "{what} gave an error naming no requirement: {e:?}");
     }
 }
 
@@ -399,10 +415,14 @@ proptest! {
     fn least_squares_fits(
         xy in prop::collection::vec((near(10.0), near(10.0)), 0..12),
         coefficients in (raw(), raw(), raw()), x in raw(), p in point::<Robot>(),
+        weights in prop::collection::vec(prop_oneof![3 => 0.0..10.0_f64, 1 => raw()], 0..12),
     ) {
         let points: Vec<Point2<Robot>> =
             xy.iter().map(|&(x, y)| Point2::new(x, y).unwrap()).collect();
         check!("geometry::fit::fit_line", fit_line(points.iter()));
+        let weighted = check!("geometry::fit::fit_line_weighted", fit_line_weighted(points.iter().zip(weights.iter().copied())));
+        names_a_requirement("fit_line_weighted", &weighted);
+        check!("geometry::fit::fit_line_weighted", fit_line_weighted(points.iter().map(|q| (q, 1.0))));
         check!("geometry::fit::fit_parabola", fit_parabola(points.iter()));
         let (a, b, c) = coefficients;
         let lines = [LineFit { a, b }, fit_line(points.iter()).unwrap_or(LineFit { a: 0.5, b: 1.0 })];
@@ -1063,7 +1083,7 @@ proptest! {
 
     #[test]
     fn rows_initialisation_and_filter(
-        spacing in (raw(), raw(), 0..12_usize, 0..10_usize),
+        spacing in (raw(), raw(), 0..12_usize, 0..10_usize), range in (meters(), meters()),
         filtering in (raw(), raw(), 0..18_usize, 0..4_u32, meters()),
         lines in prop::collection::vec((raw(), meters()), 0..10),
         k in 0..20_usize, scans in 1..4_usize,
@@ -1075,6 +1095,10 @@ proptest! {
         // Initialisation.
         check!("perception::rows::spacing::SpacingConfig::new", SpacingConfig::new(spacing.0, spacing.1, spacing.2, spacing.3));
         let config = SpacingConfig::new(spacing.0, spacing.1, spacing.2, spacing.3).unwrap_or_default();
+        let ranged = check!("perception::rows::spacing::SpacingConfig::with_distance_range", config.with_distance_range(range.0, range.1));
+        names_a_requirement("with_distance_range", &ranged);
+        let config = ranged.unwrap_or(config);
+        check!("perception::rows::spacing::SpacingConfig::distance_range", config.distance_range());
         check!("perception::rows::spacing::SpacingConfig::max_slope", config.max_slope());
         check!("perception::rows::spacing::SpacingConfig::equidistance", config.equidistance());
         check!("perception::rows::spacing::SpacingConfig::estimates", config.estimates());
@@ -1118,6 +1142,177 @@ proptest! {
             check!("perception::rows::filter::RowFilter::misses", filter.misses());
             check!("perception::rows::filter::RowFilter::is_lost", filter.is_lost());
             check!("perception::rows::filter::RowFilter::sides", filter.sides());
+        }
+    }
+}
+
+// ---------------------------------------------------------------- rows: points, line finder, detector
+
+fn variant() -> impl Strategy<Value = Variant> {
+    prop::sample::select(Variant::ALL.to_vec())
+}
+
+/// The line finder's constants: the authors' for a variant, or every one
+/// drawn (small iteration counts, so that a case stays quick).
+fn ruby_params() -> BoxedStrategy<RubyParams> {
+    let drawn = (
+        (
+            raw(),
+            raw(),
+            meters(),
+            meters(),
+            raw(),
+            meters(),
+            raw(),
+            raw(),
+        ),
+        (
+            raw(),
+            any::<u8>(),
+            0..4_u16,
+            0..50_u16,
+            raw(),
+            meters(),
+            0..6_u8,
+        ),
+    );
+    (variant(), any::<u64>(), prop::option::of(drawn))
+        .prop_map(|(variant, seed, drawn)| {
+            let authors = RubyParams {
+                seed,
+                ..RubyParams::authors(variant)
+            };
+            let Some((
+                (rho, lambda, zeta, outlier, beta, same, alpha, tau),
+                (kept, min_kept, iterations, models, until, merge, rounds),
+            )) = drawn
+            else {
+                return authors;
+            };
+            RubyParams {
+                outlier_energy: rho,
+                neighbour_penalty: lambda,
+                neighbour_scale: zeta,
+                outlier_distance: outlier,
+                parallel_slope: beta,
+                same_intercept: same,
+                alpha,
+                fitness_weight: tau,
+                kept_share: kept,
+                min_kept,
+                iterations,
+                models_per_iteration: models,
+                search_until: until,
+                merge_distance: merge,
+                fit_rounds: rounds,
+                ..authors
+            }
+        })
+        .boxed()
+}
+
+fn sensor_mount() -> BoxedStrategy<Transform2<Sensor, Robot>> {
+    (near(2.0), near(2.0), near(4.0))
+        .prop_map(|(x, y, h)| {
+            Transform2::new(x, y, h).unwrap_or(Transform2::new(0.3, 0.0, 0.0).unwrap())
+        })
+        .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn rows_points_and_line_finder(
+        v in variant(), name in prop_oneof![Just(String::from("RGOP")), Just(String::from("rgoppni")), "[A-Za-z]{0,8}"],
+        params in ruby_params(), parts in scan_parts(64), limits in limits(), mount in sensor_mount(),
+        merge in meters(), carried in prop::collection::vec((raw(), meters()), 0..10),
+        xy in prop::collection::vec((near(10.0), near(10.0)), 0..40), scans in 1..4_usize,
+    ) {
+        check!("perception::rows::ruby::Variant::name", v.name());
+        check!("perception::rows::ruby::Variant::from_name", Variant::from_name(&name));
+        prop_assert_eq!(Variant::from_name(v.name()), Some(v));
+        check!("perception::rows::ruby::Variant::genetic", v.genetic());
+        check!("perception::rows::ruby::Variant::one_point", v.one_point());
+        check!("perception::rows::ruby::Variant::split_sides", v.split_sides());
+        check!("perception::rows::ruby::Variant::shared_points", v.shared_points());
+        check!("perception::rows::ruby::RubyParams::authors", RubyParams::authors(v));
+
+        // The scan's points and Z*.
+        let (start, increment, ranges) = parts;
+        let scan = Scan { start, increment, ranges: &ranges, limits };
+        let mut points: Points<64> = Points::new();
+        let gathered = check!("perception::rows::points::scan_points", scan_points(&scan, &mount, &mut points));
+        names_a_requirement("scan_points", &gathered);
+        all_finite("scan_points' points", &points);
+        check!("perception::rows::points::merge_runs", { merge_runs(&mut points, merge); points.clone() });
+        let mut drawn: Points<64> = xy
+            .iter()
+            .map(|&(x, y)| RowPoint { position: Point2::new(x, y).unwrap(), returns: 1 })
+            .collect();
+        check!("perception::rows::points::merge_runs", { merge_runs(&mut drawn, merge); drawn.clone() });
+
+        // The line finder, on the scan's points and on points drawn anywhere.
+        let config = check!("perception::rows::ruby::RubyConfig::new", RubyConfig::new(params));
+        names_a_requirement("RubyConfig::new", &config);
+        let config = config.unwrap_or(RubyConfig::new(RubyParams::authors(v)).unwrap());
+        check!("perception::rows::ruby::RubyConfig::params", config.params());
+        let mut ruby = check!("perception::rows::ruby::Ruby::new", Ruby::<64>::new(config));
+        check!("perception::rows::ruby::Ruby::config", ruby.config());
+        let lines: Vec<RowLine> = carried
+            .iter()
+            .map(|&(a, b)| RowLine::new(a, b).unwrap_or(RowLine::new(0.0, b).unwrap()))
+            .collect();
+        for _ in 0..scans {
+            check!("perception::rows::ruby::Ruby::find", ruby.find(&points));
+            check!("perception::rows::ruby::Ruby::models", ruby.models());
+            check!("perception::rows::ruby::Ruby::carry", { ruby.carry(&lines); ruby.models().to_vec() });
+            check!("perception::rows::ruby::Ruby::find", ruby.find(&drawn));
+        }
+        check!("perception::rows::ruby::Ruby::reset", { ruby.reset(); ruby.models().to_vec() });
+        prop_assert!(ruby.models().is_empty());
+    }
+
+    #[test]
+    fn rows_detector(
+        v in variant(), params in ruby_params(), mounts in (sensor_mount(), sensor_mount(), any::<bool>()),
+        still in meters(), min_support in 0..8_usize, count in 0..4_usize,
+        parts in scan_parts(64), odometry in prop::collection::vec(pose::<Odom>(), 1..14),
+    ) {
+        let (first, second, two) = mounts;
+        let authors = check!("perception::rows::RowsParams::authors", RowsParams::authors(v, first));
+        let mut p = if two {
+            check!("perception::rows::RowsParams::with_second", authors.with_second(second))
+        } else {
+            authors
+        };
+        p.ruby = params;
+        p.still = still;
+        p.min_support = min_support;
+        let config = check!("perception::rows::RowsConfig::new", RowsConfig::new(p));
+        names_a_requirement("RowsConfig::new", &config);
+        let config = config.unwrap_or(RowsConfig::new(authors).unwrap());
+        check!("perception::rows::RowsConfig::params", config.params());
+        let mut detector = check!("perception::rows::RowsDetector::new", RowsDetector::<64>::new(config));
+        let mut through_trait = check!("perception::detector::Detector::configure", RowsDetector::<64>::configure(&config)).unwrap();
+        let (start, increment, ranges) = parts;
+        let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };
+        // Most ticks with one scan per LiDAR, the last with `count` scans.
+        let lidars = config.params().mounts.iter().flatten().count();
+        for (k, odom) in odometry.iter().enumerate() {
+            let n = if k + 1 == odometry.len() { count } else { lidars };
+            let scans = vec![scan; n];
+            let seen = check!("perception::rows::RowsDetector::observe_scans", detector.observe_scans(&scans, odom));
+            names_a_requirement("observe_scans", &seen);
+            if n != lidars {
+                prop_assert_eq!(seen.unwrap_err().requirement, "ROWS-MOUNTS");
+            }
+            let one = check!("perception::detector::Detector::observe", through_trait.observe(&scan, odom));
+            names_a_requirement("Detector::observe", &one);
+            check!("perception::rows::RowsDetector::line_finder", detector.line_finder().models());
+            check!("perception::rows::RowsDetector::points", detector.points());
+            check!("perception::rows::RowsDetector::row_distance", detector.row_distance());
+            check!("perception::rows::RowsDetector::rows", detector.rows());
         }
     }
 }
