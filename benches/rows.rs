@@ -18,7 +18,8 @@
 )]
 
 use core::hint::black_box;
-use std::time::{Duration, Instant};
+use core::time::Duration;
+use std::time::Instant;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use fieldguide::perception::rows::points::{merge_runs, scan_points, Points};

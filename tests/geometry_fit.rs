@@ -383,3 +383,66 @@ proptest! {
         }
     }
 }
+
+//= spec/geometry.md#fit-weights-weighted-least-squares-line
+//= type=test
+//# `fit_line_weighted` MUST return the coefficients (a, b) that minimise
+//# Σ w (p_y − a p_x − b)² over the given points and weights, and MUST
+//# return the `FIT-WEIGHTS` error when a weight is not finite and > 0.
+#[test]
+fn weighted_line_by_hand() {
+    use fieldguide::geometry::fit::fit_line_weighted;
+    // Weighted normal equations solved by hand: points (0, 0), (1, 1), (2, 0)
+    // with weights 1, 2, 1 give the weighted means x̄ = 1, ȳ = 0.5 and
+    // Σ w (x − x̄)(y − ȳ) = 0: the line y = 0.5.
+    let pts = [rp(0.0, 0.0), rp(1.0, 1.0), rp(2.0, 0.0)];
+    let f = fit_line_weighted(pts.iter().zip([1.0, 2.0, 1.0])).unwrap();
+    assert!(close(f.a, 0.0, 1e-12) && close(f.b, 0.5, 1e-12), "{f:?}");
+    // Heavier weight on the last point tilts the line towards it: the
+    // weighted SSE is below that of the unweighted fit, by the definition.
+    let w = [1.0, 1.0, 10.0];
+    let weighted = fit_line_weighted(pts.iter().zip(w)).unwrap();
+    let plain = fit_line(&pts).unwrap();
+    let wsse = |f: &LineFit| {
+        pts.iter()
+            .zip(w)
+            .map(|(p, w)| w * (p.y() - f.a * p.x() - f.b).powi(2))
+            .sum::<f64>()
+    };
+    assert!(wsse(&weighted) < wsse(&plain));
+    // Unit weights are `fit_line`, bit for bit.
+    let unit = fit_line_weighted(pts.iter().zip([1.0; 3])).unwrap();
+    assert_eq!(
+        (unit.a.to_bits(), unit.b.to_bits()),
+        (plain.a.to_bits(), plain.b.to_bits())
+    );
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let err = fit_line_weighted(pts.iter().zip([1.0, bad, 1.0])).unwrap_err();
+        assert_eq!(err.requirement, "FIT-WEIGHTS");
+    }
+}
+
+proptest! {
+    //= spec/geometry.md#fit-weights-weighted-least-squares-line
+    //= type=test
+    //# `fit_line_weighted` MUST return the coefficients (a, b) that minimise
+    //# Σ w (p_y − a p_x − b)² over the given points and weights, and MUST
+    //# return the `FIT-WEIGHTS` error when a weight is not finite and > 0.
+    #[test]
+    fn weighted_fit_minimises_the_weighted_sse(
+        pts in prop::collection::vec((-10.0..10.0_f64, -10.0..10.0_f64, 0.01..100.0_f64), 3..30),
+        da in -0.1..0.1_f64,
+        db in -0.1..0.1_f64,
+    ) {
+        use fieldguide::geometry::fit::fit_line_weighted;
+        let points: Vec<_> = pts.iter().map(|&(x, y, _)| rp(x, y)).collect();
+        let weights: Vec<f64> = pts.iter().map(|p| p.2).collect();
+        if let Ok(f) = fit_line_weighted(points.iter().zip(weights.iter().copied())) {
+            let wsse = |a: f64, b: f64| {
+                points.iter().zip(&weights).map(|(p, w)| w * (p.y() - a * p.x() - b).powi(2)).sum::<f64>()
+            };
+            let best = wsse(f.a, f.b);
+            prop_assert!(best <= wsse(f.a + da, f.b + db) * (1.0 + 1e-9) + 1e-9);
+        }
+    }
+}

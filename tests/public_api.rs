@@ -78,7 +78,8 @@ use fieldguide::perception::furrow::selection::{
 };
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams, RowLines, Rows};
 use fieldguide::perception::rows::filter::{
-    side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig, RowFilter,
+    seen_from, side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig,
+    RowFilter,
 };
 use fieldguide::perception::rows::points::{merge_runs, scan_points, Points, RowPoint};
 use fieldguide::perception::rows::ruby::{Ruby, RubyConfig, RubyParams, Variant};
@@ -1142,6 +1143,11 @@ proptest! {
             check!("perception::rows::filter::RowFilter::misses", filter.misses());
             check!("perception::rows::filter::RowFilter::is_lost", filter.is_lost());
             check!("perception::rows::filter::RowFilter::sides", filter.sides());
+            let motion = Pose2::<Robot>::new(d.get() * 0.1, -d.get() * 0.05, 0.01 * k as f64).unwrap();
+            check!("perception::rows::filter::RowFilter::move_by", { filter.move_by(&motion); filter.rows().to_vec() });
+            for line in &lines {
+                check!("perception::rows::filter::seen_from", seen_from(line, &motion));
+            }
         }
     }
 }
@@ -1267,6 +1273,11 @@ proptest! {
             check!("perception::rows::ruby::Ruby::find", ruby.find(&points));
             check!("perception::rows::ruby::Ruby::models", ruby.models());
             check!("perception::rows::ruby::Ruby::carry", { ruby.carry(&lines); ruby.models().to_vec() });
+            let motion = Pose2::<Robot>::new(0.02, -0.01, 0.005).unwrap();
+            check!("perception::rows::ruby::Ruby::move_by", {
+                ruby.move_by(|line| fieldguide::perception::rows::filter::seen_from(line, &motion));
+                ruby.models().to_vec()
+            });
             check!("perception::rows::ruby::Ruby::find", ruby.find(&drawn));
         }
         check!("perception::rows::ruby::Ruby::reset", { ruby.reset(); ruby.models().to_vec() });

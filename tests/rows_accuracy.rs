@@ -334,6 +334,10 @@ fn table_of_every_variant() {
     }
 }
 
+/// An own field: its name, its field from a seed and a spacing, the drive,
+/// and the least share of scans with both rows found, %.
+type OwnField = (&'static str, fn(u64, f64) -> FieldSpec, Drive, f64);
+
 /// Fields written apart from the built-in crops, the way a real farm
 /// differs: rows sown unevenly and not quite parallel, a faster robot
 /// weaving more, LiDARs mounted farther out, and the LiDAR blinded (dust,
@@ -355,7 +359,7 @@ fn own_fields_beyond_the_paper() {
         blind: (120, 130),
         ..PAPER
     };
-    let cases: [(&str, fn(u64, f64) -> FieldSpec, Drive, f64); 4] = [
+    let cases: [OwnField; 4] = [
         ("uneven rows", uneven, PAPER, 95.0),
         ("2.5 m/s, ±10 cm weave", crop4, fast, 95.0),
         ("LiDAR 0.8 m ahead", crop4, far, 0.0),

@@ -644,3 +644,212 @@ fn bad_input_gives_finite_lines_or_none() {
         }
     }
 }
+
+/// Points on `rows` (y = b), every `gap` m over x in [0.5, 3.5], in ray order,
+/// with a deterministic wobble of `wobble` m.
+fn flat_rows(rows: &[f64], gap: f64, wobble: f64) -> Vec<RowPoint> {
+    let lines: Vec<(f64, f64)> = rows.iter().map(|&b| (0.0, b)).collect();
+    rows_points(&lines, gap, wobble)
+}
+
+fn finder_with(variant: Variant, edit: impl Fn(&mut RubyParams)) -> Ruby<N> {
+    let mut p = RubyParams::authors(variant);
+    edit(&mut p);
+    Ruby::new(RubyConfig::new(p).unwrap())
+}
+
+//= spec/guyonneau2022.md#ruby-fitness-genetic-deletion
+//= type=test
+//# The genetic variants MUST keep the models of lowest fitness
+//# φ = (b² + τ E_L) / (n² ψ), n the model's points and ψ the models
+//# parallel to it, itself included: the kept share of the models,
+//# rounded up, and at least the configured fewest when there are as
+//# many, ties going to the lower slot; the others MUST be deleted.
+#[test]
+fn the_genetic_deletion_keeps_the_fewest_and_the_fittest() {
+    // Eight clean rows in view.
+    let rows = [2.45, 1.75, 1.05, 0.35, -0.35, -1.05, -1.75, -2.45];
+    let pts = flat_rows(&rows, 0.1, 0.004);
+    for fewest in [2_u8, 4, 8] {
+        let mut r = finder_with(Variant::Rg, |p| {
+            p.kept_share = 0.01;
+            p.min_kept = fewest;
+        });
+        for _ in 0..4 {
+            r.find(&pts);
+        }
+        // A share near zero keeps the fewest: never more models than that.
+        assert!(
+            r.models().len() <= usize::from(fewest),
+            "{fewest}: {}",
+            r.models().len()
+        );
+        // The fittest are the rows nearest the robot (b² is smallest there,
+        // and every row holds as many points).
+        if fewest == 2 {
+            for m in r.models() {
+                assert!(m.line.intercept().get().abs() < 0.5, "{m:?}");
+            }
+        }
+    }
+    // Enough kept: every row survives.
+    let mut r = finder_with(Variant::Rg, |p| p.min_kept = 8);
+    for _ in 0..6 {
+        r.find(&pts);
+    }
+    for b in rows {
+        assert!(
+            closest(r.models(), b).is_some_and(|x| (x - b).abs() < 0.01),
+            "row {b}"
+        );
+    }
+}
+
+//= spec/guyonneau2022.md#ruby-delete-deletion-by-eq-7
+//= type=test
+//# Ruby MUST delete every model with E_L / (ψ n) − α ≥ 0, n its
+//# points and ψ the models parallel to it, itself included, and every
+//# model with no point.
+#[test]
+fn ruby_deletes_by_eq_7() {
+    let pts = flat_rows(&[0.4, -0.4], 0.1, 0.01);
+    // α far below any model's mean distance: every model is deleted.
+    let mut r = finder_with(Variant::Ruby, |p| p.alpha = 1e-9);
+    for _ in 0..3 {
+        r.find(&pts);
+    }
+    assert!(r.models().is_empty(), "{:?}", r.models());
+    // The authors' α: the rows stay.
+    let mut r = finder_with(Variant::Ruby, |_| {});
+    for _ in 0..3 {
+        r.find(&pts);
+    }
+    assert!(closest(r.models(), 0.4).is_some_and(|x| (x - 0.4).abs() < 0.02));
+}
+
+//= spec/guyonneau2022.md#ruby-search-new-models-from-outliers
+//= type=test
+//# The search MUST draw three distinct outliers at random with the
+//# detector's generator, remove them from the outliers and add the
+//# least-squares line through them as a new model holding them, until the
+//# outliers left are at most the search share of those it started with,
+//# fewer than three remain, the iteration's model budget is spent or the set
+//# is full.
+#[test]
+fn seeds_are_three_outliers() {
+    let three = flat_rows(&[0.5], 1.5, 0.0);
+    assert_eq!(three.len(), 3);
+    // Three collinear points: the one seed there is, holding all three.
+    let mut r = finder_with(Variant::Rg, |_| {});
+    r.find(&three);
+    assert_eq!(r.models().len(), 1);
+    assert_eq!(r.models()[0].points, 3);
+    assert!((r.models()[0].line.intercept().get() - 0.5).abs() < 1e-9);
+    // Two points: no seed.
+    let mut r = finder_with(Variant::Rg, |_| {});
+    r.find(&three[..2]);
+    assert!(r.models().is_empty());
+    // One draw per iteration and one iteration: at most one model.
+    let pts = flat_rows(&[1.2, 0.4, -0.4, -1.2], 0.1, 0.0);
+    let mut r = finder_with(Variant::Rg, |p| {
+        p.models_per_iteration = 1;
+        p.iterations = 1;
+    });
+    r.find(&pts);
+    assert!(r.models().len() <= 1);
+}
+
+//= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
+//= type=test
+//# A model's line MUST be fitted to its points by iteratively reweighted
+//# least squares: a least-squares start (FIT-LINE), then the configured
+//# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
+//# point's residual in y to the line before.
+//= spec/guyonneau2022.md#ruby-merge-close-models-merged
+//= type=test
+//# Every model MUST be refitted by least squares to its points in each
+//# iteration's first merge pass, merged or not.
+#[test]
+fn models_are_refitted_to_their_points() {
+    use fieldguide::geometry::fit::fit_line;
+    // One noisy row and one stray point 0.15 m beside it, within the
+    // outlier distance.
+    let mut pts = flat_rows(&[0.5], 0.1, 0.01);
+    pts.push(point(2.0, 0.65));
+    let all: Vec<_> = pts.iter().map(|p| p.position).collect();
+    let lsq = fit_line(&all).unwrap();
+    // No re-weighting: the model is the least-squares line of its points.
+    let mut r = finder_with(Variant::Rg, |p| p.fit_rounds = 0);
+    for _ in 0..3 {
+        r.find(&pts);
+    }
+    let m = r.models()[0];
+    assert_eq!(m.points, pts.len());
+    assert!(
+        (m.line.slope() - lsq.a).abs() < 1e-9 && (m.line.intercept().get() - lsq.b).abs() < 1e-9
+    );
+    // Re-weighted: the stray point pulls it less.
+    let mut r = finder_with(Variant::Rg, |_| {});
+    for _ in 0..3 {
+        r.find(&pts);
+    }
+    let lad = r.models()[0].line;
+    let off = |a: f64, b: f64| (a * 2.0 + b - 0.5).abs();
+    assert!(off(lad.slope(), lad.intercept().get()) < off(lsq.a, lsq.b) / 2.0);
+}
+
+//= spec/guyonneau2022.md#ruby-seeded-expected-lines-carried-to-the-next-scan
+//= type=test
+//# Lines handed to the line finder between two calls MUST join the set the
+//# next call starts from, except a line the same as one already in it and
+//# any line beyond the set's capacity.
+#[test]
+fn carried_lines_join_the_next_start() {
+    use fieldguide::perception::furrow::lines::RowLine;
+    let row = |b: f64| RowLine::new(0.0, Meters::new(b).unwrap()).unwrap();
+    let pts = flat_rows(&[0.4, -0.4], 0.1, 0.0);
+    let mut r = finder_with(Variant::Rgop, |_| {});
+    r.find(&pts);
+    let before = r.models().len();
+    // A line the same as a model's is not added; a new one is.
+    r.carry(&[row(0.45), row(1.3)]);
+    assert_eq!(r.models().len(), before + 1);
+    // Never beyond the capacity.
+    let many: Vec<RowLine> = (0..200).map(|k| row(-50.0 + 0.5 * f64::from(k))).collect();
+    r.carry(&many);
+    assert_eq!(r.models().len(), MAX_MODELS);
+    // The next call starts from them: a carried row on real points holds them.
+    let mut r = finder_with(Variant::Rgop, |p| {
+        p.iterations = 1;
+        p.models_per_iteration = 1;
+    });
+    r.carry(&[row(0.41), row(-0.39)]);
+    let found = r.find(&pts);
+    assert!(found.start_energy < 3.0 * pts.len() as f64 / 2.0);
+    assert!(closest(r.models(), 0.4).is_some() && closest(r.models(), -0.4).is_some());
+}
+
+//= spec/guyonneau2022.md#ruby-bound-bounded-work-per-scan
+//= type=test
+//# Every loop of the line finder MUST have a bound fixed by its configuration
+//# and capacities: at most `N` points, 64 models, the configured iterations,
+//# and per iteration at most the model budget of draws, at most 65 merge
+//# passes, one pass of deletion and two of re-attachment.
+#[test]
+fn work_is_bounded_by_the_capacities() {
+    // More points than N and many models' worth of structure: the call
+    // returns, works on N points and holds at most 64 models.
+    let rows: Vec<f64> = (0..40).map(|k| -4.0 + 0.2 * f64::from(k)).collect();
+    let mut pts = flat_rows(&rows, 0.02, 0.003);
+    pts.truncate(3 * N);
+    for v in Variant::ALL {
+        let mut r = finder_with(v, |p| {
+            p.kept_share = 1.0;
+            p.models_per_iteration = u16::MAX;
+        });
+        let f = r.find(&pts);
+        assert_eq!(f.points, N.min(pts.len()));
+        assert!(r.models().len() <= MAX_MODELS);
+        assert!(f.accepted <= r.config().params().iterations);
+    }
+}

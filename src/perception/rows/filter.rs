@@ -137,8 +137,9 @@ impl FilterConfig {
         } else if k >= last {
             self.delta_max
         } else {
+            // The share first: span × k could overflow when δ_max is huge.
             let span = self.delta_max - self.delta_min;
-            self.delta_min + span * index_value(k) / index_value(last)
+            self.delta_min + span * (index_value(k) / index_value(last))
         }
     }
 }
@@ -172,6 +173,8 @@ struct Assignment {
     lines: [Option<usize>; MAX_ROWS],
     /// The first row assigned, with the smallest D: i_best.
     best: Option<usize>,
+    /// The rows in the order they were matched (increasing D).
+    order: Vec<usize, MAX_ROWS>,
 }
 
 impl Assignment {
@@ -198,6 +201,7 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
     let mut assignment = Assignment {
         lines: [None; MAX_ROWS],
         best: None,
+        order: Vec::new(),
     };
     // At most n assignments, each one pass over the n × m pairs.
     for _ in rows {
@@ -225,6 +229,7 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
         //# The best match i_best MUST be the found row whose line has the smallest D to
         //# its previous row, unless ROWS-FILTER-CONSENSUS names another.
         assignment.best.get_or_insert(i);
+        let _ = assignment.order.push(i);
     }
     assignment
 }
@@ -455,10 +460,8 @@ impl RowFilter {
         };
         let n = self.rows.len();
         // The candidates in match order: i_best first, then by row index.
-        let order = assignment
-            .best
-            .into_iter()
-            .chain((0..n).filter(|&i| Some(i) != assignment.best));
+        // The candidates in match order, i_best first.
+        let order = assignment.order.clone();
         let mut reference: Option<(usize, usize)> = None;
         for r in order {
             let votes = (0..n).filter(|&i| agree(r, i)).count();

@@ -181,7 +181,7 @@ impl RubyParams {
             search_until: 0.5,
             merge_distance: Meters(0.05),
             fit_rounds: 4,
-            seed: 0x5EED_0F_2022,
+            seed: 20_221_118,
         }
     }
 }
@@ -422,7 +422,12 @@ impl<const N: usize> ModelSet<N> {
         for (m, o) in self.masks.iter_mut().zip(other.masks.iter()).take(n) {
             *m = *o;
         }
-        for (m, o) in self.fit_masks.iter_mut().zip(other.fit_masks.iter()).take(n) {
+        for (m, o) in self
+            .fit_masks
+            .iter_mut()
+            .zip(other.fit_masks.iter())
+            .take(n)
+        {
             *m = *o;
         }
     }
@@ -448,16 +453,6 @@ impl<const N: usize> ModelSet<N> {
             }
         }
         out.get(..count).unwrap_or(&[])
-    }
-
-    /// Removes the models of `gone` and detaches their points.
-    fn remove(&mut self, gone: u64, n: usize) {
-        self.alive &= !gone;
-        self.fitted &= !gone;
-        self.moved &= !gone;
-        for m in self.masks.iter_mut().take(n) {
-            *m &= !gone;
-        }
     }
 }
 
@@ -1021,7 +1016,16 @@ fn reattach<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &Ruby
                 ((f64::INFINITY, MAX_MODELS, 0_u64), &changed_lines)
             } else {
                 let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
-                ((set.lines.get(k).map_or(f64::INFINITY, |l| l.distance(pt.position)), k, old), &changed_lines)
+                (
+                    (
+                        set.lines
+                            .get(k)
+                            .map_or(f64::INFINITY, |l| l.distance(pt.position)),
+                        k,
+                        old,
+                    ),
+                    &changed_lines,
+                )
             };
             let mut closest = start;
             for &(b, k, line) in candidates {

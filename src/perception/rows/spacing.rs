@@ -175,11 +175,16 @@ pub fn closest_pair(lines: &[RowLine], config: &SpacingConfig) -> Option<Pair<Ro
             let (b1, b2) = (left.intercept().get(), -right.intercept().get());
             let gap = b1 + b2;
             let equidistant = libm::fabs(b1 - b2) <= config.equidistance * gap;
-            if equidistant && best.is_none_or(|(g, _)| gap < g) {
-                let pair = Pair {
-                    left: *left,
-                    right: *right,
-                };
+            let pair = Pair {
+                left: *left,
+                right: *right,
+            };
+            //= spec/guyonneau2022.md#rows-spacing-range-plausible-row-distances
+            //# A pair whose d lies outside [d_min, d_max] MUST NOT be a candidate: a
+            //# pair farther out whose d lies inside may be the one found.
+            let (min, max) = config.distance_range;
+            let plausible = row_distance(&pair).is_ok_and(|d| (min..=max).contains(&d.get()));
+            if equidistant && plausible && best.is_none_or(|(g, _)| gap < g) {
                 best = Some((gap, pair));
             }
         }
@@ -249,12 +254,7 @@ impl SpacingEstimator {
         }
         let pair = closest_pair(lines, &self.config)?;
         let d = row_distance(&pair).ok()?;
-        //= spec/guyonneau2022.md#rows-spacing-range-plausible-row-distances
-        //# A pair whose d lies outside [d_min, d_max] MUST NOT count.
-        let (min, max) = self.config.distance_range;
-        if !(min..=max).contains(&d.get()) {
-            return None;
-        }
+
         let middle = 0.5 * pair.left.intercept().get() + 0.5 * pair.right.intercept().get();
         let sums = (
             self.sum_distance + d.get(),
