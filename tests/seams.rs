@@ -13,6 +13,7 @@
     clippy::float_cmp
 )]
 
+mod crop_scans;
 mod edge_support;
 mod furrow_common;
 
@@ -23,6 +24,9 @@ use fieldguide::control::ControlLaw;
 use fieldguide::model::Vehicle;
 use fieldguide::perception::edge::{EdgeConfig, EdgeDetector, EdgeDetectorConfig, Side};
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
+use fieldguide::perception::rows::ruby::Variant;
+use fieldguide::perception::rows::spacing::SpacingConfig;
+use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
 use fieldguide::perception::{
     AnyDetector, AnyDetectorConfig, Detector, HeldLine, RangeLimits, Scan, Verdict,
 };
@@ -257,11 +261,55 @@ proptest! {
     }
 
     #[test]
+    fn the_rows_detector_keeps_the_detector_contract(f in rows_frames()) {
+        // Two scans measure the row distance, whatever the odometry says,
+        // so that the frames reach the filter.
+        let mut params = RowsParams::authors(Variant::Rgop, Transform2::new(0.3, 0.0, 0.0).unwrap());
+        params.spacing = SpacingConfig::new(0.05, 0.25, 2, 4).unwrap();
+        params.still = Meters::new(10.0).unwrap();
+        check_detector::<RowsDetector<512>>(&RowsConfig::new(params).unwrap(), rows_limits(), &f)?;
+    }
+
+    #[test]
     fn the_furrow_detector_keeps_the_detector_contract(f in furrow_frames()) {
         let config = FurrowConfig::new(&furrow_params()).unwrap();
         check_detector::<FurrowDetector<512, 32>>(&config, furrow_limits(), &f)?;
         check_detector::<AnyDetector>(&AnyDetectorConfig::Furrow(config), furrow_limits(), &f)?;
     }
+}
+
+fn rows_limits() -> RangeLimits {
+    RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(4.0).unwrap()).unwrap()
+}
+
+/// A crop of four rows 0.75 m apart seen by the paper's front LiDAR from
+/// between the middle rows (`crop_scans`), the robot at `pose` along them.
+fn crop_rows(k: usize, (x, y, h): (f64, f64, f64)) -> Vec<f64> {
+    use std::sync::OnceLock;
+    static FIELD: OnceLock<crop_scans::Field> = OnceLock::new();
+    let field = FIELD.get_or_init(|| crop_scans::crop1(3, 0.75).build());
+    let start = field.between(1, 2, 2.0);
+    let robot = start.compose(&crop_scans::Pose::new(x, y, h));
+    field
+        .cast(
+            &robot,
+            &crop_scans::Mount::front(0.3),
+            &crop_scans::Lidar::paper(),
+            k as u64,
+        )
+        .ranges
+}
+
+fn rows_frames() -> impl Strategy<Value = Frames> {
+    let lidar = crop_scans::Lidar::paper();
+    // At rest for the measurement: the base scans are taken at the first pose.
+    frames(|k, _| crop_rows(k, (0.0, 0.0, 0.0)), lidar.rays).prop_map(move |mut f| {
+        if f.start == -PI {
+            f.start = lidar.angle(0);
+            f.increment = lidar.angle(1) - lidar.angle(0);
+        }
+        f
+    })
 }
 
 /// The real scans the contract is checked on do detect: the property above
@@ -464,4 +512,33 @@ fn a_pipeline_without_behaviour_slots_is_refused() {
     let e = GuidanceConfig::new(&none).unwrap_err();
     assert_eq!(e.requirement, "SW-MODES");
     assert!(GuidanceConfig::new(&two).is_ok());
+}
+
+/// The rows detector's contract scans, clean, do detect: after the two
+/// scans of its measurement it follows the rows.
+#[test]
+fn the_rows_contract_scans_are_detected_when_clean() {
+    let mut params = RowsParams::authors(Variant::Rgop, Transform2::new(0.3, 0.0, 0.0).unwrap());
+    params.spacing = SpacingConfig::new(0.05, 0.25, 2, 4).unwrap();
+    params.still = Meters::new(10.0).unwrap();
+    let mut rows = RowsDetector::<512>::configure(&RowsConfig::new(params).unwrap()).unwrap();
+    let lidar = crop_scans::Lidar::paper();
+    let mut seen = 0;
+    for k in 0..SCANS {
+        let ranges = crop_rows(k, (0.0, 0.0, 0.0));
+        let scan = Scan {
+            start: Radians::new(lidar.angle(0)).unwrap(),
+            increment: Radians::new(lidar.angle(1) - lidar.angle(0)).unwrap(),
+            ranges: &ranges,
+            limits: rows_limits(),
+        };
+        let odometry = Pose2::<Odom>::new(0.1 * k as f64, 0.0, 0.0).unwrap();
+        seen += usize::from(
+            rows.observe(&scan, &odometry)
+                .unwrap()
+                .verdict
+                .estimate_is_valid(),
+        );
+    }
+    assert!(seen >= SCANS - 3, "{seen} of {SCANS}");
 }

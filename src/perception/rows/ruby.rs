@@ -286,7 +286,12 @@ impl Line {
 
     /// ‖p − L‖, the Euclidean distance of `p` to the line (eq. 6).
     fn distance(&self, p: Point2<Robot>) -> f64 {
-        libm::fabs(self.a * p.x() + self.b - p.y()) * self.inv_norm
+        self.distance_xy(p.x(), p.y())
+    }
+
+    /// The same for the point (x, y).
+    fn distance_xy(&self, x: f64, y: f64) -> f64 {
+        libm::fabs(self.a * x + self.b - y) * self.inv_norm
     }
 
     /// The line of least absolute deviations in y through `points`, by
@@ -361,6 +366,19 @@ fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
             usize::try_from(k).ok()
         }
     })
+}
+
+/// No model: a point's slot while it is an outlier.
+const NO_SLOT: u8 = u8::MAX;
+
+/// The points' coordinates in columns and each point's closest model so
+/// far, for the re-attachment's inner loops.
+#[derive(Debug, Clone)]
+struct Columns<const N: usize> {
+    xs: [f64; N],
+    ys: [f64; N],
+    best: [f64; N],
+    slot: [u8; N],
 }
 
 /// A set of models and which points belong to each.
@@ -464,12 +482,17 @@ pub struct Ruby<const N: usize> {
     rng: Xoshiro128PlusPlus,
     models: Vec<Model, MAX_MODELS>,
     /// Working sets, kept here so a call needs no large stack frame.
-    best: ModelSet<N>,
-    candidate: ModelSet<N>,
+    /// The set kept and the candidate, by index (never moved: a swap of
+    /// two sets would copy their masks).
+    sets: [ModelSet<N>; 2],
+    /// Which of `sets` is the kept one.
+    kept: usize,
     /// w_pq of each pair of consecutive points (eq. 5).
     weights: [f64; N],
     /// One model's points, gathered for its fit.
     scratch: [Point2<Robot>; N],
+    /// The points in columns, for the re-attachment.
+    columns: Columns<N>,
 }
 
 impl<const N: usize> Ruby<N> {
@@ -493,10 +516,16 @@ impl<const N: usize> Ruby<N> {
             config,
             rng: Xoshiro128PlusPlus::seed_from_u64(config.params.seed),
             models: Vec::new(),
-            best: empty.clone(),
-            candidate: empty,
+            sets: [empty.clone(), empty],
+            kept: 0,
             weights: [0.0; N],
             scratch: [Point2::origin(); N],
+            columns: Columns {
+                xs: [0.0; N],
+                ys: [0.0; N],
+                best: [0.0; N],
+                slot: [NO_SLOT; N],
+            },
         }
     }
 
@@ -579,55 +608,67 @@ impl<const N: usize> Ruby<N> {
         let p = self.config.params;
         self.neighbour_weights(points);
 
-        self.best.alive = 0;
-        self.best.fitted = 0;
-        for m in self.best.masks.iter_mut().take(n) {
+        let (best, _) = pair(&mut self.sets, self.kept);
+        best.alive = 0;
+        best.fitted = 0;
+        for m in best.masks.iter_mut().take(n) {
             *m = 0;
         }
-        for m in self.best.fit_masks.iter_mut().take(n) {
+        for m in best.fit_masks.iter_mut().take(n) {
             *m = 0;
         }
         for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
             if let (Some(slot), Some(line)) = (
-                self.best.lines.get_mut(k),
+                best.lines.get_mut(k),
                 Line::new(m.line.slope(), m.line.intercept().get()),
             ) {
                 *slot = line;
-                self.best.alive |= bit(k);
+                best.alive |= bit(k);
             }
         }
-        self.best.moved = self.best.alive;
+        best.moved = best.alive;
+        for ((x, y), q) in self
+            .columns
+            .xs
+            .iter_mut()
+            .zip(self.columns.ys.iter_mut())
+            .zip(points)
+        {
+            (*x, *y) = (q.position.x(), q.position.y());
+        }
         // The previous lines, refitted to the points they attach on this
         // scan (RUBY-ITERATION).
-        reattach(&mut self.best, points, &p);
-        merge(&mut self.best, points, &mut self.scratch, &p);
-        let mut stats = reattach(&mut self.best, points, &p);
-        let start_energy = energy(&self.best, &stats, n, &self.weights, &p);
+        reattach(best, points, &mut self.columns, &p);
+        merge(best, points, &mut self.scratch, &p);
+        let mut stats = reattach(best, points, &mut self.columns, &p);
+        let start_energy = energy(best, &stats, n, &self.weights, &p);
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
 
         for _ in 0..p.iterations {
-            self.candidate.copy_from(&self.best, n);
-            search(&mut self.candidate, points, &mut self.rng, &p);
-            merge(&mut self.candidate, points, &mut self.scratch, &p);
-            let mut candidate_stats = reattach(&mut self.candidate, points, &p);
-            let gone = delete(&self.candidate, &candidate_stats, &p);
-            reattach_deleted(&mut self.candidate, gone, points, &mut candidate_stats, &p);
-            let e = energy(&self.candidate, &candidate_stats, n, &self.weights, &p);
+            let (best, candidate) = pair(&mut self.sets, self.kept);
+            candidate.copy_from(best, n);
+            search(candidate, points, &mut self.rng, &p);
+            merge(candidate, points, &mut self.scratch, &p);
+            let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
+            let gone = delete(candidate, &candidate_stats, &p);
+            reattach_deleted(candidate, gone, points, &mut candidate_stats, &p);
+            let e = energy(candidate, &candidate_stats, n, &self.weights, &p);
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
             //# before it MUST be discarded (Alg. 1, lines 26-27).
             if e <= best_energy {
-                core::mem::swap(&mut self.best, &mut self.candidate);
+                self.kept = 1_usize.saturating_sub(self.kept);
                 best_energy = e;
                 stats = candidate_stats;
                 accepted = accepted.saturating_add(1);
             }
         }
 
+        let (best, _) = pair(&mut self.sets, self.kept);
         self.models.clear();
-        for k in slots(self.best.alive) {
-            let line = self.best.line(k);
+        for k in slots(best.alive) {
+            let line = best.line(k);
             if let Ok(row) = Meters::new(line.b).and_then(|b| RowLine::new(line.a, b)) {
                 let _ = self.models.push(Model {
                     line: row,
@@ -657,6 +698,19 @@ impl<const N: usize> Ruby<N> {
                 _ => 0.0,
             };
         }
+    }
+}
+
+/// The kept set and the candidate among `sets`.
+fn pair<const N: usize>(
+    sets: &mut [ModelSet<N>; 2],
+    kept: usize,
+) -> (&mut ModelSet<N>, &mut ModelSet<N>) {
+    let [first, second] = sets;
+    if kept == 0 {
+        (first, second)
+    } else {
+        (second, first)
     }
 }
 
@@ -985,68 +1039,102 @@ fn reattach_deleted<const N: usize>(
 //# and MUST be an outlier when no model lies within the outlier distance;
 //# a model left with fewer than three points MUST then be removed and its
 //# points re-attached to the models left.
-fn reattach<const N: usize>(set: &mut ModelSet<N>, points: &[RowPoint], p: &RubyParams) -> Stats {
+fn reattach<const N: usize>(
+    set: &mut ModelSet<N>,
+    points: &[RowPoint],
+    cols: &mut Columns<N>,
+    p: &RubyParams,
+) -> Stats {
     let limit = p.outlier_distance.get();
-    // The alive models and those that moved, packed for the inner loops.
-    let pack = |mask: u64| {
-        let mut packed: Vec<(u64, usize, Line), MAX_MODELS> = Vec::new();
-        for k in slots(mask) {
-            let _ = packed.push((bit(k), k, set.line(k)));
-        }
-        packed
-    };
+    let n = points.len();
     let moved = set.moved & set.alive;
-    let (all, changed_lines) = (pack(set.alive), pack(moved));
-    let shared = p.variant.shared_points();
-    for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
-        let old = *m;
-        let mask = if shared {
-            // Models that did not move keep their points; the moved ones
-            // take those within the limit.
-            changed_lines
-                .iter()
-                .filter(|(_, _, line)| line.distance(pt.position) <= limit)
-                .fold(old & !moved, |acc, (b, _, _)| acc | b)
+    let mut changed: Vec<(u64, u8, Line), MAX_MODELS> = Vec::new();
+    let mut steady: Vec<(u8, Line), MAX_MODELS> = Vec::new();
+    for k in slots(set.alive) {
+        let slot = u8::try_from(k).unwrap_or(u8::MAX);
+        if moved & bit(k) != 0 {
+            let _ = changed.push((bit(k), slot, set.line(k)));
         } else {
-            // A point of a model that did not move is closest to it among
-            // the models that did not move: only the moved ones can take it.
-            let (start, candidates) = if old & moved != 0 {
-                ((f64::INFINITY, MAX_MODELS, 0_u64), &all)
-            } else if old == 0 {
-                ((f64::INFINITY, MAX_MODELS, 0_u64), &changed_lines)
-            } else {
-                let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
-                (
-                    (
-                        set.lines
-                            .get(k)
-                            .map_or(f64::INFINITY, |l| l.distance(pt.position)),
-                        k,
-                        old,
-                    ),
-                    &changed_lines,
-                )
-            };
-            let mut closest = start;
-            for &(b, k, line) in candidates {
-                let d = line.distance(pt.position);
-                // The closest, ties to the lower slot, as a scan of every
-                // model in slot order would find it.
-                if d <= limit && (d < closest.0 || (d <= closest.0 && k < closest.1)) {
-                    closest = (d, k, b);
+            let _ = steady.push((slot, set.line(k)));
+        }
+    }
+    let xy = cols.xs.iter().zip(cols.ys.iter()).take(n);
+    let mut stats = Stats::ZERO;
+    if p.variant.shared_points() {
+        // Models that did not move keep their points; the moved ones take
+        // those within the limit.
+        for m in set.masks.iter_mut().take(n) {
+            *m &= !moved;
+        }
+        for &(b, _, line) in &changed {
+            for ((&x, &y), m) in xy.clone().zip(set.masks.iter_mut()) {
+                if line.distance_xy(x, y) <= limit {
+                    *m |= b;
                 }
             }
-            closest.2
+        }
+        for ((&x, &y), &m) in xy.zip(set.masks.iter()) {
+            for k in slots(m) {
+                stats.add(k, set.line(k).distance_xy(x, y));
+            }
+        }
+    } else {
+        // A point of a model that did not move is closest to it among the
+        // models that did not move: only the moved ones can take it. The
+        // closest is the least (distance, slot), as a scan of every model
+        // in slot order finds it.
+        let closer = |d: f64, k: u8, best: f64, slot: u8| {
+            d <= limit && (d < best || (d <= best && k < slot))
         };
-        *m = mask;
-    }
-    set.moved = 0;
-    let mut stats = Stats::ZERO;
-    for (pt, &m) in points.iter().zip(set.masks.iter()) {
-        for k in slots(m) {
-            stats.add(k, set.line(k).distance(pt.position));
+        for (((&x, &y), &old), (best, slot)) in xy
+            .clone()
+            .zip(set.masks.iter())
+            .zip(cols.best.iter_mut().zip(cols.slot.iter_mut()))
+        {
+            (*best, *slot) = (f64::INFINITY, NO_SLOT);
+            if old & moved != 0 {
+                for &(k, line) in &steady {
+                    let d = line.distance_xy(x, y);
+                    if closer(d, k, *best, *slot) {
+                        (*best, *slot) = (d, k);
+                    }
+                }
+            } else if old != 0 {
+                let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
+                *best = set.line(k).distance_xy(x, y);
+                *slot = u8::try_from(k).unwrap_or(NO_SLOT);
+            }
+        }
+        // Each moved model over every point: one tight loop per model,
+        // without branches (a select per point).
+        for &(_, k, line) in &changed {
+            for ((&x, &y), (best, slot)) in xy
+                .clone()
+                .zip(cols.best.iter_mut().zip(cols.slot.iter_mut()))
+            {
+                let d = line.distance_xy(x, y);
+                let take = (d <= limit) & ((d < *best) | ((d <= *best) & (k < *slot)));
+                *best = if take { d } else { *best };
+                *slot = if take { k } else { *slot };
+            }
+        }
+        for (m, (&best, &slot)) in set
+            .masks
+            .iter_mut()
+            .zip(cols.best.iter().zip(cols.slot.iter()))
+            .take(n)
+        {
+            *m = if slot == NO_SLOT {
+                0
+            } else {
+                bit(usize::from(slot))
+            };
+            if slot != NO_SLOT {
+                stats.add(usize::from(slot), best);
+            }
         }
     }
+    set.moved = 0;
     let few = slots(set.alive)
         .filter(|&k| stats.count.get(k).copied().unwrap_or(0) < SEED_POINTS)
         .fold(0_u64, |acc, k| acc | bit(k));
