@@ -334,6 +334,48 @@ fn path_of(points: &[Point2<World>]) -> SmallPath {
     })
 }
 
+// ---------------------------------------------------------------- fuzzy control
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+
+    #[test]
+    fn fuzzy_engine_and_row_controller(
+        v in raw(), w in raw(), f in fin(), g in fin(), h in fin(), k in 0_u16..300,
+    ) {
+        use fieldguide::control::fuzzy::{Defuzzifier, Engine, Rule, Term, Variable, MAX_VARIABLES};
+        use fieldguide::control::fuzzy_rows::{orientation, position, FuzzyRowController, Orientation};
+        use fieldguide::perception::furrow::selection::Pair;
+        let (lo, hi) = (f.min(g), f.max(g));
+        let tri = Term::Triangle { left: lo, peak: 0.5 * lo + 0.5 * hi, right: hi };
+        let ramp = Term::Ramp { start: f, end: g };
+        check!("control::fuzzy::Term::membership", tri.membership(v));
+        check!("control::fuzzy::Term::membership", ramp.membership(w));
+        let variable = Variable { min: lo, max: hi, terms: [tri, ramp].into_iter().collect() };
+        let mut rule = Rule { when: [None; MAX_VARIABLES], then: [None; MAX_VARIABLES] };
+        (rule.when[0], rule.then[0]) = (Some(0), Some(1));
+        let engine = check!("control::fuzzy::Engine::new", Engine::new(core::slice::from_ref(&variable), core::slice::from_ref(&variable), &[rule], &[h]));
+        if let Ok(e) = engine {
+            for d in [Defuzzifier::Exact, Defuzzifier::Sampled { resolution: k }] {
+                check!("control::fuzzy::Engine::evaluate", e.evaluate(&[v], d));
+            }
+        }
+        let speed = MetersPerSecond::new(h.abs().min(1e6)).unwrap();
+        for how in [Orientation::SidesMeanSlope, Orientation::AllRowsMeanAngle] {
+            let c = check!("control::fuzzy_rows::FuzzyRowController::authors", FuzzyRowController::authors(how, Defuzzifier::Exact, speed));
+            let Ok(c) = c else { continue };
+            check!("control::fuzzy_rows::FuzzyRowController::engine", c.engine());
+            check!("control::fuzzy_rows::FuzzyRowController::wheels", c.wheels(v, w));
+            let (Ok(a), Ok(b1), Ok(b2)) = (RowLine::new(f.clamp(-1e6, 1e6), m(0.0)), Meters::new(g), Meters::new(-h)) else { continue };
+            let (Ok(l), Ok(r)) = (RowLine::new(a.slope(), b1), RowLine::new(a.slope(), b2)) else { continue };
+            let sides = Pair { left: l, right: r };
+            check!("control::fuzzy_rows::orientation", orientation(&sides, &[l, r], how));
+            check!("control::fuzzy_rows::position", position(&sides));
+            check!("control::fuzzy_rows::FuzzyRowController::command", c.command(&sides, &[l, r]));
+        }
+    }
+}
+
 // ---------------------------------------------------------------- units, errors, frames
 
 proptest! {

@@ -8,6 +8,8 @@
 //! convention: [`backstepping`] for Pierre 2022's.
 
 pub mod backstepping;
+pub mod fuzzy;
+pub mod fuzzy_rows;
 
 use crate::error::Precondition;
 use crate::geometry::tracking::TrackingError;
