@@ -26,6 +26,7 @@
     clippy::expect_used
 )]
 
+mod crop_scans;
 mod edge_support;
 mod furrow_common;
 
@@ -714,6 +715,121 @@ fn fuzz_furrow_detector() {
                 }
             }
             assert!(detector.accumulated() <= n);
+        }
+    });
+}
+
+// ------------------------------------------------------ the rows detector --
+
+/// One crop's drive: the front and back ranges of each scan.
+type Drive = Vec<(Vec<f64>, Vec<f64>)>;
+
+/// Real front and back scans of the paper's crops (`crop_scans`), the robot
+/// between the middle rows, [`SEQUENCE`] per crop, 2.5 cm apart.
+fn crop_drives() -> &'static [Drive] {
+    static DRIVES: OnceLock<Vec<Drive>> = OnceLock::new();
+    DRIVES.get_or_init(|| {
+        (1..=4)
+            .map(|n| {
+                let field = crop_scans::crop(n, 7, 0.75).build();
+                let lidar = crop_scans::Lidar::paper();
+                (0..SEQUENCE)
+                    .map(|k| {
+                        let robot = field.between(1, 2, 2.0 + 0.025 * k as f64);
+                        let front =
+                            field.cast(&robot, &crop_scans::Mount::front(0.3), &lidar, k as u64);
+                        let back = field.cast(
+                            &robot,
+                            &crop_scans::Mount::back(0.3),
+                            &lidar,
+                            k as u64 + 99,
+                        );
+                        (front.ranges, back.ranges)
+                    })
+                    .collect()
+            })
+            .collect()
+    })
+}
+
+#[derive(Debug, Clone, TypeGenerator)]
+struct RowsCase {
+    variant: u8,
+    both_lidars: bool,
+    crop: u8,
+    #[generator(produce_with::<Vec<(ScanCase, ScanCase, PoseCase)>>().len(1usize..=SEQUENCE))]
+    scans: Vec<(ScanCase, ScanCase, PoseCase)>,
+}
+
+/// The rows detector (any variant, one LiDAR or two) over a sequence of
+/// real crop scans with faults and distortions, and any odometry: a
+/// detection holds finite values only, the filtered rows and the row
+/// distance are finite, and a refusal names ROWS-MOUNTS or LIB-FINITE.
+#[test]
+fn fuzz_rows_detector() {
+    use fieldguide::perception::rows::ruby::Variant;
+    use fieldguide::perception::rows::spacing::SpacingConfig;
+    use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
+    check!().with_type::<RowsCase>().for_each(|case| {
+        let variant = Variant::ALL[usize::from(case.variant) % Variant::ALL.len()];
+        let front = Transform2::new(0.3, 0.0, 0.0).unwrap();
+        let mut params = RowsParams::authors(variant, front);
+        if case.both_lidars {
+            params = params.with_second(Transform2::new(-0.3, 0.0, PI).unwrap());
+        }
+        // Two scans measure the row distance, so that short sequences reach
+        // the filter; any odometry is taken as at rest.
+        params.spacing = SpacingConfig::new(0.05, 0.25, 2, 4).unwrap();
+        params.still = m(1e6);
+        let mut detector = RowsDetector::<1024>::new(RowsConfig::new(params).unwrap());
+        let lidar = crop_scans::Lidar::paper();
+        let real = (
+            lidar.angle(0),
+            lidar.angle(1) - lidar.angle(0),
+            RangeLimits::new(m(0.1), m(4.0)).unwrap(),
+        );
+        let drive = &crop_drives()[usize::from(case.crop) % 4];
+        for (k, (f, b, pose)) in case.scans.iter().enumerate() {
+            let (fr, br) = &drive[k % drive.len()];
+            let (fo, bo) = (OwnedScan::new(f, fr, real), OwnedScan::new(b, br, real));
+            let (Some(fs), Some(bs)) = (fo.scan(), bo.scan()) else {
+                continue;
+            };
+            let Some(odometry) = pose.pose::<Odom>((0.0, 0.0, 0.0)) else {
+                continue;
+            };
+            let scans = if case.both_lidars {
+                vec![fs, bs]
+            } else {
+                vec![fs]
+            };
+            match detector.observe_scans(&scans, &odometry) {
+                Ok(out) => {
+                    let d = out.detection;
+                    assert_eq!(d.error.is_none(), d.verdict == Verdict::Absent);
+                    assert_eq!(d.line.is_none(), d.verdict == Verdict::Absent);
+                    if let Some(e) = &d.error {
+                        assert_finite_error(e);
+                    }
+                    if let Some(lines) = &d.line {
+                        assert!(row_lines_finite(lines), "{lines:?}");
+                    }
+                    if let Some(q) = d.quality {
+                        assert!(q.is_finite() && (0.0..=8.0).contains(&q), "quality {q}");
+                    }
+                    assert!(out.found.energy.is_finite());
+                    assert!(out.gathered.kept <= 1024);
+                }
+                Err(e) => assert_refusal(&e, &["LIB-FINITE"]),
+            }
+            if let Some(rows) = detector.rows() {
+                assert!(rows
+                    .iter()
+                    .all(|r| r.slope().is_finite() && r.intercept().get().is_finite()));
+            }
+            if let Some(d) = detector.row_distance() {
+                assert!(d.get().is_finite() && d.get() > 0.0);
+            }
         }
     });
 }
