@@ -26,7 +26,7 @@ use fieldguide::perception::rows::points::{merge_runs, scan_points, Points};
 use fieldguide::perception::rows::ruby::{RubyParams, Variant};
 use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
 use fieldguide::perception::Detector;
-use fieldguide::{Odom, Pose2, Transform2};
+use fieldguide::{Odom, Pose2};
 
 #[path = "../tests/crop_scans/mod.rs"]
 mod crop_scans;
@@ -49,10 +49,7 @@ fn drive(variant: Variant, n: usize) -> (Rows, Vec<(RawScan, Pose2<Odom>)>, f64)
     let field = spec.build();
     let mount = Mount::front(0.3);
     let lidar = Lidar::paper();
-    let params = RowsParams::authors(
-        variant,
-        Transform2::new(mount.x, mount.y, mount.yaw).unwrap(),
-    );
+    let params = RowsParams::authors(variant, mount.transform());
     let mut detector = Rows::new(RowsConfig::new(params).unwrap());
     let scan_at = |k: usize| {
         let along = 1.0 + 0.025 * k.saturating_sub(STILL) as f64;
@@ -127,7 +124,7 @@ fn rows(c: &mut Criterion) {
     // one-point merge), for the line finder's own cost.
     let (_, scans, _) = drive(Variant::Rgop, 4);
     let mount = Mount::front(0.3);
-    let mount = Transform2::new(mount.x, mount.y, mount.yaw).unwrap();
+    let mount = mount.transform();
     let mut k = 0;
     group.bench_function("crop4/points_and_z_star", |b| {
         let mut points = Points::<512>::new();

@@ -31,7 +31,7 @@ use core::f64::consts::TAU;
 use crop_scans::{crop, crop4, uneven, Field, FieldSpec, Lidar, Line, Mount, Pose};
 use fieldguide::perception::rows::ruby::Variant;
 use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
-use fieldguide::{Odom, Pose2, Transform2};
+use fieldguide::{Odom, Pose2};
 
 /// The most scans the robot waits at rest for the row distance (the
 /// initialisation averages 10 scans that show a pair of rows).
@@ -105,10 +105,6 @@ impl Tally {
     }
 }
 
-fn mount(m: &Mount) -> Transform2<fieldguide::Sensor, fieldguide::Robot> {
-    Transform2::new(m.x, m.y, m.yaw).unwrap()
-}
-
 /// The robot's pose `k` scans into the drive, between rows 1 and 2: the
 /// weave ramps in over the first metre, so the robot starts parallel to the
 /// rows and midway between them, as the paper's initialisation assumes.
@@ -159,9 +155,9 @@ fn drive(variant: Variant, spec: &FieldSpec, drive: &Drive, seed: u64, both_lida
     } else {
         vec![Mount::front(drive.mount)]
     };
-    let mut params = RowsParams::authors(variant, mount(&mounts[0]));
+    let mut params = RowsParams::authors(variant, mounts[0].transform());
     if both_lidars {
-        params = params.with_second(mount(&mounts[1]));
+        params = params.with_second(mounts[1].transform());
     }
     params.ruby.seed = seed;
     let mut detector: RowsDetector<1024> = RowsDetector::new(RowsConfig::new(params).unwrap());

@@ -2,7 +2,8 @@
 //! ROWS-DETECTOR, ROWS-MOUNTS, ROWS-INIT-STILL, ROWS-SUPPORT): the row
 //! distance measured at rest, then the rows followed; moving while it
 //! measures, blind scans and a lost filter; configurations and ticks
-//! refused; and the Detector trait's contract on any scan.
+//! refused. The Detector trait's contract on any scan is checked with the
+//! other detectors' in `tests/seams.rs` and fuzzed in `tests/fuzz_scans.rs`.
 //!
 //! Scans are ray-cast from exact crop fields (`crop_scans`): five rows of
 //! stems 0.75 m apart, the robot midway between rows 1 and 2 (0-based),
@@ -23,11 +24,10 @@ mod crop_scans;
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use crop_scans::{crop1, Field, FieldSpec, Lidar, Mount, Pose, RawScan, STEM_RADIUS};
-use fieldguide::perception::rows::ruby::{RubyParams, Variant};
+use fieldguide::perception::rows::ruby::Variant;
 use fieldguide::perception::rows::{RowsConfig, RowsDetection, RowsDetector, RowsParams};
 use fieldguide::perception::{Detector, HeldLine, RangeLimits, Scan, Verdict};
-use fieldguide::{Meters, Odom, Pose2, Radians, Robot, Sensor, Transform2};
-use proptest::prelude::*;
+use fieldguide::{Meters, Odom, Pose2, Radians, Transform2};
 
 /// The row distance of the crops, m.
 const SPACING: f64 = 0.75;
@@ -38,16 +38,12 @@ const K: usize = 20;
 
 type Rows = RowsDetector<512>;
 
-fn mount(m: &Mount) -> Transform2<Sensor, Robot> {
-    Transform2::new(m.x, m.y, m.yaw).unwrap()
-}
-
 fn front() -> Mount {
     Mount::front(0.3)
 }
 
 fn params() -> RowsParams {
-    RowsParams::authors(Variant::Rgop, mount(&front()))
+    RowsParams::authors(Variant::Rgop, front().transform())
 }
 
 fn detector() -> Rows {
@@ -214,7 +210,7 @@ fn points_of_each_lidar_in_the_order_of_the_mounts() {
     let raw = cast(&field, &robot(&field, 2.0, 0.0));
     let count = |variant| {
         let mut d =
-            Rows::new(RowsConfig::new(RowsParams::authors(variant, mount(&front()))).unwrap());
+            Rows::new(RowsConfig::new(RowsParams::authors(variant, front().transform())).unwrap());
         let out = d.observe_scans(&[raw.scan()], &at).unwrap();
         (d.points().len(), out.gathered.kept)
     };
@@ -412,7 +408,7 @@ fn one_scan_per_lidar() {
     }
     assert!(one.observe_scans(&[scan], &odom).is_ok());
     let mut two =
-        Rows::new(RowsConfig::new(params().with_second(mount(&Mount::back(0.3)))).unwrap());
+        Rows::new(RowsConfig::new(params().with_second(Mount::back(0.3).transform())).unwrap());
     for scans in [&[][..], &[scan][..], &[scan, scan, scan][..]] {
         let e = two.observe_scans(scans, &odom).unwrap_err();
         assert_eq!(e.requirement, "ROWS-MOUNTS", "{} scans", scans.len());
@@ -457,7 +453,7 @@ fn the_detector_trait_for_one_lidar() {
 //# error naming ROWS-MOUNTS.
 #[test]
 fn a_configuration_without_a_first_mount_is_refused() {
-    let back = mount(&Mount::back(0.3));
+    let back = Mount::back(0.3).transform();
     for mounts in [[None, None], [None, Some(back)]] {
         let p = RowsParams { mounts, ..params() };
         assert_eq!(RowsConfig::new(p).unwrap_err().requirement, "ROWS-MOUNTS");
@@ -559,172 +555,4 @@ fn lines_of_too_few_points_are_not_rows() {
     };
     let mut d = Rows::new(RowsConfig::new(p).unwrap());
     measure(&mut d, &field, &at, 3 * N);
-}
-
-// ------------------------------------------------------------ the trait's contract
-
-/// A range as a faulty or hostile LiDAR may send it.
-fn wild_range() -> impl Strategy<Value = f64> {
-    prop_oneof![
-        4 => 0.0..6.0_f64,
-        1 => Just(f64::NAN),
-        1 => Just(f64::INFINITY),
-        1 => Just(f64::NEG_INFINITY),
-        1 => Just(-0.0_f64),
-        1 => -10.0..0.0_f64,
-        1 => Just(f64::MIN_POSITIVE / 4.0),
-        1 => any::<f64>(),
-        1 => prop_oneof![Just(1e300), Just(-1e300), Just(f64::MAX)],
-    ]
-}
-
-/// One tick's input: the crop's scan at a pose near the start (some rays
-/// replaced by anything) or anything throughout, and the odometry pose.
-#[derive(Debug, Clone)]
-struct Tick {
-    lateral: f64,
-    faults: Vec<(usize, f64)>,
-    wild: Option<Vec<f64>>,
-    odometry: (f64, f64, f64),
-}
-
-fn ticks() -> impl Strategy<Value = Vec<Tick>> {
-    let tick = |rest: bool| {
-        (
-            -0.1..0.1_f64,
-            prop::collection::vec((0..360_usize, wild_range()), 0..if rest { 12 } else { 40 }),
-            if rest {
-                Just(None).boxed()
-            } else {
-                prop_oneof![3 => Just(None), 1 => prop::collection::vec(wild_range(), 0..400).prop_map(Some)].boxed()
-            },
-            if rest {
-                Just((0.0, 0.0, 0.0)).boxed()
-            } else {
-                prop_oneof![
-                    3 => Just((0.0, 0.0, 0.0)),
-                    1 => (-0.2..0.2_f64, -0.2..0.2_f64, -0.2..0.2_f64),
-                    1 => (
-                        prop_oneof![Just(1e300), Just(-1e300), -1e6..1e6_f64],
-                        prop_oneof![Just(1e300), Just(-1e300), -1e6..1e6_f64],
-                        -1e6..1e6_f64,
-                    ),
-                ]
-                .boxed()
-            },
-        )
-            .prop_map(|(lateral, faults, wild, odometry)| Tick {
-                lateral,
-                faults,
-                wild,
-                odometry,
-            })
-    };
-    // At rest long enough to measure the row distance (with a few faulty
-    // rays), then anything.
-    (
-        prop::collection::vec(tick(true), N..N + 3),
-        prop::collection::vec(tick(false), 0..16),
-    )
-        .prop_map(|(mut rest, then)| {
-            rest.extend(then);
-            rest
-        })
-}
-
-/// The scan's first angle and increment: the LiDAR's, or anything.
-fn angles() -> impl Strategy<Value = Option<(f64, f64)>> {
-    prop_oneof![
-        4 => Just(None),
-        1 => (-10.0..10.0_f64, -1.0..1.0_f64).prop_map(Some),
-        1 => (prop_oneof![Just(1e300), Just(-1e300), Just(f64::MAX)], prop_oneof![Just(1e300), Just(-1e300), Just(f64::MAX), Just(0.0)]).prop_map(Some),
-    ]
-}
-
-/// A pose the held line is moved to, in its scan's robot frame.
-fn moves() -> impl Strategy<Value = Vec<(f64, f64, f64)>> {
-    prop::collection::vec(
-        prop_oneof![
-            4 => (-5.0..5.0_f64, -5.0..5.0_f64, -PI..PI),
-            1 => (
-                prop_oneof![Just(1e300), Just(-1e300), -1e6..1e6_f64],
-                prop_oneof![Just(1e300), Just(-1e300), -1e6..1e6_f64],
-                -1e6..1e6_f64,
-            ),
-        ],
-        1..5,
-    )
-}
-
-//= spec/guyonneau2022.md#rows-detector-one-tick-of-the-rows-detector
-//= type=test
-//# Each tick MUST gather the points of every configured LiDAR's scan, in the
-//# order of the mounts, merge them into Z* for the one-point variants, run
-//# the line finder on them, and then either count the lines towards the row
-//# distance or pass them to the row filter, whose verdict and tracking error
-//# are the tick's.
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
-
-    /// GD-DETECTOR for the rows detector through the `Detector` trait: any
-    /// scan gives a detection or an error, never a panic; a detection has a
-    /// finite error and a line exactly when its verdict is not Absent, and a
-    /// finite quality when it has one; the held line moved anywhere gives a
-    /// finite error or an error.
-    #[test]
-    fn any_scan_gives_a_detection_or_an_error(
-        variant in prop::sample::select(Variant::ALL.to_vec()),
-        ticks in ticks(),
-        angles in angles(),
-        moves in moves(),
-        seed in any::<u64>(),
-    ) {
-        let field = field();
-        let mut p = params();
-        p.ruby = RubyParams { seed, ..RubyParams::authors(variant) };
-        let mut d = <Rows as Detector>::configure(&RowsConfig::new(p).unwrap()).unwrap();
-        let lidar = Lidar::paper();
-        let (start, increment) = angles.unwrap_or((lidar.start, lidar.increment));
-        let (Ok(start), Ok(increment)) = (Radians::new(start), Radians::new(increment)) else {
-            return Ok(());
-        };
-        let limits = RangeLimits::new(Meters::new(0.1).unwrap(), Meters::new(4.0).unwrap()).unwrap();
-        let origin = odometry(&robot(&field, 2.0, 0.0));
-        for t in &ticks {
-            let ranges = t.wild.clone().unwrap_or_else(|| {
-                let mut r = cast(&field, &robot(&field, 2.0, t.lateral)).ranges;
-                for &(i, v) in &t.faults {
-                    r[i % 360] = v;
-                }
-                r
-            });
-            let scan = Scan { start, increment, ranges: &ranges, limits };
-            let (dx, dy, dh) = t.odometry;
-            let Ok(odom) = Pose2::<Odom>::new(origin.position.x() + dx, origin.position.y() + dy, dh) else {
-                continue;
-            };
-            let Ok(seen) = Detector::observe(&mut d, &scan, &odom) else {
-                continue;
-            };
-            let absent = seen.verdict == Verdict::Absent;
-            prop_assert_eq!(seen.error.is_none(), absent);
-            prop_assert_eq!(seen.line.is_none(), absent);
-            if let Some(e) = seen.error {
-                prop_assert!(e.y.get().is_finite() && e.angular_deviation.get().is_finite());
-                prop_assert!(e.angular_deviation.get().abs() <= PI);
-            }
-            if let Some(q) = seen.quality {
-                prop_assert!(q.is_finite() && q >= 0.0, "quality {}", q);
-            }
-            if let Some(line) = seen.line {
-                for &(px, py, ph) in &moves {
-                    let Ok(at) = Pose2::<Robot>::new(px, py, ph) else { continue };
-                    if let Ok(e) = line.error_at(&at) {
-                        prop_assert!(e.y.get().is_finite());
-                        prop_assert!(e.angular_deviation.get().abs() <= PI);
-                    }
-                }
-            }
-        }
-    }
 }

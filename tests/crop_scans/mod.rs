@@ -328,6 +328,11 @@ impl Mount {
     pub const fn pose(&self) -> Pose {
         Pose::new(self.x, self.y, self.yaw)
     }
+
+    /// The mount as the library's sensor-to-robot transform.
+    pub fn transform(&self) -> fieldguide::Transform2<fieldguide::Sensor, fieldguide::Robot> {
+        fieldguide::Transform2::new(self.x, self.y, self.yaw).unwrap()
+    }
 }
 
 /// A planar LiDAR: ray `k` (from 0) points at `start + k · increment` rad in
