@@ -17,6 +17,7 @@
 
 use heapless::Vec;
 
+use super::count_f64;
 use crate::error::Precondition;
 use crate::geometry::frame::{Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
@@ -45,11 +46,6 @@ pub const CONSENSUS_SLOPE: f64 = 0.05;
 /// ... and its intercept is within this share of d of where the reference
 /// and d put it (ROWS-FILTER-CONSENSUS).
 pub const CONSENSUS_SHARE: f64 = 0.2;
-
-/// A row index or a count of at most [`MAX_ROWS`] as an `f64`.
-pub(crate) fn index_value(i: usize) -> f64 {
-    u32::try_from(i).map_or(f64::from(u32::MAX), f64::from)
-}
 
 /// The parameters of the filter: δ_min, δ_max, s and K (ROWS-FILTER-PARAMS).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -139,7 +135,7 @@ impl FilterConfig {
         } else {
             // The share first: span × k could overflow when δ_max is huge.
             let span = self.delta_max - self.delta_min;
-            self.delta_min + span * (index_value(k) / index_value(last))
+            self.delta_min + span * (count_f64(k) / count_f64(last))
         }
     }
 }
@@ -449,7 +445,7 @@ impl RowFilter {
             match (assignment.line(r, lines), assignment.line(i, lines)) {
                 (Some(reference), Some(row)) => {
                     let a = reference.slope();
-                    let offset = index_value(r) - index_value(i);
+                    let offset = count_f64(r) - count_f64(i);
                     let expected =
                         reference.intercept().get() + d * offset * libm::sqrt(a * a + 1.0);
                     libm::fabs(row.slope() - a) < CONSENSUS_SLOPE
@@ -498,7 +494,7 @@ impl RowFilter {
         let best = assignment.best?;
         let b_best = assignment.line(best, lines)?.intercept().get();
         let found = || (0..self.rows.len()).filter_map(|i| assignment.line(i, lines));
-        let count = index_value(found().count());
+        let count = count_f64(found().count());
         // Each slope divided first: the mean of finite slopes cannot overflow.
         let a = found().fold(0.0, |sum, line| sum + line.slope() / count);
         let step = self.distance.get() * libm::sqrt(a * a + 1.0);
@@ -507,7 +503,7 @@ impl RowFilter {
             let line = match assignment.line(i, lines) {
                 Some(line) => *line,
                 None => {
-                    let offset = index_value(best) - index_value(i);
+                    let offset = count_f64(best) - count_f64(i);
                     RowLine::new(a, Meters::new(b_best + step * offset).ok()?).ok()?
                 }
             };

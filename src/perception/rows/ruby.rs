@@ -11,6 +11,7 @@ use heapless::Vec;
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro128PlusPlus;
 
+use super::count_f64;
 use super::points::RowPoint;
 use crate::error::Precondition;
 use crate::geometry::fit::{fit_line, fit_line_weighted};
@@ -740,11 +741,6 @@ fn energy<const N: usize>(
     }
     let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
     p.outlier_energy * count_f64(outliers) + p.neighbour_penalty * neighbour + models
-}
-
-/// A count as f64 (exact below 2⁵³, far beyond any buffer here).
-fn count_f64(n: usize) -> f64 {
-    u32::try_from(n).map_or(f64::from(u32::MAX), f64::from)
 }
 
 /// A uniform index below `len` (> 0) from 32 random bits (Lemire's

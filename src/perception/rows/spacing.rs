@@ -12,7 +12,8 @@
 
 use heapless::Vec;
 
-use super::filter::{index_value, MAX_ROWS};
+use super::count_f64;
+use super::filter::MAX_ROWS;
 use crate::error::{finite, Precondition};
 use crate::geometry::units::Meters;
 use crate::perception::furrow::lines::RowLine;
@@ -318,10 +319,10 @@ impl SpacingEstimator {
         let middle = self.mean(self.sum_middle)?;
         let a = self.mean(self.sum_slope)?;
         let step = d * libm::sqrt(a * a + 1.0);
-        let k = index_value(self.config.rows.checked_div(2).unwrap_or(0)) + 0.5;
+        let k = count_f64(self.config.rows.checked_div(2).unwrap_or(0)) + 0.5;
         let mut rows = Vec::new();
         for i in 1..=self.config.rows {
-            let b = Meters::new(middle + step * (k - index_value(i)))?;
+            let b = Meters::new(middle + step * (k - count_f64(i)))?;
             rows.push(RowLine::new(a, b)?)
                 .map_err(|_| Precondition::new("ROWS-SPACING-PARAMS", "n > MAX_ROWS"))?;
         }
