@@ -16,7 +16,7 @@ use fieldguide::perception::edge::{
     build_chain, rotation_contact, translation_contact, Chain, ChainEnd, EdgeConfig,
     EdgeParameters, Side,
 };
-use fieldguide::{Point2, Robot};
+use fieldguide::{Meters, Point2, Robot};
 use proptest::prelude::*;
 
 const M: usize = 128;
@@ -713,4 +713,66 @@ fn more_points_than_the_candidate_buffer_still_give_minimal_contacts() {
     assert!(chain.len() > 10);
     check_invariants(&points, Side::Left, &config, &chain);
     check_minimal_contacts(&points, Side::Left, &config, &chain);
+}
+
+//= spec/pierre2022.md#edge-chain-rotate-next-point-by-rotation
+//= type=test
+//# The contact angle of a point q at distance 0 < d < 2r from the pivot MUST
+//# be the smallest θ ≥ 0 at which |c(θ) − q| = r with q entering the disk,
+//# where c(θ) is the centre rotated by s·θ about the pivot; a point at d = 0
+//# or d ≥ 2r MUST have no contact.
+#[test]
+fn rotation_contact_by_hand() {
+    use core::f64::consts::{FRAC_PI_6, PI, TAU};
+    let r = Meters::new(1.0).unwrap();
+    // Pivot (0, 1), centre (0, 0): a point 1 m ahead of the pivot enters
+    // after π/2 − arccos(1/2) = π/6 of counter-clockwise rotation.
+    let th = rotation_contact(pt(0.0, 1.0), pt(0.0, 0.0), pt(1.0, 1.0), Side::Left, r).unwrap();
+    assert!((th.get() - FRAC_PI_6).abs() < 1e-12);
+    // The centre rotated by θ about the pivot is the contact centre
+    // (0.5, 1 − sqrt(0.75)), on the circle through the pivot and the point.
+    let (sin, cos) = th.get().sin_cos();
+    let (ux, uy) = (0.0, -1.0); // centre − pivot
+    let (cx, cy) = (0.0 + cos * ux - sin * uy, 1.0 + sin * ux + cos * uy);
+    assert!((cx - 0.5).abs() < 1e-12 && (cy - (1.0 - 0.75_f64.sqrt())).abs() < 1e-12);
+    // The chain moves its circle to that centre: from the rear point, the
+    // translation touches (0, 1) with the centre at (0, 0), and the rotation
+    // about (0, 1) then touches (1, 1).
+    let config = EdgeConfig::new(&EdgeParameters {
+        max_link: 1.5,
+        ..EdgeParameters::PIERRE2022
+    })
+    .unwrap();
+    let points = [pt(0.0, 1.0), pt(1.0, 1.0)];
+    let chain = build_chain::<M>(&points, Side::Left, &config);
+    assert_eq!(chain.indices(), &[0, 1]);
+    let c0 = chain.centers()[0];
+    assert!(c0.x().abs() < 1e-12 && c0.y().abs() < 1e-12);
+    let c = chain.centers()[1];
+    assert!((c.x() - 0.5).abs() < 1e-12 && (c.y() - (1.0 - 0.75_f64.sqrt())).abs() < 1e-12);
+    // Behind the pivot it enters only after 2π − π/3 − π/2 (past the top).
+    let back = rotation_contact(pt(0.0, 1.0), pt(0.0, 0.0), pt(-1.0, 1.0), Side::Left, r).unwrap();
+    assert!((back.get() - (TAU - PI / 3.0 - PI / 2.0)).abs() < 1e-12);
+    // Mirrored: right side, clockwise.
+    let m = rotation_contact(pt(0.0, -1.0), pt(0.0, 0.0), pt(1.0, -1.0), Side::Right, r).unwrap();
+    assert!((m.get() - FRAC_PI_6).abs() < 1e-12);
+    assert!(rotation_contact(pt(0.0, 1.0), pt(0.0, 0.0), pt(0.0, 1.0), Side::Left, r).is_none());
+    assert!(rotation_contact(pt(0.0, 1.0), pt(0.0, 0.0), pt(2.0, 1.0), Side::Left, r).is_none());
+}
+
+//= spec/pierre2022.md#edge-chain-translate-first-point-by-translation
+//= type=test
+//# A point q strictly on the requested side (s·q_y > 0) with |q_x| ≤ r MUST
+//# be touched at the translation t(q) = s·q_y − sqrt(r² − q_x²); other points
+//# MUST NOT be touched by the translation.
+#[test]
+fn translation_contact_by_hand() {
+    let r = Meters::new(1.0).unwrap();
+    let t = translation_contact(pt(0.6, 2.0), Side::Left, r).unwrap();
+    assert!((t.get() - 1.2).abs() < 1e-12);
+    let t = translation_contact(pt(0.0, -0.5), Side::Right, r).unwrap();
+    assert!((t.get() + 0.5).abs() < 1e-12);
+    assert!(translation_contact(pt(0.0, -0.5), Side::Left, r).is_none());
+    assert!(translation_contact(pt(1.5, 2.0), Side::Left, r).is_none());
+    assert!(translation_contact(pt(0.5, 0.0), Side::Left, r).is_none());
 }

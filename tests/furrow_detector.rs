@@ -15,6 +15,7 @@
 mod furrow_common;
 
 use fieldguide::perception::furrow::quality::furrow_verdict;
+use fieldguide::perception::furrow::scan::{scan_to_points, MountPose, ScanWindow, WindowRays};
 use fieldguide::perception::furrow::{
     FurrowConfig, FurrowDetection, FurrowDetector, FurrowParams, RowLines, Rows,
 };
@@ -494,4 +495,39 @@ proptest! {
             }
         }
     }
+}
+
+fn rad(v: f64) -> Radians {
+    Radians::new(v).unwrap()
+}
+
+#[test]
+fn ground_ray_lands_at_zero_height() {
+    let mount = MountPose::new(m(1.5), m(0.2), m(1.0), rad(0.4)).unwrap();
+    let window = ScanWindow::new(rad(0.3)).unwrap();
+    let r = mount.ground_range(rad(0.0)).unwrap();
+    let ranges = [r];
+    let scan = Scan {
+        start: rad(0.0),
+        increment: rad(0.01),
+        ranges: &ranges,
+        limits: RangeLimits::new(m(0.0), m(30.0)).unwrap(),
+    };
+    let mut out = [None; 4];
+    let w = scan_to_points(&scan, &mount, &window, &mut out).unwrap();
+    assert_eq!(w, WindowRays { first: 0, count: 1 });
+    let p = out[0].unwrap();
+    assert!(p.height.get().abs() < 1e-12);
+    assert!((p.ground.x() - (1.5 + 1.0 / libm::tan(0.4))).abs() < 1e-12);
+    assert!((p.ground.y() - 0.2).abs() < 1e-12);
+}
+
+#[test]
+fn bad_mounts_and_windows_are_refused() {
+    assert!(MountPose::new(m(0.0), m(0.0), m(0.0), rad(0.3)).is_err());
+    assert!(MountPose::new(m(0.0), m(0.0), m(1.0), rad(0.0)).is_err());
+    assert!(MountPose::new(m(0.0), m(0.0), m(1.0), rad(1.6)).is_err());
+    assert!(ScanWindow::new(rad(0.0)).is_err());
+    assert!(ScanWindow::new(rad(1.6)).is_err());
+    assert!(ScanWindow::new(rad(0.2)).is_ok());
 }
