@@ -15,6 +15,7 @@
 //! | [`Actuation::SkidSteer`] | speed, yaw rate | 0 m/s, 0 rad/s |
 
 pub mod bicycle;
+pub mod differential;
 
 use crate::error::Precondition;
 use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
@@ -180,6 +181,8 @@ pub struct Saturated {
 pub enum Vehicle {
     /// A front-steered bicycle (Pierre 2022, eq. 1).
     Bicycle(bicycle::Bicycle),
+    /// A differential robot (Guyonneau 2022, section 4.1.1).
+    Differential(differential::Differential),
 }
 
 impl Vehicle {
@@ -188,6 +191,7 @@ impl Vehicle {
     pub const fn actuation(&self) -> Actuation {
         match self {
             Self::Bicycle(_) => Actuation::Bicycle,
+            Self::Differential(_) => Actuation::Differential,
         }
     }
 
@@ -210,7 +214,17 @@ impl Vehicle {
                     ))
                 }
             }
-            (Self::Bicycle(_), _) => Err(Precondition::new(
+            (Self::Differential(d), Command::Differential { left, right }) => {
+                if d.within(*left, *right) {
+                    Ok(())
+                } else {
+                    Err(Precondition::new(
+                        "GD-VEHICLE",
+                        "wheel speed beyond the vehicle's limit",
+                    ))
+                }
+            }
+            (Self::Bicycle(_) | Self::Differential(_), _) => Err(Precondition::new(
                 "GD-VEHICLE",
                 "command of another actuation than the vehicle's",
             )),

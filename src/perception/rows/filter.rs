@@ -369,6 +369,61 @@ impl RowFilter {
             }
         }
         self.rows = moved;
+        self.recentre();
+    }
+
+    /// Re-indexes the rows by whole rows when the robot has crossed into
+    /// another inter-row, so that it is again between rows ⌊n/2⌋ and
+    /// ⌊n/2⌋ + 1 (1-based), as the initial rows place it (ROWS-RECENTRE).
+    //= spec/guyonneau2022.md#rows-recentre-the-rows-follow-the-robot-across-the-crop
+    //# When the rows either side of the robot are rows j and j + 1 (1-based)
+    //# with j ≠ ⌊n/2⌋, the rows MUST be re-indexed by j − ⌊n/2⌋ whole rows: a
+    //# row whose index stays within 1..n MUST keep its line, and a row that
+    //# enters MUST be y = ā x + b^c + d (c − i) sqrt(ā² + 1) from the nearest
+    //# kept row c, with ā the mean slope of the rows.
+    fn recentre(&mut self) {
+        let n = self.rows.len();
+        let target = n.checked_div(2).and_then(|k| k.checked_sub(1));
+        let (Some(sides), Some(target)) = (side_indices(&self.rows), target) else {
+            return;
+        };
+        if sides.left == target {
+            return;
+        }
+        let count = count_f64(n);
+        let a = self
+            .rows
+            .iter()
+            .fold(0.0, |sum, row| sum + row.slope() / count);
+        let step = self.distance.get() * libm::sqrt(a * a + 1.0);
+        let last = n.saturating_sub(1);
+        let mut rows: Vec<RowLine, MAX_ROWS> = Vec::new();
+        for i in 0..n {
+            // The old index of new row i is i + left − target: kept when in
+            // 0..n, else computed from the nearest kept row, `rows` beyond it
+            // (positive past the last row, to the right).
+            let shifted = i.saturating_add(sides.left);
+            let (old, beyond) = match shifted.checked_sub(target) {
+                Some(j) if j <= last => (j, None),
+                Some(j) => (last, Some(count_f64(j.saturating_sub(last)))),
+                None => (0, Some(-count_f64(target.saturating_sub(shifted)))),
+            };
+            let Some(kept) = self.rows.get(old) else {
+                return;
+            };
+            let line = match beyond {
+                None => Some(*kept),
+                Some(rows) => Meters::new(kept.intercept().get() - step * rows)
+                    .and_then(|b| RowLine::new(a, b))
+                    .ok(),
+            };
+            match line {
+                Some(line) if rows.push(line).is_ok() => {}
+                // A row that would not be finite: the rows stay as they are.
+                _ => return,
+            }
+        }
+        self.rows = rows;
     }
 
     /// The rows left and right of the robot ([`side_rows`]).
