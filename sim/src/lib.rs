@@ -13,12 +13,14 @@
 #![forbid(unsafe_code)]
 
 pub mod capacity;
+pub mod crop_drive;
 pub mod error;
 pub mod guidance;
 pub mod lidar;
 pub mod metrics;
 pub mod odometry;
 pub mod output;
+pub mod parallel;
 pub mod plant;
 pub mod rng;
 pub mod runner;

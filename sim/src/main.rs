@@ -27,6 +27,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use fieldguide::perception::rows::ruby::Variant;
+use fieldguide_sim::crop_drive::{self, campaign, CropRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
@@ -58,6 +60,17 @@ enum Command {
         /// Built-in scenario name or path to a scenario file.
         scenario: String,
     },
+    /// Run a paper's test plan: `guyonneau2022` (Algorithm 5: every
+    /// line-finding variant on crops 1-4, `--runs` runs each), writing
+    /// `<out>/guyonneau2022/{runs.csv, tables.json, tables.md}` and a
+    /// successful and a failed drive as SVG.
+    Campaign {
+        /// The plan: `guyonneau2022`.
+        plan: String,
+        /// Runs per variant and crop (the paper: 5).
+        #[arg(long, default_value_t = 5)]
+        runs: u32,
+    },
     /// Run one scenario once per seed of a range; print and write
     /// `<out>/<scenario>/sweep.csv`, one row of metrics per seed.
     Sweep {
@@ -76,9 +89,13 @@ fn main() -> ExitCode {
             list();
             Ok(())
         }
-        Some(Command::Run { scenario }) => run_one(&scenario, &cli.out).map(|s| {
-            print_table(&[s]);
-        }),
+        Some(Command::Run { scenario }) => match crop_drive_named(&scenario) {
+            Some(run) => run_drive(&run, &cli.out).map(|row| print_drives(&[row])),
+            None => run_one(&scenario, &cli.out).map(|s| {
+                print_table(&[s]);
+            }),
+        },
+        Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
         Some(Command::Sweep { scenario, seeds }) => run_sweep(&scenario, seeds, &cli.out),
         None => run_all(&cli.out),
     };
@@ -92,6 +109,15 @@ fn main() -> ExitCode {
 }
 
 fn list() {
+    for run in crop_drives() {
+        println!(
+            "{:32} Guyonneau 2022: crop {} ({:.1} m rows), {}, five inter-rows on LiDAR alone",
+            run.name,
+            run.crop.crop,
+            run.crop.spacing,
+            campaign::variant_name(run.variant)
+        );
+    }
     for (name, text) in BUILTIN {
         let description = Source::builtin(name)
             .and_then(|s| s.parse().ok())
@@ -131,6 +157,101 @@ fn run_all(out: &Path) -> Result<(), SimError> {
         summaries.push(run_one(name, out)?);
     }
     print_table(&summaries);
+    let mut drives = Vec::new();
+    for run in crop_drives() {
+        drives.push(run_drive(&run, out)?);
+    }
+    println!();
+    print_drives(&drives);
+    Ok(())
+}
+
+/// The built-in crop drives: `guyonneau-crop1` to `guyonneau-crop4`, RGOP,
+/// seed 2022.
+fn crop_drives() -> Vec<CropRun> {
+    campaign::CROPS
+        .iter()
+        .filter_map(|&c| CropRun::paper(c, Variant::Rgop, 2022))
+        .collect()
+}
+
+/// The built-in crop drive of this name, if it is one.
+fn crop_drive_named(name: &str) -> Option<CropRun> {
+    crop_drives().into_iter().find(|r| r.name == name)
+}
+
+/// Drives `run`, writes its files, returns its row.
+fn run_drive(run: &CropRun, out: &Path) -> Result<campaign::RunRow, SimError> {
+    let outcome = crop_drive::drive(run);
+    let dir = crop_drive::write_drive(out, run, &outcome)?;
+    println!("{}: wrote {}", run.name, dir.display());
+    Ok(campaign::RunRow::of(run, run.crop.crop, 1, &outcome))
+}
+
+/// The crop drives' table.
+fn print_drives(rows: &[campaign::RunRow]) {
+    println!(
+        "{:32} {:>8} {:>10} {:>11} {:>9} {:>8} {:>8}",
+        "crop drive", "time s", "d / true", "offset mse", "max |o|", "crushed", "success"
+    );
+    let metres = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |v| format!("{v:.3}"));
+    for r in rows {
+        println!(
+            "{:32} {:>8.1} {:>10} {:>11} {:>9} {:>8} {:>8}",
+            format!("guyonneau-crop{}", r.crop),
+            r.duration_s,
+            format!("{}/{:.2}", metres(r.row_distance_m.0), r.row_distance_m.1),
+            r.mse_mm2
+                .map_or_else(|| "-".to_owned(), |v| format!("{v:.0} mm²")),
+            metres(r.max_offset_m),
+            r.crushed,
+            if r.success { "yes" } else { "NO" }
+        );
+    }
+    println!(
+        "\n  d / true    m, row distance the robot measured at rest / the crop's\n  \
+         offset mse  mean squared offset of O from the middle of its inter-row while driving one\n              \
+         inside the field (row changes excluded; ground truth)\n  \
+         max |o|     m, the largest such offset\n  \
+         success     the end of the fifth inter-row reached without running over a crop plant"
+    );
+    for r in rows.iter().filter(|r| !r.success) {
+        println!(
+            "  guyonneau-crop{}: {}",
+            r.crop,
+            campaign::end_label(&r.end)
+        );
+    }
+}
+
+/// Runs the test plan `plan` with `runs` runs per variant and crop.
+fn run_campaign(plan: &str, runs: u32, out: &Path) -> Result<(), SimError> {
+    if plan != "guyonneau2022" {
+        return Err(SimError::Setup {
+            what: format!("campaign `{plan}` (the one plan is `guyonneau2022`)"),
+            source: fieldguide::Precondition::new("CAMPAIGN", "unknown plan"),
+        });
+    }
+    let progress = std::io::stderr().is_terminal();
+    let started = std::time::Instant::now();
+    let result = campaign::campaign(runs, &campaign::VARIANTS, |done, total| {
+        if progress {
+            let bar = "#".repeat(done * 30 / total.max(1));
+            eprint!("\r[{bar:30}] {done}/{total} runs");
+        }
+    });
+    if progress {
+        eprintln!();
+    }
+    let dir = campaign::write(out, &result)?;
+    println!("{}", campaign::tables_md(&result.rows));
+    println!(
+        "{} runs in {:.1} s on {} cores; wrote {}",
+        result.rows.len(),
+        started.elapsed().as_secs_f64(),
+        std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get),
+        dir.display()
+    );
     Ok(())
 }
 

@@ -1,7 +1,9 @@
 //! The vehicle plants, one per actuation behind [`Plant`], each taking the
-//! core's [`Command`]: today the extended kinematic bicycle of Pierre 2022
-//! (eq. 1, through the core's `world_rates`), a first-order steering actuator
-//! with a rate limit and saturation, integrated with RK4 sub-steps.
+//! core's [`Command`]: the extended kinematic bicycle of Pierre 2022 (eq. 1,
+//! through the core's `world_rates`) with a first-order steering actuator, a
+//! rate limit and saturation, integrated with RK4 sub-steps; and the
+//! differential robot of Guyonneau 2022 ([`DifferentialPlant`]: wheels with
+//! a first-order lag and a speed limit, the unicycle integrated exactly).
 //!
 //! Pure and deterministic: the next state is a function of the state, the
 //! command held over the control period, the speed and the terrain.
@@ -152,6 +154,76 @@ impl Plant for VehicleParams {
     }
 }
 
+/// A differential robot (Guyonneau 2022, section 4.1.1): two wheels `track_m`
+/// apart, each following its commanded speed with a first-order lag of time
+/// constant `time_constant_s`, saturated to `max_wheel_speed`; O (the middle
+/// of the axle) moves as the unicycle of the actual wheel speeds, integrated
+/// exactly over each sub-step (an arc). The ground does not slip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DifferentialPlant {
+    /// Distance between the wheels, m (> 0).
+    pub track_m: f64,
+    /// Time constant of each wheel's speed, s (0: none).
+    pub time_constant_s: f64,
+    /// Largest wheel speed, m/s (> 0).
+    pub max_wheel_speed: f64,
+}
+
+impl Plant for DifferentialPlant {
+    fn actuation(&self) -> Actuation {
+        Actuation::Differential
+    }
+
+    fn advance(
+        &self,
+        state: &VehicleState,
+        command: &Command,
+        _terrain: &Terrain,
+        period: f64,
+        substeps: u32,
+    ) -> Result<VehicleState, Precondition> {
+        let Command::Differential { left, right } = *command else {
+            return Err(Precondition::new(
+                "GD-VEHICLE",
+                "the differential plant takes differential commands only",
+            ));
+        };
+        let n = substeps.max(1);
+        let h = period / f64::from(n);
+        let max = self.max_wheel_speed;
+        let (target_l, target_r) = (left.get().clamp(-max, max), right.get().clamp(-max, max));
+        let keep = if self.time_constant_s > 0.0 {
+            (-h / self.time_constant_s).exp()
+        } else {
+            0.0
+        };
+        let mut next = *state;
+        for _ in 0..n {
+            let (l, r) = next.wheel_speeds;
+            let (l, r) = (
+                target_l + (l - target_l) * keep,
+                target_r + (r - target_r) * keep,
+            );
+            next.wheel_speeds = (l, r);
+            let (v, w) = (0.5 * (l + r), (r - l) / self.track_m);
+            let p = next.pose;
+            let (x, y, th) = (p.position.x(), p.position.y(), p.heading.get());
+            let turn = w * h;
+            // The chord of the arc: its length 2 sin(turn/2)/w, along the
+            // mean heading (exactly v h straight ahead when w = 0).
+            let chord = if turn.abs() < 1e-9 {
+                v * h
+            } else {
+                2.0 * v * (turn / 2.0).sin() / w
+            };
+            let mid = th + turn / 2.0;
+            next.pose = Pose2::new(x + chord * mid.cos(), y + chord * mid.sin(), th + turn)?;
+            next.distance_m += v.abs() * h;
+        }
+        Ok(next)
+    }
+}
+
 /// The true state of the vehicle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VehicleState {
@@ -163,6 +235,9 @@ pub struct VehicleState {
     pub sideslip: Sideslip,
     /// Distance travelled by O since the start, metres.
     pub distance_m: f64,
+    /// Actual left and right wheel speeds of a differential robot, m/s (0
+    /// for the other vehicles).
+    pub wheel_speeds: (f64, f64),
 }
 
 impl VehicleState {
@@ -174,6 +249,7 @@ impl VehicleState {
             steering: 0.0,
             sideslip: terrain.sideslip_at(pose.position.x(), pose.position.y()),
             distance_m: 0.0,
+            wheel_speeds: (0.0, 0.0),
         }
     }
 }
@@ -346,6 +422,65 @@ mod tests {
         let expected = beta_r.cos() * (2.0 * (-beta_r).tan()) / 2.0 * 0.02;
         assert!((s.pose.heading.get() - expected).abs() < 1e-9);
         assert_eq!(s.sideslip.rear.get(), beta_r);
+    }
+
+    #[test]
+    fn a_differential_robot_drives_the_arc_of_its_wheel_speeds() {
+        let plant = DifferentialPlant {
+            track_m: 0.5,
+            time_constant_s: 0.0,
+            max_wheel_speed: 1.0,
+        };
+        let terrain = Terrain::default();
+        let command = |l: f64, r: f64| Command::Differential {
+            left: MetersPerSecond::new(l).unwrap(),
+            right: MetersPerSecond::new(r).unwrap(),
+        };
+        // v = 0.5 m/s, ω = 0.4 rad/s: a circle of 1.25 m; a quarter turn
+        // ends at (R, R) heading north, whatever the sub-steps.
+        let quarter = std::f64::consts::FRAC_PI_2 / 0.4;
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        for _ in 0..10 {
+            s = plant
+                .advance(&s, &command(0.4, 0.6), &terrain, quarter / 10.0, 3)
+                .unwrap();
+        }
+        assert!((s.pose.position.x() - 1.25).abs() < 1e-9, "{:?}", s.pose);
+        assert!((s.pose.position.y() - 1.25).abs() < 1e-9);
+        assert!((s.pose.heading.get() - std::f64::consts::FRAC_PI_2).abs() < 1e-9);
+        assert!((s.distance_m - 0.5 * quarter).abs() < 1e-9);
+        // Backward and saturated: both wheels at −1 m/s.
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        s = plant
+            .advance(&s, &command(-3.0, -1.5), &terrain, 1.0, 4)
+            .unwrap();
+        assert!((s.pose.position.x() + 1.0).abs() < 1e-12 && s.pose.heading.get().abs() < 1e-12);
+        // A lag of 0.1 s: after 0.3 s each wheel is at 1 − e⁻³ of its step.
+        let lagged = DifferentialPlant {
+            time_constant_s: 0.1,
+            ..plant
+        };
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        for _ in 0..3 {
+            s = lagged
+                .advance(&s, &command(0.2, 0.4), &terrain, 0.1, 5)
+                .unwrap();
+        }
+        let k = 1.0 - (-3.0_f64).exp();
+        assert!((s.wheel_speeds.0 - 0.2 * k).abs() < 1e-12);
+        assert!((s.wheel_speeds.1 - 0.4 * k).abs() < 1e-12);
+        // Another actuation is refused.
+        let bicycle = Command::Bicycle {
+            speed: MetersPerSecond::new(1.0).unwrap(),
+            steering: Radians::ZERO,
+        };
+        assert_eq!(
+            plant
+                .advance(&s, &bicycle, &terrain, 0.1, 1)
+                .unwrap_err()
+                .requirement,
+            "GD-VEHICLE"
+        );
     }
 
     #[test]

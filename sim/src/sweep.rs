@@ -126,53 +126,25 @@ pub fn sweep(
 ) -> Result<Sweep, SimError> {
     let scenario = source.parse()?.name;
     let all: Vec<u64> = seeds.iter().collect();
-    let workers = std::thread::available_parallelism()
-        .map_or(1, std::num::NonZeroUsize::get)
-        .min(all.len())
-        .max(1);
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let (send, receive) = std::sync::mpsc::channel();
-    let mut slots: Vec<Option<Result<Summary, SimError>>> = all.iter().map(|_| None).collect();
-    let mut rows = Vec::with_capacity(all.len());
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            let send = send.clone();
-            let (next, all) = (&next, &all);
-            scope.spawn(move || loop {
-                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let Some(&seed) = all.get(k) else { break };
-                let result = runner::prepare_with_seed(source, seed)
-                    .map(|(setup, mut rng)| {
-                        let run = runner::run(&setup, &mut rng);
-                        summarize(&setup, &run)
-                    })
-                    .map_err(|source| SimError::AtSeed { seed, source });
-                if send.send((k, result)).is_err() {
-                    break;
-                }
-            });
-        }
-        drop(send);
-        // Rows are handed on in seed order, each as soon as every earlier
-        // seed's is in.
-        let mut done = 0;
-        for (k, result) in receive {
-            if let Some(slot) = slots.get_mut(k) {
-                *slot = Some(result);
-            }
-            while let Some(Some(Ok(summary))) = slots.get(done) {
-                each(summary);
-                done += 1;
-            }
-        }
-    });
-    for slot in slots {
-        match slot {
-            Some(Ok(summary)) => rows.push(summary),
-            Some(Err(e)) => return Err(e),
-            None => unreachable!("every seed is run"),
-        }
-    }
+    // Rows are handed on in seed order up to the first seed that could not
+    // be built.
+    let mut failed = false;
+    let results = crate::parallel::map_in_order(
+        &all,
+        |&seed| {
+            runner::prepare_with_seed(source, seed)
+                .map(|(setup, mut rng)| {
+                    let run = runner::run(&setup, &mut rng);
+                    summarize(&setup, &run)
+                })
+                .map_err(|source| SimError::AtSeed { seed, source })
+        },
+        |_, result| match result {
+            Ok(summary) if !failed => each(summary),
+            _ => failed = true,
+        },
+    );
+    let rows = results.into_iter().collect::<Result<Vec<_>, _>>()?;
     Ok(Sweep { scenario, rows })
 }
 
