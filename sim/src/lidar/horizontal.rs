@@ -170,16 +170,71 @@ impl HorizontalLidar {
                 &mut near,
             );
         }
+        // Each plant can only be hit by the rays within its angular width
+        // as seen from the sensor (the rays are level): the (ray, plant)
+        // pairs, by ray.
+        let mut pairs = self.rays_near(origin, heading, scene, &near);
+        pairs.sort_unstable();
+        let mut ray_plants = Vec::new();
+        let mut next = 0;
         for k in 0..self.spec.rays {
+            ray_plants.clear();
+            while let Some(&(ray, i)) = pairs.get(next) {
+                if ray > k {
+                    break;
+                }
+                if ray == k {
+                    ray_plants.push(i);
+                }
+                next += 1;
+            }
             let a = heading + self.ray_angle(k);
             let dir = [a.cos(), a.sin(), 0.0];
-            let range = match scene.cast(origin, dir, self.spec.range_max, &near) {
+            let range = match scene.cast(origin, dir, self.spec.range_max, &ray_plants) {
                 Some(t) => t + self.noise.map_or(0.0, |n| n.sample(rng)),
                 None => f64::INFINITY,
             };
             out.push(range);
         }
         Ok(())
+    }
+
+    /// The (ray, plant) pairs of `near` (indices into the scene's plants)
+    /// such that the plant's circle lies within the ray's reach in angle,
+    /// seen from the sensor at `origin` facing `heading`: a ray outside a
+    /// plant's angular width cannot meet it. One ray of margin each side.
+    fn rays_near(
+        &self,
+        origin: [f64; 3],
+        heading: f64,
+        scene: &Scene<'_>,
+        near: &[usize],
+    ) -> Vec<(usize, usize)> {
+        let rays = self.spec.rays;
+        let mut pairs = Vec::with_capacity(near.len() * 4);
+        let all = scene.plants.plants();
+        for &i in near {
+            let Some(p) = all.get(i) else { continue };
+            let (dx, dy) = (p.position.x() - origin[0], p.position.y() - origin[1]);
+            let dist = dx.hypot(dy);
+            if dist <= p.radius {
+                pairs.extend((0..rays).map(|k| (k, i)));
+                continue;
+            }
+            let half = (p.radius / dist).asin();
+            let bearing = dy.atan2(dx) - heading;
+            // The bearing and its turns either side, for a view that wraps.
+            for turn in [-TAU, 0.0, TAU] {
+                let lo = ((bearing + turn - half - self.start) / self.increment).ceil() - 1.0;
+                let hi = ((bearing + turn + half - self.start) / self.increment).floor() + 1.0;
+                let (lo, hi) = (lo.max(0.0), hi.min((rays - 1) as f64));
+                if lo <= hi {
+                    pairs.extend((lo as usize..=hi as usize).map(|k| (k, i)));
+                }
+            }
+        }
+        pairs.dedup();
+        pairs
     }
 
     /// The scan geometry for the core's edge detector, over `ranges`.
