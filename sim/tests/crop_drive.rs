@@ -1,8 +1,8 @@
 //! Closed-loop drives of a whole crop on LiDAR alone (Guyonneau 2022,
 //! section 4; `spec/guyonneau2022.md` NAV-*): the paper's four crops with
 //! RGOP over a seed sweep, a broken controller caught, fields of our own
-//! (other spacing, a robot off the middle and askew, worse odometry, longer
-//! rows, a LiDAR blinded mid-row), and a robot that cannot start or whose
+//! (other spacing, a robot off the middle, slow wheels, more slip, worse
+//! odometry, longer rows, noisier LiDARs, both LiDARs silent mid-row), and a robot that cannot start or whose
 //! LiDARs stop. Every figure is measured against the true rows.
 //!
 //! `cargo test --release -p fieldguide-sim --test crop_drive -- --nocapture`
@@ -97,6 +97,17 @@ fn a_controller_with_its_wheels_swapped_fails_the_run() {
     }
 }
 
+/// The largest |offset| from the middle of the rows once the robot is 3 m
+/// into the first inter-row (a robot put down off the middle converges
+/// first), m.
+fn settled_offset(out: &CropOutcome) -> f64 {
+    out.ticks
+        .iter()
+        .filter(|t| !matches!(t.phase, Phase::Driving { row: 1, .. }) || t.truth.position.x() > 3.5)
+        .filter_map(|t| t.offset_m)
+        .fold(0.0, |m, o| m.max(o.abs()))
+}
+
 /// A field of our own: `name`, the crop and run changed by `change`.
 struct OwnField {
     name: &'static str,
@@ -139,6 +150,11 @@ fn fields_of_our_own() {
             change: |r| r.outage_s = Some((20.0, 20.2)),
         },
         OwnField {
+            name: "crop 4, wheels slipping by 5 % (σ, 1 s correlation)",
+            crop: 4,
+            change: |r| r.wheel_slip = 0.05,
+        },
+        OwnField {
             name: "crop 3, LiDAR noise 3 cm",
             crop: 3,
             change: |r| r.lidar_noise_m = 0.03,
@@ -157,10 +173,7 @@ fn fields_of_our_own() {
             .iter()
             .filter_map(CropOutcome::mse_mm2)
             .fold(0.0, f64::max);
-        let worst = outs
-            .iter()
-            .filter_map(CropOutcome::max_offset_m)
-            .fold(0.0, f64::max);
+        let worst = outs.iter().map(settled_offset).fold(0.0, f64::max);
         for (r, o) in runs.iter().zip(&outs) {
             assert!(
                 o.success(),
@@ -172,7 +185,7 @@ fn fields_of_our_own() {
             );
         }
         println!(
-            "{}: 3 of 3 done, none run over; worst mean squared offset {worst_mse:.1} mm², worst offset {worst:.4} m",
+            "{}: 3 of 3 done, none run over; worst mean squared offset {worst_mse:.1} mm², worst offset {worst:.4} m once 3 m into the first inter-row",
             f.name
         );
         assert!(worst < 0.1, "{}: {worst} m", f.name);

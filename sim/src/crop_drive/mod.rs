@@ -47,6 +47,8 @@ pub const LIDAR_OFFSET_M: f64 = 0.55;
 pub const LIDAR_HEIGHT_M: f64 = 0.2;
 /// The LiDARs' range resolution, m (section 4.1.1).
 pub const RANGE_RESOLUTION_M: f64 = 0.01;
+/// The correlation time of the wheels' slip, s.
+pub const SLIP_TIME_S: f64 = 1.0;
 /// Ticks whose detector time and points the paper's Tables 4-6 average.
 pub const TIMED_TICKS: usize = 500;
 
@@ -74,6 +76,11 @@ pub struct CropRun {
     pub odometry: OdometryErrors,
     /// The wheels' time constant, s.
     pub wheel_lag_s: f64,
+    /// Wheel slip on soil: each wheel delivers its command times 1 + s, s a
+    /// stationary first-order random process (Ornstein-Uhlenbeck) of this
+    /// standard deviation and a correlation time of [`SLIP_TIME_S`]; the
+    /// odometry does not see it.
+    pub wheel_slip: f64,
     /// The LiDARs' range noise σ, m (section 4.1.1: 0.01 m).
     pub lidar_noise_m: f64,
     /// The start: O this far into the first inter-row, m, and this far off
@@ -89,7 +96,8 @@ pub struct CropRun {
 
 impl CropRun {
     /// The paper's run of crop `crop` (1-4) with `variant` and `seed`: odometry
-    /// reading 0.5 % long and drifting 0.002 rad/m, wheels settling in 0.3 s,
+    /// reading 0.5 % long and drifting 0.002 rad/m, wheels settling in 0.3 s
+    /// and slipping by 2 % (σ),
     /// the LiDARs' σ = 0.01 m, the robot 0.5 m into the first inter-row on
     /// its middle, at most 600 s.
     #[must_use]
@@ -106,6 +114,7 @@ impl CropRun {
                 yaw_noise: 0.002,
             },
             wheel_lag_s: 0.1,
+            wheel_slip: 0.02,
             lidar_noise_m: 0.01,
             start: (0.5, 0.0),
             duration_s: 600.0,
@@ -290,6 +299,7 @@ fn drive_in(run: &CropRun, plants: &[Stem], rng: &mut SimRng) -> Result<CropOutc
     let mut near = Vec::new();
     let mut ticks = Vec::new();
     let mut end = CropEnd::Timeout;
+    let mut slip = (rng.gaussian(run.wheel_slip), rng.gaussian(run.wheel_slip));
     let steps = (run.duration_s / PERIOD_S).ceil() as u64;
     for k in 0..=steps {
         let t_s = k as f64 * PERIOD_S;
@@ -356,9 +366,25 @@ fn drive_in(run: &CropRun, plants: &[Stem], rng: &mut SimRng) -> Result<CropOutc
             }
             _ => {}
         }
+        // The slip's exact discretisation over one period.
+        let keep = (-PERIOD_S / SLIP_TIME_S).exp();
+        let kick = run.wheel_slip * (1.0 - keep * keep).sqrt();
+        slip = (
+            slip.0 * keep + rng.gaussian(kick),
+            slip.1 * keep + rng.gaussian(kick),
+        );
+        let delivered = match command {
+            Command::Differential { left, right } => Command::Differential {
+                left: fieldguide::MetersPerSecond::new(left.get() * (1.0 + slip.0))
+                    .map_err(|e| e.to_string())?,
+                right: fieldguide::MetersPerSecond::new(right.get() * (1.0 + slip.1))
+                    .map_err(|e| e.to_string())?,
+            },
+            other => other,
+        };
         let before = state.pose;
         state = plant
-            .advance(&state, &command, &terrain, PERIOD_S, 2)
+            .advance(&state, &delivered, &terrain, PERIOD_S, 2)
             .map_err(|e| e.to_string())?;
         odometry.update_between(&before, &state.pose, rng);
     }
