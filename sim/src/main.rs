@@ -27,7 +27,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use fieldguide::perception::rows::ruby::Variant;
+use fieldguide_sim::crop_drive::file::CropDriveFile;
 use fieldguide_sim::crop_drive::{self, campaign, CropRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
@@ -90,10 +90,11 @@ fn main() -> ExitCode {
             Ok(())
         }
         Some(Command::Run { scenario }) => match crop_drive_named(&scenario) {
-            Some(run) => run_drive(&run, &cli.out).map(|row| print_drives(&[row])),
-            None => run_one(&scenario, &cli.out).map(|s| {
+            Ok(Some(run)) => run_drive(&run, &cli.out).map(|row| print_drives(&[row])),
+            Ok(None) => run_one(&scenario, &cli.out).map(|s| {
                 print_table(&[s]);
             }),
+            Err(e) => Err(e),
         },
         Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
         Some(Command::Sweep { scenario, seeds }) => run_sweep(&scenario, seeds, &cli.out),
@@ -109,14 +110,10 @@ fn main() -> ExitCode {
 }
 
 fn list() {
-    for run in crop_drives() {
-        println!(
-            "{:32} Guyonneau 2022: crop {} ({:.1} m rows), {}, five inter-rows on LiDAR alone",
-            run.name,
-            run.crop.crop,
-            run.crop.spacing,
-            campaign::variant_name(run.variant)
-        );
+    for (name, text) in crop_drive::file::BUILTIN {
+        let description =
+            CropDriveFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
+        println!("{name:32} {description}");
     }
     for (name, text) in BUILTIN {
         let description = Source::builtin(name)
@@ -158,7 +155,7 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     }
     print_table(&summaries);
     let mut drives = Vec::new();
-    for run in crop_drives() {
+    for run in crop_drives()? {
         drives.push(run_drive(&run, out)?);
     }
     println!();
@@ -166,18 +163,34 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     Ok(())
 }
 
-/// The built-in crop drives: `guyonneau-crop1` to `guyonneau-crop4`, RGOP,
-/// seed 2022.
-fn crop_drives() -> Vec<CropRun> {
-    campaign::CROPS
+/// The built-in crop drives (`guyonneau-crop1` to `guyonneau-crop4`).
+fn crop_drives() -> Result<Vec<CropRun>, SimError> {
+    crop_drive::file::BUILTIN
         .iter()
-        .filter_map(|&c| CropRun::paper(c, Variant::Rgop, 2022))
+        .map(|(name, text)| {
+            let origin = format!("built-in scenario `{name}`");
+            Ok(CropDriveFile::parse(text, &origin)?.run(&origin)?)
+        })
         .collect()
 }
 
-/// The built-in crop drive of this name, if it is one.
-fn crop_drive_named(name: &str) -> Option<CropRun> {
-    crop_drives().into_iter().find(|r| r.name == name)
+/// The crop drive `scenario` names: a built-in one, or a file with a
+/// `[crop_drive]` table; `None` for any other scenario.
+fn crop_drive_named(scenario: &str) -> Result<Option<CropRun>, SimError> {
+    if let Some((name, text)) = crop_drive::file::BUILTIN
+        .iter()
+        .find(|(n, _)| *n == scenario)
+    {
+        let origin = format!("built-in scenario `{name}`");
+        return Ok(Some(CropDriveFile::parse(text, &origin)?.run(&origin)?));
+    }
+    let path = Path::new(scenario);
+    match std::fs::read_to_string(path) {
+        Ok(text) if crop_drive::file::is_crop_drive(&text) => {
+            Ok(Some(CropDriveFile::parse(&text, scenario)?.run(scenario)?))
+        }
+        _ => Ok(None),
+    }
 }
 
 /// Drives `run`, writes its files, returns its row.
@@ -198,7 +211,7 @@ fn print_drives(rows: &[campaign::RunRow]) {
     for r in rows {
         println!(
             "{:32} {:>8.1} {:>10} {:>11} {:>9} {:>8} {:>8}",
-            format!("guyonneau-crop{}", r.crop),
+            r.name,
             r.duration_s,
             format!("{}/{:.2}", metres(r.row_distance_m.0), r.row_distance_m.1),
             r.mse_mm2

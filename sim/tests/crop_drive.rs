@@ -17,7 +17,8 @@
 use fieldguide::perception::rows::ruby::Variant;
 use fieldguide::supervisor::crop_navigation::{Phase, Waiting};
 use fieldguide_sim::crop_drive::campaign::{self, CROPS};
-use fieldguide_sim::crop_drive::{drive, CropEnd, CropOutcome, CropRun, Fault};
+use fieldguide_sim::crop_drive::file::{is_crop_drive, CropDriveFile, BUILTIN};
+use fieldguide_sim::crop_drive::{drive, CropEnd, CropOutcome, CropRun, Fault, LidarMount};
 use fieldguide_sim::odometry::OdometryErrors;
 
 /// Seeds of the sweep: the campaign's five runs per crop.
@@ -250,4 +251,89 @@ fn lidars_that_stop_sending_stop_the_robot() {
         .iter()
         .filter(|t| t.t_s > 5.0 && t.t_s < 20.0)
         .all(|t| t.waiting != Some(Waiting::MeasuringRows)));
+}
+
+#[test]
+fn the_built_in_crop_drives_are_the_papers_runs() {
+    for (k, (name, text)) in BUILTIN.iter().enumerate() {
+        assert!(is_crop_drive(text));
+        let run = CropDriveFile::parse(text, name).unwrap().run(name).unwrap();
+        let crop = u8::try_from(k + 1).unwrap();
+        let mut paper = CropRun::paper(crop, Variant::Rgop, 2022).unwrap();
+        paper.name = (*name).to_owned();
+        assert_eq!(run, paper, "{name}");
+    }
+    // A path-tracking scenario is not a crop drive.
+    assert!(!is_crop_drive(fieldguide_sim::scenario::BUILTIN[0].1));
+}
+
+#[test]
+fn a_crop_drive_file_changes_what_it_says_and_refuses_what_is_wrong() {
+    let head = "name = \"mine\"\ndescription = \"d\"\nseed = 9\n[crop_drive]\ncrop = 3\nvariant = \"RG\"\n";
+    let text = format!(
+        "{head}[field]\nspacing_m = 0.9\nweeds = 7\n[robot]\nstart_offset_m = -0.05\nlidar_outage_s = [3.0, 3.5]\n\
+         [odometry]\nscale = 0.01\nyaw_drift_rad_m = 0.0\ndistance_noise = 0.0\nyaw_noise = 0.0\n\
+         [[lidar]]\nmount_x_m = 0.4\nheading_deg = 0\n[[lidar]]\nmount_x_m = -0.4\nmount_y_m = 0.1\nheading_deg = 180\n"
+    );
+    let run = CropDriveFile::parse(&text, "mine.toml")
+        .unwrap()
+        .run("mine.toml")
+        .unwrap();
+    assert_eq!(run.name, "mine");
+    assert_eq!(run.variant, Variant::Rg);
+    assert_eq!(
+        (run.crop.crop, run.crop.spacing, run.crop.weeds),
+        (3, 0.9, 7)
+    );
+    assert_eq!(run.start, (0.5, -0.05));
+    assert_eq!(run.outage_s, Some((3.0, 3.5)));
+    assert_eq!(run.odometry.scale, 0.01);
+    assert_eq!(run.lidars.len(), 2);
+    assert_eq!(run.lidars[1].y_m, 0.1);
+    assert!((run.lidars[1].heading_rad - core::f64::consts::PI).abs() < 1e-12);
+    // Nothing said: the paper's LiDARs.
+    let plain = CropDriveFile::parse(head, "p").unwrap().run("p").unwrap();
+    assert_eq!(plain.lidars, LidarMount::PAPER.to_vec());
+    // Each wrong value names its field.
+    let bad = [
+        (format!("{head}[field]\nspacing_m = 0.1\n"), "field.spacing_m"),
+        (format!("{head}[field]\nrows = 7\n"), "field.rows"),
+        (head.replace("RG\"", "Pearl\""), "crop_drive.variant"),
+        (head.replace("crop = 3", "crop = 0"), "crop_drive.crop"),
+        (head.replace("\"mine\"", "\"a b\""), "name"),
+        (format!("{head}[robot]\nlidar_outage_s = [5.0, 4.0]\n"), "robot.lidar_outage_s"),
+        (
+            format!("{head}[[lidar]]\nmount_x_m = 0.5\nheading_deg = 0\n[[lidar]]\nmount_x_m = -0.5\nheading_deg = 180\n[[lidar]]\nmount_x_m = 0.0\nheading_deg = 90\n"),
+            "lidar",
+        ),
+        (format!("{head}[[lidar]]\nmount_x_m = 50.0\nheading_deg = 0\n"), "lidar[0].mount_x_m"),
+    ];
+    for (text, field) in bad {
+        let e = CropDriveFile::parse(&text, "bad.toml").and_then(|f| f.run("bad.toml"));
+        assert_eq!(e.unwrap_err().field(), Some(field), "{text}");
+    }
+}
+
+#[test]
+fn a_robot_with_a_front_lidar_only_stops_at_the_first_row_end_and_waits() {
+    // Past the end of the first inter-row nothing is left in view: the row
+    // end cannot be called (NAV-ROW-END needs a point behind), the rows are
+    // lost, and the robot stands waiting for a row distance it cannot
+    // measure, without running over anything.
+    let mut run = CropRun::paper(1, Variant::Rgop, 5).unwrap();
+    run.lidars = vec![LidarMount::PAPER[0]];
+    run.duration_s = 60.0;
+    let out = drive(&run);
+    assert_eq!(out.end, CropEnd::Timeout);
+    assert_eq!(out.crushed, 0);
+    let last = out.ticks.last().unwrap();
+    assert_eq!(last.waiting, Some(Waiting::MeasuringRows));
+    assert_eq!(last.command, (0.0, 0.0));
+    assert!(matches!(
+        last.phase,
+        Phase::Driving {
+            row: 1,
+            backward: false
+        }
+    ));
 }

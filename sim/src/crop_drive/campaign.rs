@@ -53,6 +53,8 @@ pub const fn seed(crop: u8, run: u32) -> u64 {
 /// One run of the plan.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunRow {
+    /// The run's name.
+    pub name: String,
     /// The line finder.
     pub variant: Variant,
     /// The crop, 1-4.
@@ -88,6 +90,7 @@ impl RunRow {
     pub fn of(run: &CropRun, crop: u8, k: u32, outcome: &CropOutcome) -> Self {
         let (detector_us, points) = outcome.timing();
         Self {
+            name: run.name.clone(),
             variant: run.variant,
             crop,
             run: k,

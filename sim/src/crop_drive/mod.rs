@@ -14,6 +14,7 @@
 
 pub mod campaign;
 pub mod field;
+pub mod file;
 pub mod plot;
 
 use std::fmt::Write as _;
@@ -60,6 +61,34 @@ pub enum Fault {
     SwappedWheels,
 }
 
+/// Where a LiDAR sits on the robot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LidarMount {
+    /// Position along the robot's axis, m, forward positive.
+    pub x_m: f64,
+    /// Position across, m, left positive.
+    pub y_m: f64,
+    /// Facing, rad (0 forward, π backward).
+    pub heading_rad: f64,
+}
+
+impl LidarMount {
+    /// The paper's LiDARs: at the front facing forward, at the back facing
+    /// backward, [`LIDAR_OFFSET_M`] from O.
+    pub const PAPER: [Self; 2] = [
+        Self {
+            x_m: LIDAR_OFFSET_M,
+            y_m: 0.0,
+            heading_rad: 0.0,
+        },
+        Self {
+            x_m: -LIDAR_OFFSET_M,
+            y_m: 0.0,
+            heading_rad: core::f64::consts::PI,
+        },
+    ];
+}
+
 /// One run: the crop, the line finder, the seed of everything random, and
 /// the robot's imperfections.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,6 +110,9 @@ pub struct CropRun {
     /// standard deviation and a correlation time of [`SLIP_TIME_S`]; the
     /// odometry does not see it.
     pub wheel_slip: f64,
+    /// The LiDARs, one or two, in the order the rows detector reads them
+    /// (the paper: one at each end of the body, facing out).
+    pub lidars: Vec<LidarMount>,
     /// The LiDARs' range noise σ, m (section 4.1.1: 0.01 m).
     pub lidar_noise_m: f64,
     /// The start: O this far into the first inter-row, m, and this far off
@@ -115,6 +147,7 @@ impl CropRun {
             },
             wheel_lag_s: 0.1,
             wheel_slip: 0.02,
+            lidars: LidarMount::PAPER.to_vec(),
             lidar_noise_m: 0.01,
             start: (0.5, 0.0),
             duration_s: 600.0,
@@ -227,12 +260,12 @@ fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
     (n > 0).then(|| sum / f64::from(n))
 }
 
-/// The paper's LiDAR (section 4.1.1) `offset` m along the robot's axis,
-/// facing `heading` (0 forward, π backward): 360 rays over 180°, 0.1-4 m.
-fn lidar(offset: f64, heading: f64, noise: f64) -> Result<HorizontalLidar, String> {
+/// The paper's LiDAR (section 4.1.1) at `mount`: 360 rays over 180°,
+/// 0.1-4 m, range noise σ = `noise` m.
+fn lidar(mount: &LidarMount, noise: f64) -> Result<HorizontalLidar, String> {
     HorizontalLidar::new(HorizontalLidarSpec {
-        mount_xy: [offset, 0.0],
-        mount_heading: heading,
+        mount_xy: [mount.x_m, mount.y_m],
+        mount_heading: mount.heading_rad,
         mount_height: LIDAR_HEIGHT_M,
         field_of_view: core::f64::consts::PI,
         rays: 360,
@@ -267,9 +300,20 @@ pub fn drive(run: &CropRun) -> CropOutcome {
 }
 
 fn drive_in(run: &CropRun, plants: &[Stem], rng: &mut SimRng) -> Result<CropOutcome, String> {
-    let front = lidar(LIDAR_OFFSET_M, 0.0, run.lidar_noise_m)?;
-    let back = lidar(-LIDAR_OFFSET_M, core::f64::consts::PI, run.lidar_noise_m)?;
-    let rows = RowsParams::authors(run.variant, front.mount()).with_second(back.mount());
+    let lidars = run
+        .lidars
+        .iter()
+        .map(|m| lidar(m, run.lidar_noise_m))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (first, second) = match lidars.as_slice() {
+        [a] => (a, None),
+        [a, b] => (a, Some(b)),
+        _ => return Err("one or two LiDARs".to_owned()),
+    };
+    let mut rows = RowsParams::authors(run.variant, first.mount());
+    if let Some(b) = second {
+        rows = rows.with_second(b.mount());
+    }
     let config = RowsConfig::new(rows).map_err(|e| e.to_string())?;
     let params = NavParams::authors(config).map_err(|e| e.to_string())?;
     let mut nav = CropNavigator::<1024>::new(params).map_err(|e| e.to_string())?;
@@ -294,7 +338,7 @@ fn drive_in(run: &CropRun, plants: &[Stem], rng: &mut SimRng) -> Result<CropOutc
         Pose2::<Odom>::new(0.0, 0.0, 0.0).map_err(|e| e.to_string())?,
         run.odometry,
     );
-    let (mut front_ranges, mut back_ranges) = (Vec::new(), Vec::new());
+    let mut ranges: Vec<Vec<f64>> = vec![Vec::new(); lidars.len()];
     let mut crushed = vec![false; plants.len()];
     let mut near = Vec::new();
     let mut ticks = Vec::new();
@@ -303,18 +347,19 @@ fn drive_in(run: &CropRun, plants: &[Stem], rng: &mut SimRng) -> Result<CropOutc
     let steps = (run.duration_s / PERIOD_S).ceil() as u64;
     for k in 0..=steps {
         let t_s = k as f64 * PERIOD_S;
-        front
-            .scan(&state.pose, &scene, rng, &mut front_ranges)
-            .map_err(|e| e.to_string())?;
-        back.scan(&state.pose, &scene, rng, &mut back_ranges)
-            .map_err(|e| e.to_string())?;
-        for r in front_ranges.iter_mut().chain(back_ranges.iter_mut()) {
-            *r = (*r / RANGE_RESOLUTION_M).round() * RANGE_RESOLUTION_M;
+        for (l, r) in lidars.iter().zip(ranges.iter_mut()) {
+            l.scan(&state.pose, &scene, rng, r)
+                .map_err(|e| e.to_string())?;
+            for range in r.iter_mut() {
+                *range = (*range / RANGE_RESOLUTION_M).round() * RANGE_RESOLUTION_M;
+            }
         }
-        let scans = [
-            front.scan_view(&front_ranges).map_err(|e| e.to_string())?,
-            back.scan_view(&back_ranges).map_err(|e| e.to_string())?,
-        ];
+        let scans = lidars
+            .iter()
+            .zip(&ranges)
+            .map(|(l, r)| l.scan_view(r))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| e.to_string())?;
         let silent = run.outage_s.is_some_and(|(a, b)| (a..b).contains(&t_s));
         let scans: &[_] = if silent { &[] } else { &scans };
         let began = Instant::now();

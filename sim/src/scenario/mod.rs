@@ -203,6 +203,15 @@ fn closest_builtin(requested: &str) -> Option<&'static str> {
 
 /// Parses scenario TOML `text` (`origin` names it in messages).
 pub fn parse(text: &str, origin: &str) -> Result<ScenarioFile, ScenarioError> {
+    parse_as(text, origin)
+}
+
+/// Parses TOML `text` as a `T` (`origin` names it in messages); errors name
+/// the field (`vehicle.wheelbase_m`), its line and column.
+pub fn parse_as<T: serde::de::DeserializeOwned>(
+    text: &str,
+    origin: &str,
+) -> Result<T, ScenarioError> {
     let de = toml::Deserializer::parse(text).map_err(|e| ScenarioError::Syntax {
         origin: origin.to_owned(),
         message: e.to_string(),

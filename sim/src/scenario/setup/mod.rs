@@ -215,7 +215,7 @@ pub fn build(
 }
 
 /// Checks the scenario's `name`: it names the output folder.
-fn check_name(check: &Checker<'_>, name: &str) -> Result<(), ScenarioError> {
+pub(crate) fn check_name(check: &Checker<'_>, name: &str) -> Result<(), ScenarioError> {
     let ok = !name.is_empty()
         && name
             .chars()
