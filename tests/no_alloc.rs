@@ -325,3 +325,44 @@ fn guidance_pipeline_does_not_allocate() {
         .iter()
         .any(|o| o.mode == Mode::Behaviour(EDGE) && o.command.is_some()));
 }
+
+mod crop_scans;
+
+#[test]
+fn crop_navigator_does_not_allocate() {
+    use fieldguide::perception::rows::ruby::Variant;
+    use fieldguide::perception::rows::{RowsConfig, RowsParams};
+    use fieldguide::supervisor::crop_navigation::{CropNavigator, NavParams, Phase};
+    let field = crop_scans::FieldSpec {
+        rows: 6,
+        ..crop_scans::crop4(3, 1.2)
+    }
+    .build();
+    let lidar = crop_scans::Lidar::paper();
+    let [front, back] = crop_scans::paper_mounts(0.55);
+    let rows = RowsParams::authors(Variant::Rgop, front.transform()).with_second(back.transform());
+    let mut nav: CropNavigator<1024> =
+        CropNavigator::new(NavParams::authors(RowsConfig::new(rows).unwrap()).unwrap()).unwrap();
+    // The robot at rest, then 0.0125 m further every tick (0.5 m/s at 40 Hz):
+    // measuring, then driving.
+    let ticks: Vec<_> = (0_u32..240)
+        .map(|k| {
+            let along = 0.5 + 0.0125 * f64::from(k.max(20) - 20);
+            let robot = field.between(0, 1, along);
+            let odometry = Pose2::<Odom>::new(along - 0.5, 0.0, 0.0).unwrap();
+            let f = field.cast(&robot, &front, &lidar, 2 * u64::from(k));
+            let b = field.cast(&robot, &back, &lidar, 2 * u64::from(k) + 1);
+            (f, b, odometry)
+        })
+        .collect();
+    let mut phases = Vec::with_capacity(ticks.len());
+    let n = allocations_in(|| {
+        for (f, b, odometry) in &ticks {
+            let tick = nav.step(&[f.scan(), b.scan()], odometry).unwrap();
+            phases.push(tick.phase);
+        }
+    });
+    assert_eq!(n, 0);
+    assert_eq!(phases[0], Phase::Measuring);
+    assert!(matches!(phases.last(), Some(Phase::Driving { row: 1, .. })));
+}

@@ -1368,6 +1368,68 @@ proptest! {
             check!("perception::rows::RowsDetector::rows", detector.rows());
         }
     }
+
+    #[test]
+    fn differential_robot_and_crop_navigator(
+        limits in (meters(), fin()), motion in (fin(), fin(), fin(), fin()),
+        v in variant(), mounts in (sensor_mount(), sensor_mount()),
+        knobs in (0_u8..4, fin(), fin(), fin(), 0_u8..4, 0_u16..4),
+        parts in scan_parts(64), ticks in prop::collection::vec((pose::<Odom>(), 0..3_usize), 1..30),
+        points in prop::collection::vec((near(5.0), near(5.0)), 0..8), reach in fin(), backward in any::<bool>(),
+    ) {
+        use fieldguide::model::differential::Differential;
+        use fieldguide::perception::furrow::selection::Pair;
+        use fieldguide::perception::rows::points::RowPoint;
+        use fieldguide::supervisor::crop_navigation::{in_travel_frame, nearest_point_behind, to_body, CropNavigator, NavParams};
+        let (track, top) = limits;
+        let d = check!("model::differential::Differential::new", Differential::new(track, MetersPerSecond::new(top).unwrap()));
+        names_a_requirement("Differential::new", &d);
+        let (sv, sw, sl, sr) = motion;
+        if let Ok(d) = d {
+            check!("model::differential::Differential::track", d.track());
+            check!("model::differential::Differential::max_wheel_speed", d.max_wheel_speed());
+            let wheels = check!("model::differential::Differential::wheels", d.wheels(MetersPerSecond::new(sv).unwrap(), RadiansPerSecond::new(sw).unwrap()));
+            if let Ok((Command::Differential { left, right }, _)) = wheels {
+                prop_assert!(d.within(left, right));
+            }
+            let (l, r) = (MetersPerSecond::new(sl).unwrap(), MetersPerSecond::new(sr).unwrap());
+            check!("model::differential::Differential::motion", d.motion(l, r));
+            check!("model::differential::Differential::within", d.within(l, r));
+        }
+        let rows = RowsConfig::new(RowsParams::authors(v, mounts.0).with_second(mounts.1)).unwrap();
+        let authors = check!("supervisor::crop_navigation::NavParams::authors", NavParams::authors(rows)).unwrap();
+        let (inter_rows, speed, body, margin, end_scans, blind) = knobs;
+        let p = NavParams {
+            inter_rows,
+            top_speed: MetersPerSecond::new(speed).unwrap(),
+            body_length: m(body),
+            end_margin: m(margin),
+            end_scans,
+            blind_ticks: blind,
+            ..authors
+        };
+        let nav = check!("supervisor::crop_navigation::CropNavigator::new", CropNavigator::<64>::new(p));
+        names_a_requirement("CropNavigator::new", &nav);
+        let mut nav = nav.unwrap_or(CropNavigator::<64>::new(authors).unwrap());
+        let (start, increment, ranges) = parts;
+        let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };
+        for (odom, n) in &ticks {
+            let tick = check!("supervisor::crop_navigation::CropNavigator::step", nav.step(&vec![scan; *n], odom));
+            names_a_requirement("CropNavigator::step", &tick);
+            if let Ok(t) = tick {
+                prop_assert!(Vehicle::Differential(p.vehicle).check(&t.command).is_ok());
+            }
+            check!("supervisor::crop_navigation::CropNavigator::phase", nav.phase());
+            check!("supervisor::crop_navigation::CropNavigator::detector", nav.detector().points());
+        }
+        let pts: Vec<RowPoint> = points.iter().map(|&(x, y)| RowPoint { position: Point2::new(x, y).unwrap(), returns: 1 }).collect();
+        check!("supervisor::crop_navigation::nearest_point_behind", nearest_point_behind(&pts, backward, reach));
+        let (Ok(a), Ok(b)) = (RowLine::new(sl.clamp(-1e6, 1e6), m(sv)), RowLine::new(sl.clamp(-1e6, 1e6), m(sw))) else { return Ok(()) };
+        let sides = Pair { left: a, right: b };
+        check!("supervisor::crop_navigation::in_travel_frame", in_travel_frame(&sides, &[a, b], backward));
+        let c = Command::Differential { left: MetersPerSecond::new(sl).unwrap(), right: MetersPerSecond::new(sr).unwrap() };
+        check!("supervisor::crop_navigation::to_body", to_body(&c, backward));
+    }
 }
 
 // ---------------------------------------------------------------- switching and plan

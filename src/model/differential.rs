@@ -89,10 +89,12 @@ impl Differential {
         } else {
             (1.0, false)
         };
+        // Clamped too: the scaled speed can exceed the limit by a rounding
+        // error (a subnormal limit).
         Ok((
             Command::Differential {
-                left: MetersPerSecond::new(l * scale)?,
-                right: MetersPerSecond::new(r * scale)?,
+                left: MetersPerSecond::new((l * scale).clamp(-max, max))?,
+                right: MetersPerSecond::new((r * scale).clamp(-max, max))?,
             },
             saturated,
         ))
