@@ -1,7 +1,8 @@
 //! Closed-loop drives of a whole crop on LiDAR alone (Guyonneau 2022,
 //! section 4; `spec/guyonneau2022.md` NAV-*): the paper's four crops with
 //! RGOP over a seed sweep, a broken controller caught, fields of our own
-//! (other spacing, a robot off the middle, slow wheels, more slip, worse
+//! (other spacing, rows ending at different places, a robot off the
+//! middle, slow wheels, more slip, worse
 //! odometry, longer rows, noisier LiDARs, both LiDARs silent mid-row), and a robot that cannot start or whose
 //! LiDARs stop. Every figure is measured against the true rows.
 //!
@@ -149,6 +150,11 @@ fn fields_of_our_own() {
             name: "crop 2, LiDARs silent for 0.2 s mid-row",
             crop: 2,
             change: |r| r.outage_s = Some((20.0, 20.2)),
+        },
+        OwnField {
+            name: "crop 3, rows ending anywhere in the last 2 m (a headland that is not square)",
+            crop: 3,
+            change: |r| r.crop.ragged_ends = 2.0,
         },
         OwnField {
             name: "crop 4, wheels slipping by 5 % (σ, 1 s correlation)",

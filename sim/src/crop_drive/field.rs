@@ -47,6 +47,9 @@ pub struct CropSpec {
     pub hole: f64,
     /// Weeds, uniform over the field's rectangle.
     pub weeds: usize,
+    /// Each row ends up to this much before the row length, uniformly (rows
+    /// drilled to a headland that is not square), m.
+    pub ragged_ends: f64,
 }
 
 impl CropSpec {
@@ -64,6 +67,7 @@ impl CropSpec {
             missing: 0.0,
             hole: 0.0,
             weeds: 0,
+            ragged_ends: 0.0,
         };
         let crop2 = Self {
             crop: 2,
@@ -104,6 +108,7 @@ impl CropSpec {
         let mut plants = Vec::new();
         let count = (self.length / self.plant_gap).floor() as usize;
         for i in 0..ROWS {
+            let end = self.length - symmetric(rng, self.ragged_ends).abs();
             let hole_start = if self.hole > 0.0 {
                 rng.random_range(0.0..(self.length - self.hole).max(0.0))
             } else {
@@ -115,7 +120,7 @@ impl CropSpec {
                 let y = self.row_y(i) + symmetric(rng, self.lateral_jitter);
                 let gone = rng.random::<f64>() < self.missing;
                 let in_hole = (hole_start..hole_start + self.hole).contains(&x);
-                if gone || in_hole || !(0.0..=self.length).contains(&x) {
+                if gone || in_hole || !(0.0..=end).contains(&x) {
                     continue;
                 }
                 if let Ok(position) = Point2::<World>::new(x, y) {

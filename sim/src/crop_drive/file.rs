@@ -89,6 +89,8 @@ pub struct FieldSection {
     pub hole_m: Option<f64>,
     /// Weeds.
     pub weeds: Option<u32>,
+    /// Each row ends up to this much short of the row length, m.
+    pub ragged_ends_m: Option<f64>,
 }
 
 /// `[robot]`: each key replaces the paper run's.
@@ -204,6 +206,13 @@ impl CropDriveFile {
         )?;
         set(&mut c.missing, f.missing, "field.missing", 0.0, 1.0)?;
         set(&mut c.hole, f.hole_m, "field.hole_m", 0.0, 100.0)?;
+        set(
+            &mut c.ragged_ends,
+            f.ragged_ends_m,
+            "field.ragged_ends_m",
+            0.0,
+            100.0,
+        )?;
         if let Some(w) = f.weeds {
             c.weeds = check.count("field.weeds", w, 0, 100_000)?;
         }
