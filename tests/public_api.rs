@@ -621,6 +621,74 @@ proptest! {
     }
 
     #[test]
+    fn four_wheel_steering_model_and_laws(
+        gains in (raw(), raw(), raw(), raw()), k2 in (raw(), raw()), e in tracking(),
+        slip in (radians(), radians()), angles in (radians(), radians()), obj in (meters(), radians()),
+        speed in prop_oneof![3 => 0.1..3.0_f64, 1 => fin()], held in any::<bool>(),
+        limits in (raw(), raw(), raw(), raw()), at in pose::<World>(),
+    ) {
+        use fieldguide::control::four_ws::{
+            front_lateral_error, strategy1_command, strategy1_front, strategy1_rear,
+            strategy2_command, strategy2_front, strategy2_rear, velocity_objective, Objectives,
+            RearSteering, Strategy1, Strategy1Gains, Strategy2, Strategy2Gains,
+        };
+        use fieldguide::model::four_ws::{
+            frenet_rates as fws_frenet_rates, time_rates, world_rates as fws_world_rates,
+            yaw_rate as fws_yaw_rate, FourWheelSteering,
+        };
+        let wb = Wheelbase::new(limits.0).unwrap_or(Wheelbase::new(1.2).unwrap());
+        let front_limit = SteeringLimit::new(limits.1).unwrap_or(SteeringLimit::new(0.5).unwrap());
+        let rear_limit = SteeringLimit::new(limits.2).unwrap_or(SteeringLimit::new(0.3).unwrap());
+        let rate = RadiansPerSecond::new(limits.3).ok();
+        check!("model::four_ws::FourWheelSteering::new", FourWheelSteering::new(wb, front_limit, rear_limit, rate, rate));
+        let vehicle = FourWheelSteering::new(wb, front_limit, rear_limit, None, None).unwrap();
+        check!("model::four_ws::FourWheelSteering::within_limits", vehicle.within_limits(angles.0, angles.1));
+        let v = MetersPerSecond::new(speed).unwrap();
+        let wild = Sideslip { front: slip.0, rear: slip.1 };
+        let small = Sideslip::new(0.05 * slip.0.get().sin(), 0.05 * slip.1.get().cos()).unwrap();
+        let (k_y, k_theta, k_r, ratio) = gains;
+        check!("control::four_ws::Strategy1Gains::new", Strategy1Gains::new(k_y, k_theta, k_r, ratio));
+        check!("control::four_ws::Strategy1Gains::table1", Strategy1Gains::table1());
+        let g1 = Strategy1Gains::new(k_y, k_theta, k_r, ratio).unwrap_or(Strategy1Gains::table1().unwrap());
+        check!("control::four_ws::Strategy1Gains::k_y", g1.k_y());
+        check!("control::four_ws::Strategy1Gains::k_theta", g1.k_theta());
+        check!("control::four_ws::Strategy1Gains::k_r", g1.k_r());
+        check!("control::four_ws::Strategy2Gains::new", Strategy2Gains::new(k2.0, k2.1));
+        check!("control::four_ws::Strategy2Gains::table1", Strategy2Gains::table1());
+        let g2 = Strategy2Gains::new(k2.0, k2.1).unwrap_or(Strategy2Gains::table1().unwrap());
+        check!("control::four_ws::Strategy2Gains::k_front", g2.k_front());
+        check!("control::four_ws::Strategy2Gains::k_rear", g2.k_rear());
+        let law1 = Strategy1 { gains: g1, vehicle, rear: if held { RearSteering::Held } else { RearSteering::Backstepping } };
+        let law2 = Strategy2 { gains: g2, vehicle };
+        let veh = Vehicle::FourWheelSteering(vehicle);
+        check!("control::four_ws::front_lateral_error", front_lateral_error(&e, &vehicle));
+        for s in [wild, small] {
+            let o = Objectives { sideslip: s, lateral_offset: obj.0, orientation: obj.1 };
+            check!("control::four_ws::Objectives::check", o.check());
+            check!("control::four_ws::Objectives::mirrored", o.mirrored());
+            check!("control::four_ws::velocity_objective", velocity_objective(&g1, &e, obj.0));
+            check!("control::four_ws::strategy1_rear", strategy1_rear(&g1, &e, &o));
+            check!("control::four_ws::strategy1_front", strategy1_front(&law1, &e, &o, angles.1));
+            if let Ok(c) = check!("control::four_ws::strategy1_command", strategy1_command(&law1, &e, &o, v)) {
+                let within = veh.check(&Command::FourWheelSteering { speed: v, front: c.front, rear: c.rear }).is_ok();
+                prop_assert!(within, "{:?}", c);
+            }
+            check!("control::four_ws::strategy2_rear", strategy2_rear(&g2, &e, s));
+            check!("control::four_ws::strategy2_front", strategy2_front(&law2, &e, s, angles.1));
+            if let Ok(c) = check!("control::four_ws::strategy2_command", strategy2_command(&law2, &e, s, v)) {
+                let within = veh.check(&Command::FourWheelSteering { speed: v, front: c.front, rear: c.rear }).is_ok();
+                prop_assert!(within, "{:?}", c);
+            }
+            names_a_requirement("strategy1_command", &strategy1_command(&law1, &e, &o, v));
+            names_a_requirement("strategy2_command", &strategy2_command(&law2, &e, s, v));
+            check!("model::four_ws::yaw_rate", fws_yaw_rate(v, angles.0, angles.1, s, wb));
+            check!("model::four_ws::time_rates", time_rates(&e, v, angles.0, angles.1, s, wb));
+            check!("model::four_ws::frenet_rates", fws_frenet_rates(&e, v, angles.0, angles.1, s, wb));
+            check!("model::four_ws::world_rates", fws_world_rates(&at, v, angles.0, angles.1, s, wb));
+        }
+    }
+
+    #[test]
     fn speed_schedules(
         bounds in (raw(), raw(), raw()), tau in raw(), rate in raw(), speed in raw(),
         gains in (raw(), raw()),

@@ -450,6 +450,34 @@ proptest! {
         };
         check_law::<BacksteppingConfig>(&law, &vehicle, &error, &sideslip, speed)?;
     }
+
+    #[test]
+    fn the_four_wheel_steering_laws_keep_the_law_contract(
+        error in any_error(),
+        speed in any_speed(),
+        slip in (prop_oneof![-1.0..1.0_f64, -2.0..2.0_f64], prop_oneof![-1.0..1.0_f64, -2.0..2.0_f64]),
+        objectives in (-3.0..3.0_f64, -2.0..2.0_f64),
+        held in any::<bool>(),
+    ) {
+        use fieldguide::control::four_ws::{Objectives, RearSteering, Strategy1, Strategy1Gains, Strategy2, Strategy2Gains};
+        let vehicle = fieldguide::model::four_ws::FourWheelSteering::new(
+            fieldguide::model::bicycle::Wheelbase::new(1.2).unwrap(),
+            fieldguide::model::bicycle::SteeringLimit::new(0.5).unwrap(),
+            fieldguide::model::bicycle::SteeringLimit::new(0.3).unwrap(),
+            None,
+            None,
+        ).unwrap();
+        let sideslip = fieldguide::model::bicycle::Sideslip {
+            front: Radians::new(slip.0).unwrap(),
+            rear: Radians::new(slip.1).unwrap(),
+        };
+        let rear = if held { RearSteering::Held } else { RearSteering::Backstepping };
+        let s1 = Strategy1 { gains: Strategy1Gains::table1().unwrap(), vehicle, rear };
+        let extra = Objectives { sideslip, lateral_offset: Meters::new(objectives.0).unwrap(), orientation: Radians::new(objectives.1).unwrap() };
+        check_law::<Strategy1>(&s1, &Vehicle::FourWheelSteering(vehicle), &error, &extra, speed)?;
+        let s2 = Strategy2 { gains: Strategy2Gains::table1().unwrap(), vehicle };
+        check_law::<Strategy2>(&s2, &Vehicle::FourWheelSteering(vehicle), &error, &sideslip, speed)?;
+    }
 }
 
 //= spec/guidance.md#gd-law-one-trait-for-every-control-law

@@ -15,6 +15,7 @@
 //! | [`Actuation::SkidSteer`] | speed, yaw rate | 0 m/s, 0 rad/s |
 
 pub mod bicycle;
+pub mod four_ws;
 
 use crate::error::Precondition;
 use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
@@ -180,6 +181,8 @@ pub struct Saturated {
 pub enum Vehicle {
     /// A front-steered bicycle (Pierre 2022, eq. 1).
     Bicycle(bicycle::Bicycle),
+    /// A four-wheel-steering robot (Iberraken 2022, eqs. 5-8).
+    FourWheelSteering(four_ws::FourWheelSteering),
 }
 
 impl Vehicle {
@@ -188,6 +191,7 @@ impl Vehicle {
     pub const fn actuation(&self) -> Actuation {
         match self {
             Self::Bicycle(_) => Actuation::Bicycle,
+            Self::FourWheelSteering(_) => Actuation::FourWheelSteering,
         }
     }
 
@@ -210,7 +214,17 @@ impl Vehicle {
                     ))
                 }
             }
-            (Self::Bicycle(_), _) => Err(Precondition::new(
+            (Self::FourWheelSteering(f), Command::FourWheelSteering { front, rear, .. }) => {
+                if f.within_limits(*front, *rear) {
+                    Ok(())
+                } else {
+                    Err(Precondition::new(
+                        "GD-VEHICLE",
+                        "front or rear steering beyond the vehicle's limit",
+                    ))
+                }
+            }
+            (Self::Bicycle(_) | Self::FourWheelSteering(_), _) => Err(Precondition::new(
                 "GD-VEHICLE",
                 "command of another actuation than the vehicle's",
             )),
