@@ -694,3 +694,31 @@ fn bad_configurations_name_their_requirement() {
     assert_eq!(c.ground().iterations(), 32);
     assert_eq!(c.thresholds().enter(), 0.5);
 }
+
+#[test]
+fn a_mirrored_vineyard_gives_mirrored_deviations() {
+    // The world mirrored left-right (cross slope negated, bumps and rows
+    // mirrored), the robot's lateral position and heading negated: the LiDAR's
+    // rays are symmetric about its axis, so every deviation is negated.
+    let mut ground = World::ground(0.03, 0.2);
+    SplitMix64(17).bumps(&mut ground, 60, 0.2, 0.08, (0.0, 8.0));
+    let world = vineyard(ground, 2.2, SUMMER_WIDTH, &[]);
+    let mut mirror = world.clone();
+    mirror.cross = -world.cross;
+    for b in &mut mirror.boxes {
+        let (lo, hi) = (b.min[1], b.max[1]);
+        b.min[1] = -hi;
+        b.max[1] = -lo;
+    }
+    let params = VineParams::summer();
+    let a = drive(&params, &world, (0.0, 0.25, 0.04), 35, same);
+    let b = drive(&params, &mirror, (0.0, -0.25, -0.04), 35, same);
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!(a.verdict, b.verdict);
+        if let (Some(ea), Some(eb)) = (a.error, b.error) {
+            assert!((ea.y.get() + eb.y.get()).abs() < 1e-6, "{ea:?} {eb:?}");
+            assert!((ea.angular_deviation.get() + eb.angular_deviation.get()).abs() < 1e-6);
+        }
+    }
+    assert!(a.last().unwrap().verdict.estimate_is_valid());
+}

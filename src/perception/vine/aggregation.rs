@@ -47,15 +47,16 @@ pub struct SetPoints<const N: usize> {
 }
 
 impl<const N: usize> SetPoints<N> {
-    /// Set-points dropped farther than `keep_distance` m from the robot.
+    /// Set-points dropped farther than `keep_distance` m from the robot; `N`
+    /// must be at least 1 (a capacity of 0 does not compile).
     ///
     /// # Errors
-    /// `VINE-AGGREGATE` when N = 0 or the distance is not positive.
+    /// `VINE-AGGREGATE` when the distance is not positive.
     pub fn new(keep_distance: Meters) -> Result<Self, Precondition> {
-        if N == 0 || keep_distance.get() <= 0.0 {
+        if keep_distance.get() <= 0.0 {
             return Err(Precondition::new(
                 "VINE-AGGREGATE",
-                "need a capacity >= 1 and a keep distance > 0",
+                "the keep distance must be > 0",
             ));
         }
         Ok(Self {

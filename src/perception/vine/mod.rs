@@ -323,9 +323,10 @@ impl<const RAYS: usize, const POINTS: usize> VineDetector<RAYS, POINTS> {
     /// A detector with no set-point, its generator seeded from the
     /// configuration.
     ///
+    /// `POINTS` must be at least 1 (a capacity of 0 does not compile).
+    ///
     /// # Errors
-    /// `VINE-AGGREGATE` when `POINTS` is 0, `VINE-LINE` when `min_points`
-    /// exceeds `POINTS`.
+    /// `VINE-LINE` when `min_points` exceeds `POINTS`.
     pub fn new(config: VineConfig) -> Result<Self, Precondition> {
         if config.params.min_points > POINTS {
             return Err(Precondition::new(
@@ -439,22 +440,16 @@ impl<const RAYS: usize, const POINTS: usize> VineDetector<RAYS, POINTS> {
                 });
             }
         }
-        let line = self.line(odom);
+        // A line whose deviations overflow is no line.
+        let estimate = self
+            .line(odom)
+            .and_then(|l| row_deviation(&l.0).ok().map(|e| (l, e)));
         let quality = self.set_points.mean_score();
-        let verdict = vine_verdict(&self.config.thresholds, line.is_some(), quality);
-        let error = line.and_then(|l| row_deviation(&l.0).ok());
-        let (line, error) = match (line, error) {
-            (Some(l), Some(e)) if verdict != Verdict::Absent => (Some(l), Some(e)),
-            _ => (None, None),
-        };
+        let verdict = vine_verdict(&self.config.thresholds, estimate.is_some(), quality);
         Ok(VineDetection {
-            verdict: if line.is_some() {
-                verdict
-            } else {
-                Verdict::Absent
-            },
-            error,
-            line,
+            verdict,
+            error: estimate.map(|(_, e)| e),
+            line: estimate.map(|(l, _)| l),
             quality,
             ground,
             candidates: candidates.len(),
