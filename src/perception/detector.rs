@@ -126,7 +126,7 @@ pub enum AnyDetector<
     const EDGE_CHAIN: usize = 64,
     const FURROW_RAYS: usize = 512,
     const FURROW_SCANS: usize = 32,
-    const VINE_RAYS: usize = 512,
+    const VINE_RAYS: usize = 256,
     const VINE_POINTS: usize = 64,
 > {
     /// An edge detector.
