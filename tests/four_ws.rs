@@ -291,10 +291,25 @@ proptest! {
             "{tan_rate} vs {}", k.k_theta() * e_theta);
         // e_y' = α tan θ̃₂ = k_y e_y + α e_θ: exactly k_y e_y once e_θ = 0.
         prop_assert!((d.y - (k.k_y() * (y - y_d) + alpha * e_theta)).abs() < 1e-9);
-        // On a straight line, e_θ' = k_θ e_θ − k_y y'.
-        if c == 0.0 {
-            let e_theta_rate = tan_rate - k.k_y() * d.y;
-            prop_assert!((e_theta_rate - (k.k_theta() * e_theta - k.k_y() * d.y)).abs() < 1e-9);
+        // On a straight line, e_θ' = k_θ e_θ − k_y y': a finite difference of
+        // e_θ along the model, both angles held, over 1 µm.
+        let straight = error(y, theta, 0.0);
+        if let Ok(cmd) = strategy1_command(&law, &straight, &obj, v()) {
+            let t2 = theta + cmd.rear.get() + slip.rear.get();
+            if !cmd.saturated && t2.abs() < 1.2 {
+                let wb = law.vehicle.wheelbase;
+                let d = frenet_rates(&straight, v(), cmd.front, cmd.rear, slip, wb).unwrap();
+                let e_theta_at = |y: f64, th: f64| {
+                    let t2 = th + cmd.rear.get() + slip.rear.get();
+                    let target = velocity_objective(&k, &error(y, th, 0.0), obj.lateral_offset).unwrap();
+                    t2.tan() - target.get().tan()
+                };
+                let h = 1e-6;
+                let e0 = e_theta_at(y, theta);
+                let fd = (e_theta_at(y + h * d.y, theta + h * d.angular_deviation) - e0) / h;
+                let expected = k.k_theta() * e0 - k.k_y() * d.y;
+                prop_assert!((fd - expected).abs() < 1e-3 * (1.0 + expected.abs()), "{fd} vs {expected}");
+            }
         }
     }
 
