@@ -484,25 +484,32 @@ fn eqs_3_and_4_in_the_odometry_frame_agree_with_the_robot_frame() {
     );
 }
 
-#[test]
-fn the_deviations_do_not_depend_on_the_odometry_frame() {
-    // The same drive with odometry expressed in a frame rotated by 2 rad and
-    // moved by (30, −40) m: the same deviations (rigid motion).
-    let world = vineyard(World::ground(0.02, -0.15), 2.2, SUMMER_WIDTH, &[]);
-    let params = VineParams::summer();
-    let (c, s) = (2.0_f64.cos(), 2.0_f64.sin());
-    let moved = |x: f64, y: f64, h: f64| (30.0 + c * x - s * y, -40.0 + s * x + c * y, h + 2.0);
-    let a = drive(&params, &world, (0.0, -0.2, 0.04), 35, same);
-    let b = drive(&params, &world, (0.0, -0.2, 0.04), 35, moved);
-    for (a, b) in a.iter().zip(&b) {
-        assert_eq!(a.verdict, b.verdict);
-        assert_eq!(a.candidates, b.candidates);
-        if let (Some(ea), Some(eb)) = (a.error, b.error) {
-            assert!((ea.y.get() - eb.y.get()).abs() < 1e-9);
-            assert!((ea.angular_deviation.get() - eb.angular_deviation.get()).abs() < 1e-9);
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// The same drive with its odometry expressed in any frame rotated and
+    /// moved from the world's: the same deviations (rigid motion).
+    #[test]
+    fn the_deviations_do_not_depend_on_the_odometry_frame(
+        angle in -3.1..3.1_f64, tx in -100.0..100.0_f64, ty in -100.0..100.0_f64,
+        y0 in -0.4..0.4_f64, heading in -0.08..0.08_f64,
+    ) {
+        let world = vineyard(World::ground(0.02, -0.15), 2.2, SUMMER_WIDTH, &[]);
+        let params = VineParams::summer();
+        let (s, c) = angle.sin_cos();
+        let moved = |x: f64, y: f64, h: f64| (tx + c * x - s * y, ty + s * x + c * y, h + angle);
+        let a = drive(&params, &world, (0.0, y0, heading), 30, same);
+        let b = drive(&params, &world, (0.0, y0, heading), 30, moved);
+        for (a, b) in a.iter().zip(&b) {
+            prop_assert_eq!(a.verdict, b.verdict);
+            prop_assert_eq!(a.candidates, b.candidates);
+            if let (Some(ea), Some(eb)) = (a.error, b.error) {
+                prop_assert!((ea.y.get() - eb.y.get()).abs() < 1e-9);
+                prop_assert!((ea.angular_deviation.get() - eb.angular_deviation.get()).abs() < 1e-9);
+            }
         }
+        prop_assert!(a.last().unwrap().verdict.estimate_is_valid());
     }
-    assert!(a.last().unwrap().verdict.estimate_is_valid());
 }
 
 //= spec/iberraken2022.md#vine-signal-levelled-heights-with-a-noise-floor
