@@ -729,3 +729,38 @@ fn a_mirrored_vineyard_gives_mirrored_deviations() {
     }
     assert!(a.last().unwrap().verdict.estimate_is_valid());
 }
+
+#[test]
+fn range_noise_of_two_centimetres_keeps_the_row() {
+    // Every range off by up to ±2 cm (uniform), a cross slope and bumps: the
+    // RANSAC's 5 cm tolerance and the 0.2 m floor absorb it.
+    let mut ground = World::ground(0.02, 0.15);
+    SplitMix64(23).bumps(&mut ground, 60, 0.2, 0.08, (0.0, 8.0));
+    let world = vineyard(ground, 2.2, SUMMER_WIDTH, &[]);
+    let lidar = Lidar::table1();
+    let mut noise = SplitMix64(99);
+    let mut d = Detector::new(VineConfig::new(&VineParams::summer()).unwrap()).unwrap();
+    let (y, heading) = (-0.2, 0.03_f64);
+    let mut worst = 0.0_f64;
+    for k in 0..40 {
+        let t = 0.1 * f64::from(k);
+        let pose = (t * heading.cos(), y + t * heading.sin(), heading);
+        let mut ranges = lidar.cast(&world, pose);
+        for r in &mut ranges {
+            *r += 0.04 * (noise.unit() - 0.5);
+        }
+        let det = d
+            .detect(
+                &lidar.scan(&ranges),
+                &Pose2::new(pose.0, pose.1, pose.2).unwrap(),
+            )
+            .unwrap();
+        if k >= 10 {
+            assert!(det.verdict.estimate_is_valid(), "scan {k}: {det:?}");
+            let e = det.error.unwrap();
+            worst = worst.max((e.y.get() - pose.1).abs());
+            assert!((e.angular_deviation.get() - heading).abs() < 0.03);
+        }
+    }
+    assert!(worst < 0.03, "worst lateral error {worst}");
+}
