@@ -85,17 +85,8 @@ pub fn locate(
         .saturating_add(1)
         .min(rays.len())
         .min(signal.len());
-    weighted_centroid(rays.get(start..end)?, signal.get(start..end)?)
-}
-
-/// The `signal`-weighted centroid of the ground positions of `rays`, only
-/// rays with a point and a positive signal counting; `None` when there is
-/// none. Shared with the vine detector (VINE-CANDIDATES).
-pub(crate) fn weighted_centroid(
-    rays: &[Option<ScanPoint>],
-    signal: &[f64],
-) -> Option<Point2<Robot>> {
-    let weights = signal;
+    let rays = rays.get(start..end)?;
+    let weights = signal.get(start..end)?;
     let (mut sw, mut sx, mut sy) = (0.0, 0.0, 0.0);
     for (ray, &w) in rays.iter().zip(weights) {
         if let Some(p) = ray {
