@@ -1,6 +1,6 @@
 //! Fuzz targets (bolero) for the scan ingestion of every detector and for
 //! the pipeline that routes scans to them (LIB-SCAN, EDGE-SCAN, FUR-SCAN,
-//! GD-DETECTOR, GD-INPUT, LIB-FINITE).
+//! GD-DETECTOR, GD-INPUT, LIB-FINITE, and the vine detector's VINE-*).
 //!
 //! Each target builds its input from a structure that bolero generates and
 //! mutates: a scan is one of a few real ones (walls for the edge detector,
@@ -29,6 +29,7 @@
 mod crop_scans;
 mod edge_support;
 mod furrow_common;
+mod vine_scans;
 
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::sync::OnceLock;
@@ -830,6 +831,102 @@ fn fuzz_rows_detector() {
             if let Some(d) = detector.row_distance() {
                 assert!(d.get().is_finite() && d.get() > 0.0);
             }
+        }
+    });
+}
+
+// ---------------------------------------------------------- vine target --
+
+/// Real inclined scans of vineyards (`vine_scans`, Table 1's mount): flat
+/// ground, a cross slope with bumps, and rows with a gap, [`SEQUENCE`] per
+/// vineyard, the robot 0.1 m off the row, 0.1 m apart.
+fn vineyards() -> &'static [Vec<Vec<f64>>] {
+    static VINES: OnceLock<Vec<Vec<Vec<f64>>>> = OnceLock::new();
+    VINES.get_or_init(|| {
+        let mut bumpy = vine_scans::World::ground(0.03, 0.2);
+        vine_scans::SplitMix64(3).bumps(&mut bumpy, 40, 0.2, 0.08, (0.0, 6.0));
+        let worlds = [
+            vine_scans::vineyard(vine_scans::World::ground(0.0, 0.0), 2.2, 0.25, &[]),
+            vine_scans::vineyard(bumpy, 2.2, 0.25, &[]),
+            vine_scans::vineyard(
+                vine_scans::World::ground(0.0, -0.1),
+                2.2,
+                0.12,
+                &[(2.0, 4.0)],
+            ),
+        ];
+        let lidar = vine_scans::Lidar::table1();
+        worlds
+            .iter()
+            .map(|w| {
+                (0..SEQUENCE)
+                    .map(|k| lidar.cast(w, (0.1 * k as f64, 0.1, 0.0)))
+                    .collect()
+            })
+            .collect()
+    })
+}
+
+fn vine_scan(case: &ScanCase, k: usize) -> OwnedScan {
+    let bases = vineyards();
+    let lidar = vine_scans::Lidar::table1();
+    let limits = RangeLimits::new(
+        Meters::new(0.05).unwrap(),
+        Meters::new(lidar.max_range).unwrap(),
+    )
+    .unwrap();
+    OwnedScan::new(
+        case,
+        &bases[usize::from(case.base) % bases.len()][k % SEQUENCE],
+        (lidar.start, lidar.increment, limits),
+    )
+}
+
+#[derive(Debug, Clone, TypeGenerator)]
+struct VineCase {
+    winter: bool,
+    #[generator(produce_with::<Vec<(ScanCase, PoseCase)>>().len(1usize..=SEQUENCE))]
+    scans: Vec<(ScanCase, PoseCase)>,
+    #[generator(produce_with::<Vec<PoseCase>>().len(0usize..=4))]
+    moves: Vec<PoseCase>,
+}
+
+/// The vine detector (256 field-of-view rays, 64 set-points) over a
+/// sequence of vineyard scans with faults and distortions and any odometry:
+/// each detection keeps GD-DETECTOR's claims, a FUR-SCAN refusal leaves the
+/// set-points as they were, and they never exceed their capacity.
+#[test]
+fn fuzz_vine_detector() {
+    use fieldguide::perception::vine::{VineConfig, VineDetector, VineParams};
+    check!().with_type::<VineCase>().for_each(|case| {
+        let params = if case.winter {
+            VineParams::winter()
+        } else {
+            VineParams::summer()
+        };
+        let mut detector = VineDetector::<256, 64>::new(VineConfig::new(&params).unwrap()).unwrap();
+        for (k, (scan_case, pose_case)) in case.scans.iter().enumerate() {
+            let owned = vine_scan(scan_case, k);
+            let Some(scan) = owned.scan() else { continue };
+            let Some(odometry) = pose_case.pose::<Odom>((0.1 * k as f64, 0.1, 0.0)) else {
+                continue;
+            };
+            let before: Vec<_> = detector.set_points().iter().copied().collect();
+            match detector.observe(&scan, &odometry) {
+                Ok(d) => check_detection(&d, &case.moves),
+                Err(e) => {
+                    assert_refusal(&e, &["FUR-SCAN", "LIB-FINITE"]);
+                    if e.requirement == "FUR-SCAN" {
+                        let after: Vec<_> = detector.set_points().iter().copied().collect();
+                        assert_eq!(after, before, "{e}");
+                    }
+                }
+            }
+            assert!(detector.set_points().len() <= 64);
+            assert!(detector
+                .set_points()
+                .iter()
+                .all(|p| p.score.is_finite() && p.score > 0.0 && p.score <= 1.0));
         }
     });
 }

@@ -366,3 +366,64 @@ fn crop_navigator_does_not_allocate() {
     assert_eq!(phases[0], Phase::Measuring);
     assert!(matches!(phases.last(), Some(Phase::Driving { row: 1, .. })));
 }
+
+mod vine_scans;
+
+/// The vine detector and both four-wheel-steering laws, 60 ticks along a
+/// summer vine row on a cross slope (`vine_scans`): no allocation.
+//= spec/library.md#lib-no-alloc-no-allocation
+//= type=test
+//# The core MUST be `no_std` and MUST NOT allocate on the heap: buffers have a
+//# fixed capacity, and a full buffer is a returned value, not a panic.
+#[test]
+fn vine_detection_and_four_wheel_steering_laws_do_not_allocate() {
+    use fieldguide::control::four_ws::{
+        strategy1_command, strategy2_command, Objectives, RearSteering, Strategy1, Strategy1Gains,
+        Strategy2, Strategy2Gains,
+    };
+    use fieldguide::model::four_ws::FourWheelSteering;
+    use fieldguide::perception::vine::{VineConfig, VineDetector, VineParams};
+    let lidar = vine_scans::Lidar::table1();
+    let world = vine_scans::vineyard(vine_scans::World::ground(0.0, 0.15), 2.2, 0.25, &[]);
+    // The scans are made before the watched section.
+    let scans: Vec<Vec<f64>> = (0..60)
+        .map(|k| lidar.cast(&world, (0.1 * f64::from(k), 0.2, 0.0)))
+        .collect();
+    let mut vine =
+        VineDetector::<512, 64>::new(VineConfig::new(&VineParams::summer()).unwrap()).unwrap();
+    let vehicle = FourWheelSteering::new(
+        Wheelbase::new(1.2).unwrap(),
+        SteeringLimit::new(0.5).unwrap(),
+        SteeringLimit::new(0.3).unwrap(),
+        None,
+        None,
+    )
+    .unwrap();
+    let s1 = Strategy1 {
+        gains: Strategy1Gains::table1().unwrap(),
+        vehicle,
+        rear: RearSteering::Backstepping,
+    };
+    let s2 = Strategy2 {
+        gains: Strategy2Gains::table1().unwrap(),
+        vehicle,
+    };
+    let v = MetersPerSecond::new(1.0).unwrap();
+    let mut commands = [None; 60];
+    let count = allocations_in(|| {
+        for ((k, ranges), slot) in (0_u32..).zip(&scans).zip(commands.iter_mut()) {
+            let odom = Pose2::<Odom>::new(0.1 * f64::from(k), 0.2, 0.0).unwrap();
+            let d = vine.detect(&lidar.scan(ranges), &odom).unwrap();
+            if let Some(e) = d.error {
+                let a = strategy1_command(&s1, &e, &Objectives::NEUTRAL, v).unwrap();
+                let b = strategy2_command(&s2, &e, Sideslip::ZERO, v).unwrap();
+                *slot = Some((a, b));
+            }
+        }
+    });
+    assert_eq!(
+        count, 0,
+        "vine detection and 4WS laws allocated {count} times"
+    );
+    assert!(commands.iter().filter(|c| c.is_some()).count() > 40);
+}

@@ -31,6 +31,7 @@
 
 mod edge_support;
 mod furrow_common;
+mod vine_scans;
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -621,6 +622,74 @@ proptest! {
     }
 
     #[test]
+    fn four_wheel_steering_model_and_laws(
+        gains in (raw(), raw(), raw(), raw()), k2 in (raw(), raw()), e in tracking(),
+        slip in (radians(), radians()), angles in (radians(), radians()), obj in (meters(), radians()),
+        speed in prop_oneof![3 => 0.1..3.0_f64, 1 => fin()], held in any::<bool>(),
+        limits in (raw(), raw(), raw(), raw()), at in pose::<World>(),
+    ) {
+        use fieldguide::control::four_ws::{
+            front_lateral_error, strategy1_command, strategy1_front, strategy1_rear,
+            strategy2_command, strategy2_front, strategy2_rear, velocity_objective, Objectives,
+            RearSteering, Strategy1, Strategy1Gains, Strategy2, Strategy2Gains,
+        };
+        use fieldguide::model::four_ws::{
+            frenet_rates as fws_frenet_rates, time_rates, world_rates as fws_world_rates,
+            yaw_rate as fws_yaw_rate, FourWheelSteering,
+        };
+        let wb = Wheelbase::new(limits.0).unwrap_or(Wheelbase::new(1.2).unwrap());
+        let front_limit = SteeringLimit::new(limits.1).unwrap_or(SteeringLimit::new(0.5).unwrap());
+        let rear_limit = SteeringLimit::new(limits.2).unwrap_or(SteeringLimit::new(0.3).unwrap());
+        let rate = RadiansPerSecond::new(limits.3).ok();
+        check!("model::four_ws::FourWheelSteering::new", FourWheelSteering::new(wb, front_limit, rear_limit, rate, rate));
+        let vehicle = FourWheelSteering::new(wb, front_limit, rear_limit, None, None).unwrap();
+        check!("model::four_ws::FourWheelSteering::within_limits", vehicle.within_limits(angles.0, angles.1));
+        let v = MetersPerSecond::new(speed).unwrap();
+        let wild = Sideslip { front: slip.0, rear: slip.1 };
+        let small = Sideslip::new(0.05 * slip.0.get().sin(), 0.05 * slip.1.get().cos()).unwrap();
+        let (k_y, k_theta, k_r, ratio) = gains;
+        check!("control::four_ws::Strategy1Gains::new", Strategy1Gains::new(k_y, k_theta, k_r, ratio));
+        check!("control::four_ws::Strategy1Gains::table1", Strategy1Gains::table1());
+        let g1 = Strategy1Gains::new(k_y, k_theta, k_r, ratio).unwrap_or(Strategy1Gains::table1().unwrap());
+        check!("control::four_ws::Strategy1Gains::k_y", g1.k_y());
+        check!("control::four_ws::Strategy1Gains::k_theta", g1.k_theta());
+        check!("control::four_ws::Strategy1Gains::k_r", g1.k_r());
+        check!("control::four_ws::Strategy2Gains::new", Strategy2Gains::new(k2.0, k2.1));
+        check!("control::four_ws::Strategy2Gains::table1", Strategy2Gains::table1());
+        let g2 = Strategy2Gains::new(k2.0, k2.1).unwrap_or(Strategy2Gains::table1().unwrap());
+        check!("control::four_ws::Strategy2Gains::k_front", g2.k_front());
+        check!("control::four_ws::Strategy2Gains::k_rear", g2.k_rear());
+        let law1 = Strategy1 { gains: g1, vehicle, rear: if held { RearSteering::Held } else { RearSteering::Backstepping } };
+        let law2 = Strategy2 { gains: g2, vehicle };
+        let veh = Vehicle::FourWheelSteering(vehicle);
+        check!("control::four_ws::front_lateral_error", front_lateral_error(&e, &vehicle));
+        for s in [wild, small] {
+            let o = Objectives { sideslip: s, lateral_offset: obj.0, orientation: obj.1 };
+            check!("control::four_ws::Objectives::check", o.check());
+            check!("control::four_ws::Objectives::mirrored", o.mirrored());
+            check!("control::four_ws::velocity_objective", velocity_objective(&g1, &e, obj.0));
+            check!("control::four_ws::strategy1_rear", strategy1_rear(&g1, &e, &o));
+            check!("control::four_ws::strategy1_front", strategy1_front(&law1, &e, &o, angles.1));
+            if let Ok(c) = check!("control::four_ws::strategy1_command", strategy1_command(&law1, &e, &o, v)) {
+                let within = veh.check(&Command::FourWheelSteering { speed: v, front: c.front, rear: c.rear }).is_ok();
+                prop_assert!(within, "{:?}", c);
+            }
+            check!("control::four_ws::strategy2_rear", strategy2_rear(&g2, &e, s));
+            check!("control::four_ws::strategy2_front", strategy2_front(&law2, &e, s, angles.1));
+            if let Ok(c) = check!("control::four_ws::strategy2_command", strategy2_command(&law2, &e, s, v)) {
+                let within = veh.check(&Command::FourWheelSteering { speed: v, front: c.front, rear: c.rear }).is_ok();
+                prop_assert!(within, "{:?}", c);
+            }
+            names_a_requirement("strategy1_command", &strategy1_command(&law1, &e, &o, v));
+            names_a_requirement("strategy2_command", &strategy2_command(&law2, &e, s, v));
+            check!("model::four_ws::yaw_rate", fws_yaw_rate(v, angles.0, angles.1, s, wb));
+            check!("model::four_ws::time_rates", time_rates(&e, v, angles.0, angles.1, s, wb));
+            check!("model::four_ws::frenet_rates", fws_frenet_rates(&e, v, angles.0, angles.1, s, wb));
+            check!("model::four_ws::world_rates", fws_world_rates(&at, v, angles.0, angles.1, s, wb));
+        }
+    }
+
+    #[test]
     fn speed_schedules(
         bounds in (raw(), raw(), raw()), tau in raw(), rate in raw(), speed in raw(),
         gains in (raw(), raw()),
@@ -1085,6 +1154,7 @@ proptest! {
         let mut detector = check!("perception::detector::Detector::configure", AnyDetector::<512, 64, 512, 32>::configure(&config)).unwrap();
         check!("perception::detector::AnyDetector::as_edge", detector.as_edge().map(EdgeDetector::config));
         check!("perception::detector::AnyDetector::as_furrow", detector.as_furrow().map(FurrowDetector::config));
+        check!("perception::detector::AnyDetector::as_vine", detector.as_vine().map(|d| d.config()));
         let (start, increment, wild) = parts;
         let ranges = if edge { wall_ranges(d, 360, &faults) } else { wild };
         let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };
@@ -1116,6 +1186,121 @@ proptest! {
                 check!("perception::detector::HeldLine::error_at", line.error_at(p));
             }
         }
+    }
+}
+
+// ---------------------------------------------------------------- vine rows
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn vine_detection(
+        model in (0..40_usize, 0..40_usize, raw()), floor in raw(), threshold in raw(),
+        ransac in (0..2000_usize, raw(), 0..80_usize, raw()), bounds in (raw(), raw(), raw()),
+        line in (0..8_usize, raw()), verdict in (raw(), raw()), winter in any::<bool>(),
+        parts in scan_parts(271), clean in any::<bool>(), poses in prop::collection::vec(pose::<Odom>(), 1..4),
+        at in pose::<Robot>(), signal in prop::collection::vec(raw(), 0..80), points in prop::collection::vec((point::<Odom>(), raw()), 0..8),
+        yaw in radians(), coefficients in (raw(), meters()),
+    ) {
+        use fieldguide::perception::furrow::scan::ScanPoint;
+        use fieldguide::perception::vine::aggregation::{lateral_deviation, SetPoint, SetPoints};
+        use fieldguide::perception::vine::correlation::{correlate as vine_correlate, VineModel};
+        use fieldguide::perception::vine::ground::{fit_ground, Ground, GroundParams};
+        use fieldguide::perception::vine::{row_deviation, vine_verdict, VineConfig, VineDetector, VineLine, VineParams};
+        use rand_core::SeedableRng;
+        check!("perception::vine::VineParams::summer", VineParams::summer());
+        check!("perception::vine::VineParams::winter", VineParams::winter());
+        let mut p = if winter { VineParams::winter() } else { VineParams::summer() };
+        p.model_width = model.0;
+        p.model_margin = model.1;
+        p.model_height = Meters::new(model.2).unwrap_or(p.model_height);
+        p.height_floor = Meters::new(floor).unwrap_or(p.height_floor);
+        p.threshold = threshold;
+        p.ransac_iterations = ransac.0;
+        p.ransac_tolerance = Meters::new(ransac.1).unwrap_or(p.ransac_tolerance);
+        p.ransac_min_inliers = ransac.2;
+        p.max_cross_slope = ransac.3;
+        p.max_deviation = Meters::new(bounds.0).unwrap_or(p.max_deviation);
+        p.first_lateral = Meters::new(bounds.1).unwrap_or(p.first_lateral);
+        p.keep_distance = Meters::new(bounds.2).unwrap_or(p.keep_distance);
+        p.min_points = line.0;
+        p.min_extent = Meters::new(line.1).unwrap_or(p.min_extent);
+        p.enter = verdict.0;
+        p.exit = verdict.1;
+        let built = check!("perception::vine::VineConfig::new", VineConfig::new(&p));
+        names_a_requirement("VineConfig::new", &built);
+        let config = built.unwrap_or(VineConfig::new(&VineParams::summer()).unwrap());
+        check!("perception::vine::VineConfig::params", config.params());
+        check!("perception::vine::VineConfig::model", config.model());
+        check!("perception::vine::VineConfig::ground", config.ground());
+        check!("perception::vine::VineConfig::thresholds", config.thresholds());
+        let mut d = check!("perception::vine::VineDetector::new", VineDetector::<512, 16>::new(config)).unwrap_or(VineDetector::new(VineConfig::new(&VineParams::summer()).unwrap()).unwrap());
+        check!("perception::vine::VineDetector::config", d.config());
+        let lidar = vine_scans::Lidar::table1();
+        let world = vine_scans::vineyard(vine_scans::World::ground(0.0, 0.1), 2.2, 0.25, &[]);
+        let (start, increment, wild) = parts;
+        for (i, odom) in poses.iter().enumerate() {
+            let ranges = if clean { lidar.cast(&world, (0.1 * i as f64, 0.0, 0.0)) } else { wild.clone() };
+            let scan = if clean { lidar.scan(&ranges) } else { Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() } };
+            check!("perception::vine::VineDetector::candidates", d.candidates(&scan));
+            let seen = check!("perception::vine::VineDetector::detect", d.detect(&scan, odom));
+            names_a_requirement("VineDetector::detect", &seen);
+            if let Ok(Some(line)) = seen.map(|s| s.line) {
+                check!("perception::detector::HeldLine::error_at", line.error_at(&at));
+            }
+        }
+        let kept = check!("perception::vine::VineDetector::set_points", d.set_points());
+        check!("perception::vine::aggregation::SetPoints::len", kept.len());
+        check!("perception::vine::aggregation::SetPoints::is_empty", kept.is_empty());
+        check!("perception::vine::aggregation::SetPoints::newest", kept.newest());
+        check!("perception::vine::aggregation::SetPoints::mean_score", kept.mean_score());
+        check!("perception::vine::aggregation::SetPoints::iter", kept.iter().collect::<Vec<_>>());
+        check!("perception::vine::aggregation::SetPoints::in_robot_frame", kept.in_robot_frame(&poses[0]).collect::<Vec<_>>());
+        check!("perception::vine::VineDetector::reset", d.reset());
+        // The parts, with any values.
+        let vm = check!("perception::vine::correlation::VineModel::new", VineModel::new(model.0, model.1, Meters::new(model.2).unwrap_or(Meters::ZERO)));
+        let vm = vm.unwrap_or(VineModel::new(10, 10, m(1.0)).unwrap());
+        check!("perception::vine::correlation::VineModel::width", vm.width());
+        check!("perception::vine::correlation::VineModel::margin", vm.margin());
+        check!("perception::vine::correlation::VineModel::height", vm.height());
+        check!("perception::vine::correlation::VineModel::length", vm.length());
+        check!("perception::vine::correlation::VineModel::value", vm.value(model.0));
+        let mut out = vec![0.0; signal.len()];
+        check!("perception::vine::correlation::correlate", vine_correlate(&signal, &vm, &mut out));
+        all_finite("vine correlation", &out);
+        prop_assert!(out.iter().all(|r| r.abs() <= 1.0));
+        let gp = check!("perception::vine::ground::GroundParams::new", GroundParams::new(ransac.0, ransac.1, ransac.2, ransac.3));
+        let gp = gp.unwrap_or(GroundParams::new(32, 0.05, 20, 0.4).unwrap());
+        check!("perception::vine::ground::GroundParams::iterations", gp.iterations());
+        check!("perception::vine::ground::GroundParams::tolerance", gp.tolerance());
+        check!("perception::vine::ground::GroundParams::min_inliers", gp.min_inliers());
+        check!("perception::vine::ground::GroundParams::max_slope", gp.max_slope());
+        let rays: Vec<Option<ScanPoint>> = points
+            .iter()
+            .map(|(q, h)| Meters::new(*h).ok().map(|height| ScanPoint { ground: Point2::new(q.x(), q.y()).unwrap(), height }))
+            .collect();
+        let mut rng = rand_xoshiro::Xoshiro128PlusPlus::seed_from_u64(1);
+        if let Ground::Profile(g) = check!("perception::vine::ground::fit_ground", fit_ground(&rays, &gp, &mut rng)) {
+            for r in rays.iter().flatten() {
+                check!("perception::vine::ground::GroundLine::height_above", g.height_above(r));
+            }
+        }
+        let mut store = check!("perception::vine::aggregation::SetPoints::new", SetPoints::<4>::new(Meters::new(bounds.2).unwrap_or(Meters::ZERO))).unwrap_or(SetPoints::new(m(1.0)).unwrap());
+        for (q, score) in &points {
+            // A set-point's score is a correlation, in [−1, 1].
+            let score = if score.is_finite() { score.clamp(-1.0, 1.0) } else { 0.0 };
+            check!("perception::vine::aggregation::SetPoints::push", store.push(SetPoint { point: *q, score }));
+            check!("perception::vine::aggregation::lateral_deviation", lateral_deviation(*q, points[0].0, yaw));
+        }
+        check!("perception::vine::aggregation::SetPoints::forget_far", store.forget_far(&poses[0]));
+        check!("perception::vine::aggregation::SetPoints::clear", store.clear());
+        let row = RowLine::new(coefficients.0, coefficients.1).unwrap_or(RowLine::new(0.0, coefficients.1).unwrap());
+        check!("perception::vine::row_deviation", row_deviation(&row));
+        check!("perception::detector::HeldLine::error_at", VineLine(row).error_at(&at));
+        check!("perception::detector::HeldLine::error_at", AnyLine::Vine(VineLine(row)).error_at(&at));
+        let t = QualityThresholds::new(0.5, 0.35, Better::Higher).unwrap();
+        check!("perception::vine::vine_verdict", vine_verdict(&t, clean, Some(verdict.0)));
     }
 }
 

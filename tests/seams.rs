@@ -16,6 +16,7 @@
 mod crop_scans;
 mod edge_support;
 mod furrow_common;
+mod vine_scans;
 
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -276,6 +277,59 @@ proptest! {
         check_detector::<FurrowDetector<512, 32>>(&config, furrow_limits(), &f)?;
         check_detector::<AnyDetector>(&AnyDetectorConfig::Furrow(config), furrow_limits(), &f)?;
     }
+
+    #[test]
+    fn the_vine_detector_keeps_the_detector_contract(f in vine_frames()) {
+        let config = fieldguide::perception::vine::VineConfig::new(&fieldguide::perception::vine::VineParams::summer()).unwrap();
+        check_detector::<fieldguide::perception::vine::VineDetector<512, 64>>(&config, vine_limits(), &f)?;
+        check_detector::<AnyDetector>(&AnyDetectorConfig::Vine(config), vine_limits(), &f)?;
+    }
+}
+
+fn vine_limits() -> RangeLimits {
+    RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(20.0).unwrap()).unwrap()
+}
+
+/// Three rows of summer vines 2.2 m apart, the robot straddling the middle
+/// one, at the scan's pose (`vine_scans`).
+fn vine_rows(_k: usize, pose: (f64, f64, f64)) -> Vec<f64> {
+    use std::sync::OnceLock;
+    static WORLD: OnceLock<vine_scans::World> = OnceLock::new();
+    let world = WORLD.get_or_init(|| {
+        vine_scans::vineyard(vine_scans::World::ground(0.02, 0.15), 2.2, 0.25, &[])
+    });
+    vine_scans::Lidar::table1().cast(world, pose)
+}
+
+fn vine_frames() -> impl Strategy<Value = Frames> {
+    let lidar = vine_scans::Lidar::table1();
+    frames(vine_rows, lidar.rays).prop_map(move |mut f| {
+        if f.start == -PI {
+            f.start = lidar.start;
+            f.increment = lidar.increment;
+        }
+        f
+    })
+}
+
+/// The vine contract scans, clean, do detect once enough set-points are kept.
+#[test]
+fn the_vine_contract_scans_are_detected_when_clean() {
+    use fieldguide::perception::vine::{VineConfig, VineDetector, VineParams};
+    let lidar = vine_scans::Lidar::table1();
+    let mut vine =
+        VineDetector::<512, 64>::configure(&VineConfig::new(&VineParams::summer()).unwrap())
+            .unwrap();
+    let mut seen = 0;
+    for k in 0..SCANS {
+        let pose = (0.1 * k as f64, 0.0, 0.0);
+        let ranges = vine_rows(k, pose);
+        let odometry = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+        let d = vine.observe(&lidar.scan(&ranges), &odometry).unwrap();
+        seen += usize::from(d.verdict.estimate_is_valid());
+    }
+    // Five set-points over 0.5 m: from the sixth scan on.
+    assert!(seen >= SCANS - 6, "{seen} of {SCANS}");
 }
 
 fn rows_limits() -> RangeLimits {
@@ -449,6 +503,34 @@ proptest! {
             rear: Radians::new(rear).unwrap(),
         };
         check_law::<BacksteppingConfig>(&law, &vehicle, &error, &sideslip, speed)?;
+    }
+
+    #[test]
+    fn the_four_wheel_steering_laws_keep_the_law_contract(
+        error in any_error(),
+        speed in any_speed(),
+        slip in (prop_oneof![-1.0..1.0_f64, -2.0..2.0_f64], prop_oneof![-1.0..1.0_f64, -2.0..2.0_f64]),
+        objectives in (-3.0..3.0_f64, -2.0..2.0_f64),
+        held in any::<bool>(),
+    ) {
+        use fieldguide::control::four_ws::{Objectives, RearSteering, Strategy1, Strategy1Gains, Strategy2, Strategy2Gains};
+        let vehicle = fieldguide::model::four_ws::FourWheelSteering::new(
+            fieldguide::model::bicycle::Wheelbase::new(1.2).unwrap(),
+            fieldguide::model::bicycle::SteeringLimit::new(0.5).unwrap(),
+            fieldguide::model::bicycle::SteeringLimit::new(0.3).unwrap(),
+            None,
+            None,
+        ).unwrap();
+        let sideslip = fieldguide::model::bicycle::Sideslip {
+            front: Radians::new(slip.0).unwrap(),
+            rear: Radians::new(slip.1).unwrap(),
+        };
+        let rear = if held { RearSteering::Held } else { RearSteering::Backstepping };
+        let s1 = Strategy1 { gains: Strategy1Gains::table1().unwrap(), vehicle, rear };
+        let extra = Objectives { sideslip, lateral_offset: Meters::new(objectives.0).unwrap(), orientation: Radians::new(objectives.1).unwrap() };
+        check_law::<Strategy1>(&s1, &Vehicle::FourWheelSteering(vehicle), &error, &extra, speed)?;
+        let s2 = Strategy2 { gains: Strategy2Gains::table1().unwrap(), vehicle };
+        check_law::<Strategy2>(&s2, &Vehicle::FourWheelSteering(vehicle), &error, &sideslip, speed)?;
     }
 }
 

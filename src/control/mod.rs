@@ -5,9 +5,11 @@
 //! estimate) into the command of the vehicle it is written for, saturated to
 //! that vehicle's limits ([`crate::model`]), or refuses the error with the
 //! [`Precondition`] that failed. Each law family documents its own gain
-//! convention: [`backstepping`] for Pierre 2022's.
+//! convention: [`backstepping`] for Pierre 2022's, [`four_ws`] for the two
+//! four-wheel-steering strategies of Iberraken 2022.
 
 pub mod backstepping;
+pub mod four_ws;
 pub mod fuzzy;
 pub mod fuzzy_rows;
 

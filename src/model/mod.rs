@@ -16,6 +16,7 @@
 
 pub mod bicycle;
 pub mod differential;
+pub mod four_ws;
 
 use crate::error::Precondition;
 use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
@@ -183,6 +184,8 @@ pub enum Vehicle {
     Bicycle(bicycle::Bicycle),
     /// A differential robot (Guyonneau 2022, section 4.1.1).
     Differential(differential::Differential),
+    /// A four-wheel-steering robot (Iberraken 2022, eqs. 5-8).
+    FourWheelSteering(four_ws::FourWheelSteering),
 }
 
 impl Vehicle {
@@ -192,6 +195,7 @@ impl Vehicle {
         match self {
             Self::Bicycle(_) => Actuation::Bicycle,
             Self::Differential(_) => Actuation::Differential,
+            Self::FourWheelSteering(_) => Actuation::FourWheelSteering,
         }
     }
 
@@ -224,10 +228,22 @@ impl Vehicle {
                     ))
                 }
             }
-            (Self::Bicycle(_) | Self::Differential(_), _) => Err(Precondition::new(
-                "GD-VEHICLE",
-                "command of another actuation than the vehicle's",
-            )),
+            (Self::FourWheelSteering(f), Command::FourWheelSteering { front, rear, .. }) => {
+                if f.within_limits(*front, *rear) {
+                    Ok(())
+                } else {
+                    Err(Precondition::new(
+                        "GD-VEHICLE",
+                        "front or rear steering beyond the vehicle's limit",
+                    ))
+                }
+            }
+            (Self::Bicycle(_) | Self::Differential(_) | Self::FourWheelSteering(_), _) => {
+                Err(Precondition::new(
+                    "GD-VEHICLE",
+                    "command of another actuation than the vehicle's",
+                ))
+            }
         }
     }
 }

@@ -15,6 +15,7 @@ use crate::geometry::frame::{Odom, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::perception::edge::{EdgeDetector, EdgeDetectorConfig, EdgeLine};
 use crate::perception::furrow::{FurrowConfig, FurrowDetector, RowLines};
+use crate::perception::vine::{VineConfig, VineDetector, VineLine};
 use crate::perception::{Scan, Verdict};
 
 /// A detected line, held between scans: it gives the robot's tracking error
@@ -85,6 +86,8 @@ pub enum AnyDetectorConfig {
     Edge(EdgeDetectorConfig),
     /// Furrow pursuing on an inclined LiDAR (Pierre 2022, section 2.3).
     Furrow(FurrowConfig),
+    /// Vine-row detection on an inclined LiDAR (Iberraken 2022, section 2.1).
+    Vine(VineConfig),
 }
 
 /// The line held by one of the library's detectors.
@@ -94,6 +97,8 @@ pub enum AnyLine {
     Edge(EdgeLine),
     /// One or two crop rows.
     Furrow(RowLines),
+    /// A vine row.
+    Vine(VineLine),
 }
 
 impl HeldLine for AnyLine {
@@ -101,13 +106,15 @@ impl HeldLine for AnyLine {
         match self {
             Self::Edge(l) => l.error_at(pose),
             Self::Furrow(l) => l.error_at(pose),
+            Self::Vine(l) => l.error_at(pose),
         }
     }
 }
 
 /// One of the library's detectors, with its buffers: `EDGE_POINTS` scan
 /// points and `EDGE_CHAIN` chain points for an edge detector, `FURROW_RAYS`
-/// rays and `FURROW_SCANS` kept selections for a furrow detector. A pipeline
+/// rays and `FURROW_SCANS` kept selections for a furrow detector, `VINE_RAYS`
+/// rays and `VINE_POINTS` set-points for a vine detector. A pipeline
 /// holding several kinds of detector holds this type in each slot (static
 /// dispatch, no allocation).
 #[derive(Debug, Clone)]
@@ -119,22 +126,32 @@ pub enum AnyDetector<
     const EDGE_CHAIN: usize = 64,
     const FURROW_RAYS: usize = 512,
     const FURROW_SCANS: usize = 32,
+    const VINE_RAYS: usize = 256,
+    const VINE_POINTS: usize = 64,
 > {
     /// An edge detector.
     Edge(EdgeDetector<EDGE_POINTS, EDGE_CHAIN>),
     /// A furrow detector.
     Furrow(FurrowDetector<FURROW_RAYS, FURROW_SCANS>),
+    /// A vine detector.
+    Vine(VineDetector<VINE_RAYS, VINE_POINTS>),
 }
 
-impl<const EP: usize, const EC: usize, const FR: usize, const FS: usize>
-    AnyDetector<EP, EC, FR, FS>
+impl<
+        const EP: usize,
+        const EC: usize,
+        const FR: usize,
+        const FS: usize,
+        const VR: usize,
+        const VP: usize,
+    > AnyDetector<EP, EC, FR, FS, VR, VP>
 {
     /// The edge detector, when this is one.
     #[must_use]
     pub const fn as_edge(&self) -> Option<&EdgeDetector<EP, EC>> {
         match self {
             Self::Edge(d) => Some(d),
-            Self::Furrow(_) => None,
+            Self::Furrow(_) | Self::Vine(_) => None,
         }
     }
 
@@ -143,13 +160,28 @@ impl<const EP: usize, const EC: usize, const FR: usize, const FS: usize>
     pub const fn as_furrow(&self) -> Option<&FurrowDetector<FR, FS>> {
         match self {
             Self::Furrow(d) => Some(d),
-            Self::Edge(_) => None,
+            Self::Edge(_) | Self::Vine(_) => None,
+        }
+    }
+
+    /// The vine detector, when this is one.
+    #[must_use]
+    pub const fn as_vine(&self) -> Option<&VineDetector<VR, VP>> {
+        match self {
+            Self::Vine(d) => Some(d),
+            Self::Edge(_) | Self::Furrow(_) => None,
         }
     }
 }
 
-impl<const EP: usize, const EC: usize, const FR: usize, const FS: usize> Detector
-    for AnyDetector<EP, EC, FR, FS>
+impl<
+        const EP: usize,
+        const EC: usize,
+        const FR: usize,
+        const FS: usize,
+        const VR: usize,
+        const VP: usize,
+    > Detector for AnyDetector<EP, EC, FR, FS, VR, VP>
 {
     type Config = AnyDetectorConfig;
     type Line = AnyLine;
@@ -158,6 +190,7 @@ impl<const EP: usize, const EC: usize, const FR: usize, const FS: usize> Detecto
         Ok(match config {
             AnyDetectorConfig::Edge(c) => Self::Edge(EdgeDetector::configure(c)?),
             AnyDetectorConfig::Furrow(c) => Self::Furrow(FurrowDetector::configure(c)?),
+            AnyDetectorConfig::Vine(c) => Self::Vine(VineDetector::configure(c)?),
         })
     }
 
@@ -171,6 +204,7 @@ impl<const EP: usize, const EC: usize, const FR: usize, const FS: usize> Detecto
             Self::Furrow(d) => d
                 .observe(scan, odometry)
                 .map(|x| x.map_line(AnyLine::Furrow)),
+            Self::Vine(d) => d.observe(scan, odometry).map(|x| x.map_line(AnyLine::Vine)),
         }
     }
 }

@@ -3,13 +3,15 @@
 //!
 //! Every detector implements [`Detector`] (GD-DETECTOR) and reads the same
 //! message, [`Scan`] (LIB-SCAN): a horizontal LiDAR's for [`edge`], an
-//! inclined one's for [`furrow`]; [`AnyDetector`] holds either in one slot.
+//! inclined one's for [`furrow`] and [`vine`]; [`AnyDetector`] holds any of
+//! them in one slot.
 
 pub mod detector;
 pub mod edge;
 pub mod furrow;
 pub mod rows;
 pub mod scan;
+pub mod vine;
 
 pub use detector::{AnyDetector, AnyDetectorConfig, AnyLine, Detection, Detector, HeldLine};
 pub use scan::{RangeLimits, Scan, MAX_RANGE};

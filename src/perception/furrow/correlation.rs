@@ -173,7 +173,7 @@ fn sample(value: f64) -> i64 {
 /// An exact integer sum as an `f64`: one rounding when it fits an `i64`
 /// (as every window of real heights does), else at most four (relative
 /// error below 4 · 2⁻⁵³), from its 32-bit limbs.
-fn to_f64(v: i128) -> f64 {
+pub(crate) fn to_f64(v: i128) -> f64 {
     if let Ok(small) = i64::try_from(v) {
         // small = high · 2³² + low, high in i32, low in u32.
         let high = i32::try_from(small.wrapping_shr(32)).unwrap_or(0);
@@ -193,25 +193,32 @@ fn to_f64(v: i128) -> f64 {
     }
 }
 
-/// The exact sums of one window: `S` over the support and `A` over the whole
-/// template, in quanta and squared quanta. With |sample| < 2⁴⁴ and at most
-/// 2³² samples (the template length fits `u32`), |S| < 2⁷⁶ and A < 2¹²⁰
-/// (a square below 2⁸⁸): no integer operation wraps, so the wrapping ones
-/// are exact.
+/// The exact sums of one window: `S` over the support, `T` and `A` over
+/// the whole window, in quanta and squared quanta. With |sample| < 2⁴⁴ and
+/// at most 2³² samples (the template length fits `u32`), |S|, |T| < 2⁷⁶ and
+/// A < 2¹²⁰ (a square below 2⁸⁸): no integer operation wraps, so the
+/// wrapping ones are exact. Shared with the vine detector's Pearson score
+/// (VINE-CORRELATION), which reads `T` as well.
 #[derive(Default)]
-struct Sums {
-    support: i128,
-    energy: i128,
+pub(crate) struct Sums {
+    /// S = Σ z over the support.
+    pub(crate) support: i128,
+    /// T = Σ z over the whole window.
+    pub(crate) total: i128,
+    /// A = Σ z² over the whole window.
+    pub(crate) energy: i128,
 }
 
 impl Sums {
-    fn add_energy(&mut self, z: i64) {
+    fn add_window(&mut self, z: i64) {
+        self.total = self.total.wrapping_add(i128::from(z));
         self.energy = self
             .energy
             .wrapping_add(i128::from(z).wrapping_mul(i128::from(z)));
     }
 
-    fn remove_energy(&mut self, z: i64) {
+    fn remove_window(&mut self, z: i64) {
+        self.total = self.total.wrapping_sub(i128::from(z));
         self.energy = self
             .energy
             .wrapping_sub(i128::from(z).wrapping_mul(i128::from(z)));
@@ -289,7 +296,7 @@ pub fn correlate_direct(
             if template.value(offset) > 0.0 {
                 sums.add_support(z);
             }
-            sums.add_energy(z);
+            sums.add_window(z);
             offset = offset.saturating_add(1);
         }
         *slot = sums.score(template);
@@ -324,39 +331,57 @@ fn prepare<'o>(signal: &[f64], out: &'o mut [f64]) -> Result<&'o mut [f64], Prec
 //# exactly, whatever the heights.
 pub fn correlate(signal: &[f64], template: &Template, out: &mut [f64]) -> Result<(), Precondition> {
     let out = prepare(signal, out)?;
-    let n = signal.len();
-    let length = template.length();
-    if n < length {
-        return Ok(());
-    }
     let half = template.half_length();
-    let half_width = template.half_width();
-    let margin = template.margin();
-    let z = |i: usize| signal.get(i).copied().map_or(0, sample);
+    slide(
+        signal,
+        template.length(),
+        template.margin(),
+        template.width(),
+        |start, sums| {
+            if let Some(slot) = out.get_mut(start.saturating_add(half)) {
+                *slot = sums.score(template);
+            }
+        },
+    );
+    Ok(())
+}
 
-    // The first window: centre `half`, samples [0, length), support [margin, margin + width).
+/// Slides a window of `length` samples over `signal`, one sample in and
+/// one out per step, its support the `width` samples from `offset` within
+/// it, and calls `visit(start, sums)` with the exact [`Sums`] of the window
+/// starting at each `start` where it fits: `O(N)` whatever the length.
+/// Samples are read by [`SAMPLE_QUANTUM`] as in [`correlate_direct`].
+pub(crate) fn slide(
+    signal: &[f64],
+    length: usize,
+    offset: usize,
+    width: usize,
+    mut visit: impl FnMut(usize, &Sums),
+) {
+    let n = signal.len();
+    if length == 0 || n < length {
+        return;
+    }
+    let z = |i: usize| signal.get(i).copied().map_or(0, sample);
+    let support_end = offset.saturating_add(width);
     let mut sums = Sums::default();
     for i in 0..length {
         let v = z(i);
-        sums.add_energy(v);
-        if i >= margin && i < margin.saturating_add(template.width()) {
+        sums.add_window(v);
+        if i >= offset && i < support_end {
             sums.add_support(v);
         }
     }
-    let last = n.saturating_sub(half);
-    for k in half..last {
-        if let Some(slot) = out.get_mut(k) {
-            *slot = sums.score(template);
-        }
-        // Slide to centre k + 1: the window loses k − half and gains k + half + 1,
-        // the support loses k − half_width and gains k + half_width + 1.
-        let enter = k.saturating_add(half).saturating_add(1);
-        if enter < n {
-            sums.remove_energy(z(k.saturating_sub(half)));
-            sums.add_energy(z(enter));
-            sums.remove_support(z(k.saturating_sub(half_width)));
-            sums.add_support(z(k.saturating_add(half_width).saturating_add(1)));
+    let last = n.saturating_sub(length);
+    for start in 0..=last {
+        visit(start, &sums);
+        if start < last {
+            // The window loses `start` and gains `start + length`; the
+            // support loses `start + offset` and gains `start + support_end`.
+            sums.remove_window(z(start));
+            sums.add_window(z(start.saturating_add(length)));
+            sums.remove_support(z(start.saturating_add(offset)));
+            sums.add_support(z(start.saturating_add(support_end)));
         }
     }
-    Ok(())
 }

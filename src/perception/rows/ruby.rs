@@ -745,7 +745,7 @@ fn energy<const N: usize>(
 
 /// A uniform index below `len` (> 0) from 32 random bits (Lemire's
 /// multiply-shift; the bias is below len / 2³², negligible for len ≤ 2¹⁶).
-fn pick(rng: &mut Xoshiro128PlusPlus, len: usize) -> usize {
+pub(crate) fn pick(rng: &mut Xoshiro128PlusPlus, len: usize) -> usize {
     let len64 = u64::try_from(len).unwrap_or(u64::MAX);
     let r = u64::from(rng.next_u32());
     usize::try_from(r.wrapping_mul(len64) >> 32).unwrap_or(0)
