@@ -1537,7 +1537,9 @@ fn the_presets_are_tables_1_and_2() {
     };
     assert_eq!(furrow.params().averaged_scans, 25);
     // One vehicle for every law: wheelbase 2 m, steering limit 30°.
-    let Vehicle::Bicycle(vehicle) = p.vehicle;
+    let Vehicle::Bicycle(vehicle) = p.vehicle else {
+        panic!("the preset drives a bicycle")
+    };
     assert_eq!(vehicle.wheelbase.get().get(), 2.0);
     assert_eq!(
         vehicle.max_steering.get().get(),

@@ -15,6 +15,7 @@
 //! | [`Actuation::SkidSteer`] | speed, yaw rate | 0 m/s, 0 rad/s |
 
 pub mod bicycle;
+pub mod skid_steer;
 
 use crate::error::Precondition;
 use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
@@ -180,6 +181,8 @@ pub struct Saturated {
 pub enum Vehicle {
     /// A front-steered bicycle (Pierre 2022, eq. 1).
     Bicycle(bicycle::Bicycle),
+    /// A tracked (skid-steer) robot (Emmi 2024, section 2.1).
+    SkidSteer(skid_steer::SkidSteer),
 }
 
 impl Vehicle {
@@ -188,6 +191,7 @@ impl Vehicle {
     pub const fn actuation(&self) -> Actuation {
         match self {
             Self::Bicycle(_) => Actuation::Bicycle,
+            Self::SkidSteer(_) => Actuation::SkidSteer,
         }
     }
 
@@ -210,7 +214,20 @@ impl Vehicle {
                     ))
                 }
             }
-            (Self::Bicycle(_), _) => Err(Precondition::new(
+            //= spec/emmi2024.md#em-skid-limits-track-distance-and-speed-limit
+            //# A skid-steer command MUST be within the vehicle's limits when both
+            //# track speeds satisfy |v_l| ≤ v_max and |v_r| ≤ v_max.
+            (Self::SkidSteer(k), Command::SkidSteer { speed, yaw_rate }) => {
+                if k.within_limits(speed.get(), yaw_rate.get()) {
+                    Ok(())
+                } else {
+                    Err(Precondition::new(
+                        "GD-VEHICLE",
+                        "track speed beyond the vehicle's limit",
+                    ))
+                }
+            }
+            (Self::Bicycle(_) | Self::SkidSteer(_), _) => Err(Precondition::new(
                 "GD-VEHICLE",
                 "command of another actuation than the vehicle's",
             )),
