@@ -11,7 +11,7 @@
 //! tracker's curvature feed-forward sees the arcs
 //! ([`DubinsPath::to_reference_path`]).
 
-use core::f64::consts::TAU;
+use core::f64::consts::{PI, TAU};
 
 use crate::error::{finite, Precondition};
 use crate::geometry::frame::{Point2, Pose2, World};
@@ -217,7 +217,17 @@ struct Normalised {
 
 /// `x` modulo 2π in [0, 2π), a value within [`FULL_TURN_SNAP`] of 2π being 0.
 fn mod_tau(x: f64) -> f64 {
-    let m = x - TAU * libm::floor(x / TAU);
+    // The arguments here lie within a few turns of [0, 2π): one addition or
+    // subtraction usually suffices.
+    let m = if (0.0..TAU).contains(&x) {
+        x
+    } else if (-TAU..0.0).contains(&x) {
+        x + TAU
+    } else if (TAU..2.0 * TAU).contains(&x) {
+        x - TAU
+    } else {
+        x - TAU * libm::floor(x / TAU)
+    };
     if !(0.0..TAU - FULL_TURN_SNAP).contains(&m) {
         0.0
     } else {
@@ -245,28 +255,34 @@ fn normalise(
     }
     let dx = goal.position.x() - start.position.x();
     let dy = goal.position.y() - start.position.y();
-    let d = libm::hypot(dx, dy) / radius.0;
+    // Within the range, dx² + dy² ≤ 1.6e15: no overflow, no need of hypot.
+    let d = libm::sqrt(dx * dx + dy * dy) / radius.0;
     let theta = if d > 0.0 { libm::atan2(dy, dx) } else { 0.0 };
     let alpha = mod_tau(start.heading.get() - theta);
     let beta = mod_tau(goal.heading.get() - theta);
+    let (sa, ca) = libm::sincos(alpha);
+    let (sb, cb) = libm::sincos(beta);
     Ok(Normalised {
         d,
         alpha,
         beta,
-        sa: libm::sin(alpha),
-        sb: libm::sin(beta),
-        ca: libm::cos(alpha),
-        cb: libm::cos(beta),
-        c_ab: libm::cos(alpha - beta),
+        sa,
+        sb,
+        ca,
+        cb,
+        // cos(α − β), without a third cosine.
+        c_ab: ca * cb + sa * sb,
     })
 }
 
-/// The normalised segment lengths of `word`, `None` when it does not exist.
+/// The normalised segment lengths of `word`, `None` when it does not exist
+/// or when its straight or middle arc alone is at least `bound` (a normalised
+/// total it cannot beat; `f64::INFINITY` to compute every word).
 //= spec/emmi2024.md#em-dubins-words-the-six-words
 //# For each of the six words LSL, LSR, RSL, RSR, RLR and LRL the planner MUST
 //# compute the segment lengths of the path of that word from the start pose to
 //# the goal pose, or report that the word does not exist.
-fn word_params(n: &Normalised, word: Word) -> Option<[f64; 3]> {
+fn word_params(n: &Normalised, word: Word, bound: f64) -> Option<[f64; 3]> {
     let Normalised {
         d,
         alpha,
@@ -287,6 +303,9 @@ fn word_params(n: &Normalised, word: Word) -> Option<[f64; 3]> {
             if p_sq < SAME_CIRCLE_SQ {
                 return Some([mod_tau(beta - alpha), 0.0, 0.0]);
             }
+            if p >= bound {
+                return None;
+            }
             let phi = libm::atan2(cb - ca, d + sa - sb);
             Some([mod_tau(phi - alpha), p, mod_tau(beta - phi)])
         }
@@ -295,6 +314,9 @@ fn word_params(n: &Normalised, word: Word) -> Option<[f64; 3]> {
             let p = libm::sqrt(p_sq);
             if p_sq < SAME_CIRCLE_SQ {
                 return Some([mod_tau(alpha - beta), 0.0, 0.0]);
+            }
+            if p >= bound {
+                return None;
             }
             let phi = libm::atan2(ca - cb, d - sa + sb);
             Some([mod_tau(alpha - phi), p, mod_tau(phi - beta)])
@@ -305,6 +327,9 @@ fn word_params(n: &Normalised, word: Word) -> Option<[f64; 3]> {
                 return None;
             }
             let p = libm::sqrt(p_sq);
+            if p >= bound {
+                return None;
+            }
             let phi = libm::atan2(-ca - cb, d + sa + sb) - libm::atan2(-2.0, p);
             Some([mod_tau(phi - alpha), p, mod_tau(phi - beta)])
         }
@@ -314,12 +339,16 @@ fn word_params(n: &Normalised, word: Word) -> Option<[f64; 3]> {
                 return None;
             }
             let p = libm::sqrt(p_sq);
+            if p >= bound {
+                return None;
+            }
             let phi = libm::atan2(ca + cb, d - sa - sb) - libm::atan2(2.0, p);
             Some([mod_tau(alpha - phi), p, mod_tau(beta - phi)])
         }
         Word::Rlr => {
             let c = (6.0 - d_sq + 2.0 * c_ab + 2.0 * d * (sa - sb)) / 8.0;
-            if !(-1.0..=1.0).contains(&c) {
+            // The middle arc is at least π: no shorter than the bound.
+            if !(-1.0..=1.0).contains(&c) || PI >= bound {
                 return None;
             }
             let phi = libm::atan2(ca - cb, d - sa + sb);
@@ -329,7 +358,8 @@ fn word_params(n: &Normalised, word: Word) -> Option<[f64; 3]> {
         }
         Word::Lrl => {
             let c = (6.0 - d_sq + 2.0 * c_ab + 2.0 * d * (sb - sa)) / 8.0;
-            if !(-1.0..=1.0).contains(&c) {
+            // The middle arc is at least π: no shorter than the bound.
+            if !(-1.0..=1.0).contains(&c) || PI >= bound {
                 return None;
             }
             let phi = libm::atan2(ca - cb, d + sa - sb);
@@ -356,7 +386,7 @@ pub fn path_with_word(
     word: Word,
 ) -> Result<DubinsPath, Precondition> {
     let n = normalise(start, goal, radius)?;
-    let params = word_params(&n, word).ok_or(Precondition::new(
+    let params = word_params(&n, word, f64::INFINITY).ok_or(Precondition::new(
         "EM-DUBINS-WORDS",
         "no path of this word joins the poses",
     ))?;
@@ -389,7 +419,11 @@ pub fn shortest(
     }
     let mut best: Option<(Word, [f64; 3], f64)> = None;
     for word in Word::ALL {
-        if let Some(p) = word_params(&n, word) {
+        // A word whose straight or middle arc alone is no shorter than the
+        // best total cannot win (ties go to the earlier word): skip its
+        // remaining trigonometry.
+        let bound = best.map_or(f64::INFINITY, |(_, _, t)| t);
+        if let Some(p) = word_params(&n, word, bound) {
             let [a, b, c] = p;
             let total = a + b + c;
             if best.is_none_or(|(_, _, t)| total < t) {
