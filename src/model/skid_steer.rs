@@ -29,13 +29,16 @@ impl SkidSteer {
     /// each limited to `max_track_speed` m/s.
     ///
     /// # Errors
-    /// `EM-SKID-LIMITS` unless both are finite and strictly positive.
+    /// `EM-SKID-LIMITS` unless both lie in [1e−3, 1e3] (m and m/s).
     //= spec/emmi2024.md#em-skid-limits-track-distance-and-speed-limit
-    //# The track distance b and the track speed limit v_max MUST be finite and
-    //# strictly positive; other values MUST be refused with the `EM-SKID-LIMITS`
-    //# error.
+    //# The track distance b MUST lie in [1e−3 m, 1e3 m] and the track speed limit
+    //# v_max in [1e−3 m/s, 1e3 m/s]; other values MUST be refused with the
+    //# `EM-SKID-LIMITS` error.
     pub fn new(track: Meters, max_track_speed: MetersPerSecond) -> Result<Self, Precondition> {
-        if track.get() > 0.0 && max_track_speed.get() > 0.0 {
+        // Bounds far beyond any vehicle, which keep the saturation's
+        // products away from overflow and subnormal rounding.
+        let ok = |x: f64| (1e-3..=1e3).contains(&x);
+        if ok(track.get()) && ok(max_track_speed.get()) {
             Ok(Self {
                 track: track.get(),
                 max_track_speed: max_track_speed.get(),
@@ -43,7 +46,7 @@ impl SkidSteer {
         } else {
             Err(Precondition::new(
                 "EM-SKID-LIMITS",
-                "track distance and track speed limit must be > 0",
+                "track distance and track speed limit must lie in [1e-3, 1e3]",
             ))
         }
     }
