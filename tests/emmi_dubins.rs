@@ -470,10 +470,26 @@ fn radii_and_ranges_are_checked() {
     // The far corners of the range still give a finite path.
     let p = shortest(&pose(-1e7, -1e7, 0.0), &pose(1e7, 1e7, 1.0), radius(1e-3)).unwrap();
     assert!(p.length().get().is_finite());
+    for spacing in [1e-4, 1.9e-3] {
+        let e = p
+            .to_reference_path::<4>(Meters::new(spacing).unwrap())
+            .unwrap_err();
+        assert_eq!(e.requirement, "EM-DUBINS-PATH");
+    }
+    // 2.8e7 m at 2 mm: refused at the capacity, after N + 1 samples, not
+    // after sampling the whole path.
+    let t = std::time::Instant::now();
     let e = p
-        .to_reference_path::<4>(Meters::new(1e-4).unwrap())
+        .to_reference_path::<4>(Meters::new(2e-3).unwrap())
         .unwrap_err();
-    assert_eq!(e.requirement, "EM-DUBINS-PATH");
+    assert_eq!(e.requirement, "PATH-CAPACITY");
+    assert!(t.elapsed().as_secs_f64() < 0.1);
+    // A spacing larger than a turn still samples each arc at least every
+    // quarter turn: a U-turn of radius 1 m sampled "every 100 m".
+    let u = shortest(&pose(0.0, 0.0, 0.0), &pose(0.0, 2.0, PI), radius(1.0)).unwrap();
+    let path: ReferencePath<16> = u.to_reference_path(Meters::new(100.0).unwrap()).unwrap();
+    assert_eq!(path.vertices().len(), 3, "{:?}", path.vertices());
+    assert!((path.vertices()[1].position.x() - 1.0).abs() < 1e-12);
 }
 
 //= spec/emmi2024.md#em-line-linefollowing

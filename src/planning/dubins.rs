@@ -25,6 +25,11 @@ pub const MIN_RADIUS: f64 = 1e-3;
 /// The largest accepted turning radius, metres (EM-DUBINS-RADIUS).
 pub const MAX_RADIUS: f64 = 1e4;
 
+/// The smallest sample spacing of [`DubinsPath::to_reference_path`], metres
+/// (EM-DUBINS-PATH): twice the reference path's duplicate distance, so that
+/// samples on an arc never fall within it.
+pub const MIN_SPACING: f64 = 2e-3;
+
 /// A normalised segment length this close below 2π is a full turn that ends
 /// where it starts, and is taken as 0 (EM-DUBINS-DEGENERATE).
 const FULL_TURN_SNAP: f64 = 1e-12;
@@ -579,7 +584,7 @@ impl DubinsPath {
     /// starts there (the last one: of the last segment).
     ///
     /// # Errors
-    /// `EM-DUBINS-PATH` for a spacing below 1 mm; the errors of
+    /// `EM-DUBINS-PATH` for a spacing below 2 mm; the errors of
     /// [`ReferencePath::from_exact`] (`PATH-WAYPOINTS` for a path shorter
     /// than 1 mm, `PATH-CAPACITY` beyond `N` vertices).
     //= spec/emmi2024.md#em-dubins-path-the-path-as-a-reference-path
@@ -592,13 +597,16 @@ impl DubinsPath {
         &self,
         spacing: Meters,
     ) -> Result<ReferencePath<N>, Precondition> {
-        if spacing.get() < crate::geometry::path::MIN_WAYPOINT_SPACING {
+        if spacing.get() < MIN_SPACING {
             return Err(Precondition::new(
                 "EM-DUBINS-PATH",
-                "sample spacing below 1 mm",
+                "sample spacing below 2 mm",
             ));
         }
-        let step = spacing.get();
+        // On an arc, at most a quarter turn between samples: the chord of a
+        // step h ≤ π r / 2 is at least 2h/π, so consecutive samples stay more
+        // than 1 mm apart and none collapse (a full turn's chord is 0).
+        let arc_step = spacing.get().min(0.5 * PI * self.radius);
         let segments = self.segments();
         let last_curvature = segments
             .iter()
@@ -615,6 +623,11 @@ impl DubinsPath {
             let Some(g) = segments.get(index) else {
                 done = true;
                 return self.end().ok().map(|p| (p, last_curvature));
+            };
+            let step = if g.turn == Turn::Straight {
+                spacing.get()
+            } else {
+                arc_step
             };
             let pieces = libm::ceil(g.length.get() / step);
             if k >= pieces {
