@@ -302,7 +302,8 @@ impl<const N: usize> ReferencePath<N> {
     /// segment holding s; positions, s and the projection are those of
     /// [`ReferencePath::from_waypoints`]. A sample closer than
     /// [`MIN_WAYPOINT_SPACING`] to the last kept one replaces it (the first
-    /// one is kept), so the last sample always ends the path.
+    /// one is kept), so the last sample always ends the path. The path's
+    /// configuration is the default one and unused.
     ///
     /// # Errors
     /// `PATH-RANGE`, `PATH-WAYPOINTS` and `PATH-CAPACITY` as
