@@ -63,6 +63,7 @@ pub mod geometry;
 pub mod guidance;
 pub mod model;
 pub mod perception;
+pub mod planning;
 pub mod presets;
 pub mod supervisor;
 

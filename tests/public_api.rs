@@ -43,6 +43,9 @@ use fieldguide::control::backstepping::{
     steering_command, target_angular_deviation, yaw_rate_objective, BacksteppingConfig, Gains,
     Inversion, SpeedSchedule,
 };
+use fieldguide::control::lateral_pd::{LateralGains, LateralPd, LateralRate};
+use fieldguide::control::speed_profile::{Braking, SpeedProfile, SpeedState};
+use fieldguide::control::spiral::{spiral_command, spiral_state, Spiral};
 use fieldguide::control::ControlLaw;
 use fieldguide::error::finite;
 use fieldguide::geometry::carry::{moved_lateral, moved_line_error, pose_in_scan_frame, straight};
@@ -56,6 +59,7 @@ use fieldguide::guidance::{
 use fieldguide::model::bicycle::{
     frenet_rates, world_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
 };
+use fieldguide::model::skid_steer::{unicycle_rates, SkidSteer};
 use fieldguide::model::{Actuation, Command, Vehicle};
 use fieldguide::perception::edge::{
     build_chain, build_chain_into, detect, detect_points, rotation_contact, scan_into,
@@ -91,6 +95,11 @@ use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
 use fieldguide::perception::{
     AnyDetector, AnyDetectorConfig, AnyLine, Better, Detection, Detector, HeldLine,
     QualityThresholds, RangeLimits, Scan, Verdict,
+};
+use fieldguide::planning::dubins::{path_with_word, shortest, TurningRadius, Word};
+use fieldguide::planning::line_following::{goal_ahead, line_ahead};
+use fieldguide::planning::manager::{
+    choose_planner, direction_change, tracker_for, PlannerThreshold,
 };
 use fieldguide::presets;
 use fieldguide::supervisor::switching::{
@@ -1863,6 +1872,164 @@ fn slip() -> BoxedStrategy<Radians> {
 /// Whether a scan is a wall on the left, and the parts of a scan otherwise.
 fn parts_or_wall() -> BoxedStrategy<(bool, ScanParts)> {
     (any::<bool>(), scan_parts(360)).boxed()
+}
+
+// ---------------------------------------------------------------- Emmi 2024: tracked robot, planners, controllers
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+
+    #[test]
+    fn skid_steer_and_its_controllers(
+        track in raw(), limit in raw(), v in fin(), w in fin(), at in pose::<World>(),
+        gains in prop::array::uniform5(raw()), cp in meters(), e in tracking(),
+        rate in fin(), speed in prop_oneof![3 => 0.0..2.0_f64, 1 => fin()],
+        ticks in (meters(), meters(), fin()), lambda in raw(), alpha_d in radians(),
+        centre in point::<World>(), radius in meters(),
+    ) {
+        let t = Meters::new(track).unwrap_or(Meters::ZERO);
+        let l = MetersPerSecond::new(limit).unwrap_or(MetersPerSecond::ZERO);
+        check!("model::skid_steer::SkidSteer::new", SkidSteer::new(t, l));
+        let k = SkidSteer::new(t, l).unwrap_or(
+            SkidSteer::new(m(1.48), MetersPerSecond::new(1.67).unwrap()).unwrap(),
+        );
+        let (vv, ww) = (MetersPerSecond::new(v).unwrap(), RadiansPerSecond::new(w).unwrap());
+        check!("model::skid_steer::SkidSteer::track", k.track());
+        check!("model::skid_steer::SkidSteer::max_track_speed", k.max_track_speed());
+        check!("model::skid_steer::SkidSteer::track_speeds", k.track_speeds(vv, ww));
+        let sat = check!("model::skid_steer::SkidSteer::saturate", k.saturate(v, w));
+        if let Ok(s) = sat {
+            prop_assert!(Vehicle::SkidSteer(k).check(&s.command).is_ok());
+        }
+        check!("model::skid_steer::SkidSteer::saturate", k.saturate(f64::NAN, w));
+        check!("model::skid_steer::SkidSteer::check_turn_radius", k.check_turn_radius(radius));
+        check!("model::skid_steer::unicycle_rates", unicycle_rates(&at, vv, ww));
+        check!("model::Vehicle::check", Vehicle::SkidSteer(k).check(&Command::SkidSteer { speed: vv, yaw_rate: ww }));
+
+        let [g0, g1, g2, g3, g4] = gains;
+        let lg = check!("control::lateral_pd::LateralGains::new", LateralGains::new(g0, g1, g2, g3, g4));
+        names_a_requirement("LateralGains::new", &lg);
+        let law = LateralPd {
+            gains: lg.unwrap_or(LateralGains::new(1.0, 1.0, 0.1, 1.0, 0.5).unwrap()),
+            control_point: cp,
+            vehicle: k,
+        };
+        let r = LateralRate(MetersPerSecond::new(rate).unwrap());
+        let sp = MetersPerSecond::new(speed).unwrap();
+        check!("control::lateral_pd::LateralPd::control_point_error", law.control_point_error(&e));
+        check!("control::lateral_pd::LateralPd::raw_command", law.raw_command(&e, r, sp));
+        let c = check!("control::ControlLaw::command", law.command(&e, &r, sp));
+        if let Ok(c) = c {
+            prop_assert!(Vehicle::SkidSteer(k).check(&c.command).is_ok());
+        }
+        check!("control::ControlLaw::check_extra", LateralPd::check_extra(&r));
+        check!("control::ControlLaw::actuation", law.actuation());
+        check!("control::ControlLaw::check_speed", law.check_speed(sp));
+        let (a, b, period) = ticks;
+        let between = check!(
+            "control::lateral_pd::LateralRate::between_ticks",
+            LateralRate::between_ticks(a, b, Seconds::new(period).unwrap())
+        );
+        names_a_requirement("between_ticks", &between);
+
+        let sv = check!("control::spiral::Spiral::new", Spiral::new(lambda, alpha_d, k));
+        names_a_requirement("Spiral::new", &sv);
+        let spiral = sv.unwrap_or(Spiral::new(1.0, rad(FRAC_PI_2), k).unwrap());
+        check!("control::spiral::Spiral::lambda", spiral.lambda());
+        check!("control::spiral::Spiral::desired_angle", spiral.desired_angle());
+        let spiral = check!("control::spiral::Spiral::towards", spiral.towards(alpha_d));
+        check!("control::spiral::spiral_state", spiral_state(&at, centre));
+        let yaw = check!("control::spiral::Spiral::raw_yaw_rate", spiral.raw_yaw_rate(&at, centre, sp));
+        names_a_requirement("raw_yaw_rate", &yaw);
+        let c = check!("control::spiral::spiral_command", spiral_command(&spiral, &at, centre, sp));
+        if let Ok(c) = c {
+            prop_assert!(Vehicle::SkidSteer(k).check(&c.command).is_ok());
+        }
+    }
+
+    #[test]
+    fn speed_profiles(
+        v_th in fin(), v_d in fin(), ramp in meters(), d_b in fin(), fixed in any::<bool>(),
+        reach in meters(), travelled in meters(), remaining in meters(), braking_from in fin(),
+    ) {
+        let braking = if fixed {
+            Braking::Fixed(m(d_b))
+        } else {
+            Braking::Proportional(Seconds::new(d_b).unwrap())
+        };
+        let (t, d) = (MetersPerSecond::new(v_th).unwrap(), MetersPerSecond::new(v_d).unwrap());
+        let made = check!("control::speed_profile::SpeedProfile::new", SpeedProfile::new(t, d, ramp, braking, reach));
+        names_a_requirement("SpeedProfile::new", &made);
+        let p = made.unwrap_or(
+            SpeedProfile::new(
+                MetersPerSecond::new(0.1).unwrap(), MetersPerSecond::new(0.5).unwrap(),
+                m(1.0), Braking::Fixed(m(1.0)), m(0.05),
+            ).unwrap(),
+        );
+        check!("control::speed_profile::SpeedProfile::ramp_speed", p.ramp_speed(travelled));
+        check!("control::speed_profile::SpeedProfile::braking_distance", p.braking_distance(d));
+        let states = [
+            SpeedState::Moving,
+            SpeedState::Reached,
+            SpeedState::Braking { from: MetersPerSecond::new(braking_from).unwrap(), over: ramp },
+        ];
+        for s in states {
+            check!("control::speed_profile::SpeedProfile::step", p.step(s, travelled, remaining));
+        }
+    }
+
+    #[test]
+    fn planners(
+        a in pose::<World>(), b in pose::<World>(), r in meters(), spacing in meters(),
+        word in prop::sample::select(Word::ALL.to_vec()), s in meters(), ahead in meters(),
+        threshold in radians(), track in meters(),
+    ) {
+        let made = check!("planning::dubins::TurningRadius::new", TurningRadius::new(r));
+        names_a_requirement("TurningRadius::new", &made);
+        let k = SkidSteer::new(track, MetersPerSecond::new(1.0).unwrap())
+            .unwrap_or(SkidSteer::new(m(1.0), MetersPerSecond::new(1.0).unwrap()).unwrap());
+        check!("planning::dubins::TurningRadius::for_vehicle", TurningRadius::for_vehicle(r, &k));
+        let radius = made.unwrap_or(TurningRadius::new(m(1.0)).unwrap());
+        check!("planning::dubins::TurningRadius::get", radius.get());
+        check!("planning::dubins::Word::turns", word.turns());
+        check!("planning::dubins::Word::mirrored", word.mirrored());
+        check!("planning::dubins::Word::reversed", word.reversed());
+        let one = check!("planning::dubins::path_with_word", path_with_word(&a, &b, radius, word));
+        names_a_requirement("path_with_word", &one);
+        let best = check!("planning::dubins::shortest", shortest(&a, &b, radius));
+        names_a_requirement("shortest", &best);
+        for p in [one, best].into_iter().flatten() {
+            check!("planning::dubins::DubinsPath::word", p.word());
+            check!("planning::dubins::DubinsPath::start", p.start());
+            check!("planning::dubins::DubinsPath::radius", p.radius());
+            check!("planning::dubins::DubinsPath::length", p.length());
+            check!("planning::dubins::DubinsPath::segments", p.segments());
+            check!("planning::dubins::DubinsPath::pose_at", p.pose_at(s));
+            check!("planning::dubins::DubinsPath::end", p.end());
+            let path = check!("planning::dubins::DubinsPath::to_reference_path", p.to_reference_path::<64>(spacing));
+            names_a_requirement("to_reference_path", &path);
+            for g in p.segments() {
+                check!("planning::manager::tracker_for", tracker_for(&g));
+            }
+        }
+        let exact = check!(
+            "geometry::path::ReferencePath::from_exact",
+            ReferencePath::<8>::from_exact([(a, Curvature::ZERO), (b, Curvature::new(0.5).unwrap())])
+        );
+        names_a_requirement("from_exact", &exact);
+        if let Ok(path) = exact {
+            check!("geometry::path::ReferencePath::project", path.project(&a, s));
+        }
+        check!("planning::line_following::goal_ahead", goal_ahead(&a, ahead));
+        let line = check!("planning::line_following::line_ahead", line_ahead::<4>(&a, ahead));
+        names_a_requirement("line_ahead", &line);
+        let t = check!("planning::manager::PlannerThreshold::new", PlannerThreshold::new(threshold));
+        names_a_requirement("PlannerThreshold::new", &t);
+        let t = t.unwrap_or(PlannerThreshold::DEFAULT);
+        check!("planning::manager::PlannerThreshold::get", t.get());
+        check!("planning::manager::direction_change", direction_change(&a, &b));
+        check!("planning::manager::choose_planner", choose_planner(&a, &b, t));
+    }
 }
 
 // ---------------------------------------------------------------- coverage

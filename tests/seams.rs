@@ -532,6 +532,15 @@ proptest! {
         let s2 = Strategy2 { gains: Strategy2Gains::table1().unwrap(), vehicle };
         check_law::<Strategy2>(&s2, &Vehicle::FourWheelSteering(vehicle), &error, &sideslip, speed)?;
     }
+
+    #[test]
+    fn lateral_pd_keeps_the_law_contract(error in any_error(), speed in any_speed(), rate in any_speed()) {
+        use fieldguide::control::lateral_pd::{LateralGains, LateralPd, LateralRate};
+        use fieldguide::model::skid_steer::SkidSteer;
+        let vehicle = SkidSteer::new(Meters::new(1.48).unwrap(), MetersPerSecond::new(1.67).unwrap()).unwrap();
+        let law = LateralPd { gains: LateralGains::new(1.2, 0.8, 0.3, 1.0, 0.5).unwrap(), control_point: Meters::new(1.0).unwrap(), vehicle };
+        check_law::<LateralPd>(&law, &Vehicle::SkidSteer(vehicle), &error, &LateralRate(rate), speed)?;
+    }
 }
 
 //= spec/guidance.md#gd-law-one-trait-for-every-control-law

@@ -12,6 +12,9 @@ pub mod backstepping;
 pub mod four_ws;
 pub mod fuzzy;
 pub mod fuzzy_rows;
+pub mod lateral_pd;
+pub mod speed_profile;
+pub mod spiral;
 
 use crate::error::Precondition;
 use crate::geometry::tracking::TrackingError;

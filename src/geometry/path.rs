@@ -160,6 +160,9 @@ pub struct ReferencePath<const N: usize> {
     vertices: Vec<PathVertex, N>,
     config: PathConfig,
     length: f64,
+    /// Built by [`ReferencePath::from_exact`]: heading and curvature are the
+    /// vertices' own, not smoothed from positions.
+    exact: bool,
 }
 
 /// `x` limited to `[lo, hi]` (`lo ≤ hi`); never panics, unlike `f64::clamp`.
@@ -270,6 +273,7 @@ impl<const N: usize> ReferencePath<N> {
             vertices,
             config,
             length,
+            exact: false,
         };
         let mut i = 0_usize;
         while let Some(v) = path.vertices.get(i) {
@@ -283,6 +287,92 @@ impl<const N: usize> ReferencePath<N> {
             i = i.saturating_add(1);
         }
         Ok(path)
+    }
+
+    /// Builds a path from samples that carry their exact heading and the
+    /// curvature of the piece of path that starts at them (the last sample:
+    /// of the piece that ends there), as a planner knows them
+    /// (`spec/emmi2024.md`, EM-DUBINS-PATH).
+    ///
+    /// [`ReferencePath::from_waypoints`] smooths heading and curvature over a
+    /// window, which suits noisy recorded waypoints but blurs a planned path's
+    /// arcs (a Dubins arc's curvature jumps from 0 to ±1/r). Here the heading
+    /// between two vertices is interpolated linearly (exact on arcs sampled
+    /// densely) and c(s) is the curvature of the vertex that starts the
+    /// segment holding s; positions, s and the projection are those of
+    /// [`ReferencePath::from_waypoints`]. A sample closer than
+    /// [`MIN_WAYPOINT_SPACING`] to the last kept one replaces it (the first
+    /// one is kept), so the last sample always ends the path. The path's
+    /// configuration is the default one and unused.
+    ///
+    /// # Errors
+    /// `PATH-RANGE`, `PATH-WAYPOINTS` and `PATH-CAPACITY` as
+    /// [`ReferencePath::from_waypoints`].
+    //= spec/emmi2024.md#em-dubins-path-the-path-as-a-reference-path
+    //# A reference path built from exact samples MUST return, at a vertex, the
+    //# vertex's heading and, for s in [0, L], the curvature of the vertex that
+    //# starts the segment holding s, instead of smoothed values.
+    pub fn from_exact<I>(samples: I) -> Result<Self, Precondition>
+    where
+        I: IntoIterator<Item = (Pose2<World>, Curvature)>,
+    {
+        let mut vertices: Vec<PathVertex, N> = Vec::new();
+        for (pose, curvature) in samples {
+            let p = pose.position;
+            if libm::fabs(p.x()) > MAX_PATH_COORDINATE || libm::fabs(p.y()) > MAX_PATH_COORDINATE {
+                return Err(Precondition::new(
+                    "PATH-RANGE",
+                    "waypoint coordinate beyond 1e7 m",
+                ));
+            }
+            let mut vertex = PathVertex {
+                position: p,
+                s: Meters::ZERO,
+                heading: pose.heading,
+                curvature,
+            };
+            if let Some(last) = vertices.last().copied() {
+                if last.position.distance_to(p)?.get() < MIN_WAYPOINT_SPACING {
+                    // Too close: replace the last vertex unless it is the first.
+                    let before = vertices.len().checked_sub(2).and_then(|i| vertices.get(i));
+                    let Some(before) = before.copied() else {
+                        continue;
+                    };
+                    let d = before.position.distance_to(p)?.get();
+                    if d < MIN_WAYPOINT_SPACING {
+                        continue;
+                    }
+                    vertices.pop();
+                    vertex.s = Meters(before.s.get() + d);
+                } else {
+                    vertex.s = Meters(last.s.get() + last.position.distance_to(p)?.get());
+                }
+            }
+            if vertex.s.get() > MAX_PATH_LENGTH {
+                return Err(Precondition::new("PATH-RANGE", "path length beyond 1e9 m"));
+            }
+            if vertices.push(vertex).is_err() {
+                return Err(Precondition::new(
+                    "PATH-CAPACITY",
+                    "more distinct waypoints than the path capacity N",
+                ));
+            }
+        }
+        let length = match vertices.last() {
+            Some(v) if vertices.len() >= 2 => v.s.get(),
+            _ => {
+                return Err(Precondition::new(
+                    "PATH-WAYPOINTS",
+                    "fewer than 2 distinct waypoints",
+                ))
+            }
+        };
+        Ok(Self {
+            vertices,
+            config: PathConfig::default(),
+            length,
+            exact: true,
+        })
     }
 
     /// Total length L of the recorded path, metres.
@@ -596,6 +686,11 @@ impl<const N: usize> ReferencePath<N> {
     //# When that chord is shorter than 1e−9 m, the heading MUST be the direction
     //# of the polyline segment containing s.
     fn smoothed_heading(&self, s: f64) -> Radians {
+        if self.exact {
+            let (a, b, t) = self.locate(s);
+            let turn = wrap_raw(b.heading.get() - a.heading.get());
+            return Radians::new(wrap_raw(a.heading.get() + t * turn)).unwrap_or(a.heading);
+        }
         let (a, b) = self.window(s);
         let pa = self.polyline_point(a);
         let pb = self.polyline_point(b);
@@ -631,6 +726,9 @@ impl<const N: usize> ReferencePath<N> {
     fn smoothed_curvature(&self, s: f64) -> Curvature {
         if s < 0.0 || s > self.length {
             return Curvature::ZERO;
+        }
+        if self.exact {
+            return self.locate(s).0.curvature;
         }
         let (a, b) = self.window(s);
         let arc = self.window_centre(b) - self.window_centre(a);

@@ -17,6 +17,7 @@
 pub mod bicycle;
 pub mod differential;
 pub mod four_ws;
+pub mod skid_steer;
 
 use crate::error::Precondition;
 use crate::geometry::units::{MetersPerSecond, Radians, RadiansPerSecond};
@@ -186,6 +187,8 @@ pub enum Vehicle {
     Differential(differential::Differential),
     /// A four-wheel-steering robot (Iberraken 2022, eqs. 5-8).
     FourWheelSteering(four_ws::FourWheelSteering),
+    /// A tracked (skid-steer) robot (Emmi 2024, section 2.1).
+    SkidSteer(skid_steer::SkidSteer),
 }
 
 impl Vehicle {
@@ -196,6 +199,7 @@ impl Vehicle {
             Self::Bicycle(_) => Actuation::Bicycle,
             Self::Differential(_) => Actuation::Differential,
             Self::FourWheelSteering(_) => Actuation::FourWheelSteering,
+            Self::SkidSteer(_) => Actuation::SkidSteer,
         }
     }
 
@@ -238,12 +242,29 @@ impl Vehicle {
                     ))
                 }
             }
-            (Self::Bicycle(_) | Self::Differential(_) | Self::FourWheelSteering(_), _) => {
-                Err(Precondition::new(
-                    "GD-VEHICLE",
-                    "command of another actuation than the vehicle's",
-                ))
+            //= spec/emmi2024.md#em-skid-limits-track-distance-and-speed-limit
+            //# A skid-steer command MUST be within the vehicle's limits when both
+            //# track speeds satisfy |v_l| ≤ v_max and |v_r| ≤ v_max.
+            (Self::SkidSteer(k), Command::SkidSteer { speed, yaw_rate }) => {
+                if k.within_limits(speed.get(), yaw_rate.get()) {
+                    Ok(())
+                } else {
+                    Err(Precondition::new(
+                        "GD-VEHICLE",
+                        "track speed beyond the vehicle's limit",
+                    ))
+                }
             }
+            (
+                Self::Bicycle(_)
+                | Self::Differential(_)
+                | Self::FourWheelSteering(_)
+                | Self::SkidSteer(_),
+                _,
+            ) => Err(Precondition::new(
+                "GD-VEHICLE",
+                "command of another actuation than the vehicle's",
+            )),
         }
     }
 }
