@@ -243,19 +243,33 @@ impl Engine {
                 "one finite value per input variable",
             ));
         }
+        // m[i][t]: the membership of input i in its term t, once per term.
+        let mut membership = [[0.0_f64; MAX_TERMS]; MAX_VARIABLES];
+        for ((m, variable), &x) in membership.iter_mut().zip(&self.inputs).zip(inputs) {
+            for (slot, term) in m.iter_mut().zip(&variable.terms) {
+                *slot = term.membership(x);
+            }
+        }
         // s[o][t]: the strongest firing concluding term t of output o.
         let mut strength = [[0.0_f64; MAX_TERMS]; MAX_VARIABLES];
         for rule in &self.rules {
             let mut firing = 1.0_f64;
-            for ((term, variable), &x) in rule.when.iter().zip(&self.inputs).zip(inputs) {
-                if let Some(t) = term.and_then(|t| variable.terms.get(usize::from(t))) {
-                    firing = firing.min(t.membership(x));
+            for (term, m) in rule.when.iter().zip(&membership).take(inputs.len()) {
+                if let Some(&mu) = term.and_then(|t| m.get(usize::from(t))) {
+                    firing = firing.min(mu);
                 }
             }
-            for (o, term) in rule.then.iter().enumerate() {
-                if let Some(slot) =
-                    term.and_then(|t| strength.get_mut(o).and_then(|s| s.get_mut(usize::from(t))))
-                {
+            if firing <= 0.0 {
+                // A rule that does not fire raises no strength.
+                continue;
+            }
+            for (term, s) in rule
+                .then
+                .iter()
+                .zip(strength.iter_mut())
+                .take(self.outputs.len())
+            {
+                if let Some(slot) = term.and_then(|t| s.get_mut(usize::from(t))) {
                     *slot = slot.max(firing);
                 }
             }
@@ -319,55 +333,93 @@ fn sampled(variable: &Variable, strength: &[f64; MAX_TERMS], resolution: u16) ->
 //# two scaled terms cross, where A is linear.
 fn exact(variable: &Variable, strength: &[f64; MAX_TERMS]) -> (f64, f64) {
     let (lo, hi) = (variable.min, variable.max);
+    // The scaled terms that take part, s_t μ_t.
+    let active: Vec<(Term, f64), MAX_TERMS> = variable
+        .terms
+        .iter()
+        .zip(strength)
+        .filter(|(_, &s)| s > 0.0)
+        .map(|(t, &s)| (*t, s))
+        .collect();
     let mut cuts: Vec<f64, { 3 * MAX_TERMS + 2 }> = Vec::new();
     let _ = cuts.push(lo);
     let _ = cuts.push(hi);
-    for (t, &s) in variable.terms.iter().zip(strength) {
-        if s > 0.0 {
-            for v in t.vertices() {
-                if v > lo && v < hi && !cuts.contains(&v) {
-                    let _ = cuts.push(v);
-                }
+    for (t, _) in &active {
+        for v in t.vertices() {
+            if v > lo && v < hi && !cuts.contains(&v) {
+                let _ = cuts.push(v);
             }
         }
     }
     cuts.sort_unstable_by(f64::total_cmp);
+    // Each scaled term's value at a cut, computed once: [x0] then [x1].
+    let at = |x: f64| -> [f64; MAX_TERMS] {
+        let mut v = [0.0; MAX_TERMS];
+        for (slot, (t, s)) in v.iter_mut().zip(&active) {
+            *slot = s * t.membership(x);
+        }
+        v
+    };
+    let n = active.len();
     let (mut area, mut moment) = (0.0, 0.0);
-    for pair in cuts.windows(2) {
-        let [x0, x1] = [
-            pair.first().copied().unwrap_or(lo),
-            pair.last().copied().unwrap_or(lo),
-        ];
-        // Every scaled term is one line on [x0, x1]: its value at both ends.
-        let lines: Vec<(f64, f64), MAX_TERMS> = variable
-            .terms
-            .iter()
-            .zip(strength)
-            .filter(|(_, &s)| s > 0.0)
-            .map(|(t, &s)| (s * t.membership(x0), s * t.membership(x1)))
-            .collect();
-        // Where two lines cross inside, the maximum changes line.
-        let mut inner: Vec<f64, { MAX_TERMS * MAX_TERMS }> = Vec::new();
-        for (i, &(a0, a1)) in lines.iter().enumerate() {
-            for &(b0, b1) in lines.iter().skip(i.saturating_add(1)) {
-                let (d0, d1) = (a0 - b0, a1 - b1);
-                if (d0 < 0.0 && d1 > 0.0) || (d0 > 0.0 && d1 < 0.0) {
-                    let t = d0 / (d0 - d1);
-                    let _ = inner.push(x0 + t * (x1 - x0));
+    let mut x0 = lo;
+    let mut v0 = at(lo);
+    for &x1 in cuts.iter().skip(1) {
+        let v1 = at(x1);
+        // Every scaled term is one line on [x0, x1]; a line zero at both
+        // ends is zero throughout and never above the others.
+        let mut lines: [(f64, f64); MAX_TERMS] = [(0.0, 0.0); MAX_TERMS];
+        let mut count = 0_usize;
+        for (&a, &b) in v0.iter().zip(&v1).take(n) {
+            if a > 0.0 || b > 0.0 {
+                if let Some(slot) = lines.get_mut(count) {
+                    *slot = (a, b);
+                    count = count.saturating_add(1);
                 }
             }
         }
-        inner.sort_unstable_by(f64::total_cmp);
-        let mut left = x0;
-        let mut a_left = aggregate(variable, strength, x0);
-        for right in inner.iter().copied().chain(core::iter::once(x1)) {
-            let a_right = aggregate(variable, strength, right);
-            let h = right - left;
-            area += 0.5 * h * (a_left + a_right);
-            moment +=
-                h * (left * (2.0 * a_left + a_right) + right * (a_left + 2.0 * a_right)) / 6.0;
-            (left, a_left) = (right, a_right);
+        let lines = lines.get(..count).unwrap_or_default();
+        if !lines.is_empty() {
+            let (a, m) = segment(x0, x1, lines);
+            area += a;
+            moment += m;
         }
+        (x0, v0) = (x1, v1);
+    }
+    (area, moment)
+}
+
+/// (∫ A, ∫ y A) over [x0, x1] for A the upper envelope of `lines`, each
+/// given by its values at x0 and x1: exact between the lines' crossings,
+/// where A is linear.
+fn segment(x0: f64, x1: f64, lines: &[(f64, f64)]) -> (f64, f64) {
+    // Where two lines cross inside, the maximum may change line (as a share
+    // of the segment).
+    let mut inner: Vec<f64, { MAX_TERMS * MAX_TERMS }> = Vec::new();
+    for (i, &(a0, a1)) in lines.iter().enumerate() {
+        for &(b0, b1) in lines.iter().skip(i.saturating_add(1)) {
+            let (d0, d1) = (a0 - b0, a1 - b1);
+            if (d0 < 0.0 && d1 > 0.0) || (d0 > 0.0 && d1 < 0.0) {
+                let _ = inner.push(d0 / (d0 - d1));
+            }
+        }
+    }
+    inner.sort_unstable_by(f64::total_cmp);
+    let upper = |t: f64| {
+        lines
+            .iter()
+            .fold(0.0_f64, |a, &(l0, l1)| a.max(l0 + t * (l1 - l0)))
+    };
+    let span = x1 - x0;
+    let (mut area, mut moment) = (0.0, 0.0);
+    let (mut left, mut a_left) = (x0, lines.iter().fold(0.0_f64, |a, l| a.max(l.0)));
+    let ends = inner.iter().map(|&t| (x0 + t * span, upper(t)));
+    let last = (x1, lines.iter().fold(0.0_f64, |a, l| a.max(l.1)));
+    for (right, a_right) in ends.chain(core::iter::once(last)) {
+        let h = right - left;
+        area += 0.5 * h * (a_left + a_right);
+        moment += h * (left * (2.0 * a_left + a_right) + right * (a_left + 2.0 * a_right)) / 6.0;
+        (left, a_left) = (right, a_right);
     }
     (area, moment)
 }
