@@ -2,7 +2,7 @@
 //! section 4; `spec/guyonneau2022.md` NAV-*): the paper's four crops with
 //! RGOP over a seed sweep, a broken controller caught, fields of our own
 //! (other spacing, rows ending at different places, a robot off the
-//! middle, slow wheels, more slip, worse
+//! middle, faster, slow wheels, more slip, worse
 //! odometry, longer rows, noisier LiDARs, both LiDARs silent mid-row), and a robot that cannot start or whose
 //! LiDARs stop. Every figure is measured against the true rows.
 //!
@@ -157,6 +157,11 @@ fn fields_of_our_own() {
             change: |r| r.crop.ragged_ends = 2.0,
         },
         OwnField {
+            name: "crop 4 at twice the speed (top wheel speed 1 m/s)",
+            crop: 4,
+            change: |r| r.top_speed_m_s = 1.0,
+        },
+        OwnField {
             name: "crop 4, wheels slipping by 5 % (σ, 1 s correlation)",
             crop: 4,
             change: |r| r.wheel_slip = 0.05,
@@ -277,7 +282,7 @@ fn the_built_in_crop_drives_are_the_papers_runs() {
 fn a_crop_drive_file_changes_what_it_says_and_refuses_what_is_wrong() {
     let head = "name = \"mine\"\ndescription = \"d\"\nseed = 9\n[crop_drive]\ncrop = 3\nvariant = \"RG\"\n";
     let text = format!(
-        "{head}[field]\nspacing_m = 0.9\nweeds = 7\n[robot]\nstart_offset_m = -0.05\nlidar_outage_s = [3.0, 3.5]\n\
+        "{head}[field]\nspacing_m = 0.9\nweeds = 7\n[robot]\nstart_offset_m = -0.05\ntop_speed_m_s = 0.8\nlidar_outage_s = [3.0, 3.5]\n\
          [odometry]\nscale = 0.01\nyaw_drift_rad_m = 0.0\ndistance_noise = 0.0\nyaw_noise = 0.0\n\
          [[lidar]]\nmount_x_m = 0.4\nheading_deg = 0\n[[lidar]]\nmount_x_m = -0.4\nmount_y_m = 0.1\nheading_deg = 180\n"
     );
@@ -292,6 +297,7 @@ fn a_crop_drive_file_changes_what_it_says_and_refuses_what_is_wrong() {
         (3, 0.9, 7)
     );
     assert_eq!(run.start, (0.5, -0.05));
+    assert_eq!(run.top_speed_m_s, 0.8);
     assert_eq!(run.outage_s, Some((3.0, 3.5)));
     assert_eq!(run.odometry.scale, 0.01);
     assert_eq!(run.lidars.len(), 2);

@@ -101,6 +101,8 @@ pub struct RobotSection {
     pub start_along_m: Option<f64>,
     /// How far left of the inter-row's middle O starts, m.
     pub start_offset_m: Option<f64>,
+    /// The fuzzy controller's top wheel speed, m/s.
+    pub top_speed_m_s: Option<f64>,
     /// The wheels' time constant, s.
     pub wheel_lag_s: Option<f64>,
     /// The wheels' slip σ, share of the command.
@@ -229,6 +231,13 @@ impl CropDriveFile {
             r.start_offset_m,
             "robot.start_offset_m",
             -1.0,
+            1.0,
+        )?;
+        set(
+            &mut run.top_speed_m_s,
+            r.top_speed_m_s,
+            "robot.top_speed_m_s",
+            0.01,
             1.0,
         )?;
         set(

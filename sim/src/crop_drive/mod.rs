@@ -103,6 +103,9 @@ pub struct CropRun {
     pub seed: u64,
     /// The wheel odometry's errors.
     pub odometry: OdometryErrors,
+    /// The wheel speed of the fuzzy controller's full output, m/s (the
+    /// wheels' limit is 1 m/s).
+    pub top_speed_m_s: f64,
     /// The wheels' time constant, s.
     pub wheel_lag_s: f64,
     /// Wheel slip on soil: each wheel delivers its command times 1 + s, s a
@@ -145,6 +148,7 @@ impl CropRun {
                 distance_noise: 0.002,
                 yaw_noise: 0.002,
             },
+            top_speed_m_s: 0.5,
             wheel_lag_s: 0.1,
             wheel_slip: 0.02,
             lidars: LidarMount::PAPER.to_vec(),
@@ -315,7 +319,11 @@ fn drive_in(run: &CropRun, plants: &[Stem], rng: &mut SimRng) -> Result<CropOutc
         rows = rows.with_second(b.mount());
     }
     let config = RowsConfig::new(rows).map_err(|e| e.to_string())?;
-    let params = NavParams::authors(config).map_err(|e| e.to_string())?;
+    let params = NavParams {
+        top_speed: fieldguide::MetersPerSecond::new(run.top_speed_m_s)
+            .map_err(|e| e.to_string())?,
+        ..NavParams::authors(config).map_err(|e| e.to_string())?
+    };
     let mut nav = CropNavigator::<1024>::new(params).map_err(|e| e.to_string())?;
     let plant = DifferentialPlant {
         track_m: params.vehicle.track().get(),
