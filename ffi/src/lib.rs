@@ -188,12 +188,23 @@ pub struct FgTickOutput {
 
 /// A pipeline and the path it follows, opaque to C: made by
 /// `fg_pipeline_new`, freed by `fg_pipeline_free`.
-// The guidance borrows the path: the path lives on the heap behind its own
-// box, which never moves, and is dropped after the guidance (fields drop in
-// declaration order).
+// The guidance borrows the path, which lives in its own heap allocation
+// held by a raw pointer (a `Box` moved into this struct would assert
+// uniqueness and invalidate the guidance's borrow); `Drop` drops the
+// guidance first, then frees the path.
 pub struct FgPipeline {
-    guidance: Pierre2022<'static, FG_PATH_CAPACITY>,
-    _path: Box<ReferencePath<FG_PATH_CAPACITY>>,
+    guidance: core::mem::ManuallyDrop<Pierre2022<'static, FG_PATH_CAPACITY>>,
+    path: *mut ReferencePath<FG_PATH_CAPACITY>,
+}
+
+impl Drop for FgPipeline {
+    fn drop(&mut self) {
+        // SAFETY: the guidance is dropped once, here, and never used after.
+        unsafe { core::mem::ManuallyDrop::drop(&mut self.guidance) };
+        // SAFETY: `path` came from `Box::into_raw` in `build` and is freed
+        // once, here; the only borrow of it, the guidance's, is gone.
+        drop(unsafe { Box::from_raw(self.path) });
+    }
 }
 
 impl FgError {
@@ -262,18 +273,23 @@ fn build(config: &FgConfig, waypoints: &[FgPoint]) -> Result<Box<FgPipeline>, Pr
         FgPreset::Both => pierre2022_both(side, mount)?,
     };
     let config = GuidanceConfig::new(&params)?;
-    // SAFETY: the reference points into the box's heap allocation, which
-    // stays where it is for as long as the box lives, however the box itself
-    // moves; the box is kept in the same `FgPipeline` as the guidance and is
-    // dropped after it, and the pipeline never lends the reference out, so
-    // the borrow never outlives the path.
-    let borrowed: &'static ReferencePath<FG_PATH_CAPACITY> =
-        unsafe { &*core::ptr::from_ref(path.as_ref()) };
-    let guidance = Guidance::new(config, borrowed)?;
-    Ok(Box::new(FgPipeline {
-        guidance,
-        _path: path,
-    }))
+    let path = Box::into_raw(path);
+    // SAFETY: `path` is a live allocation from `Box::into_raw`, freed only
+    // by `FgPipeline`'s `Drop` after the guidance holding this borrow is
+    // dropped; nothing writes through `path` while the borrow lives.
+    let borrowed: &'static ReferencePath<FG_PATH_CAPACITY> = unsafe { &*path };
+    match Guidance::new(config, borrowed) {
+        Ok(guidance) => Ok(Box::new(FgPipeline {
+            guidance: core::mem::ManuallyDrop::new(guidance),
+            path,
+        })),
+        Err(e) => {
+            // SAFETY: from `Box::into_raw` above, freed once; the borrow
+            // was not kept (the guidance was refused).
+            drop(unsafe { Box::from_raw(path) });
+            Err(e)
+        }
+    }
 }
 
 /// Creates a pipeline of `config` following the path through `waypoints`

@@ -146,8 +146,10 @@ fn the_c_examples_loop_converges_and_its_ticks_allocate_nothing() {
     let (mut x, mut y, mut heading) = (0.0_f64, 0.5_f64, 0.0_f64);
     let mut first = None;
     let mut last = blank();
+    // Under Miri, which interprets every instruction, the first two seconds.
+    let ticks = if cfg!(miri) { 200 } else { 2000 };
     WATCHING.with(|w| w.set(true));
-    for _ in 0..=2000 {
+    for _ in 0..=ticks {
         let out = step(p, &input(FgPose { x, y, heading }, &[])).unwrap();
         first.get_or_insert(out);
         last = out;
@@ -163,8 +165,9 @@ fn the_c_examples_loop_converges_and_its_ticks_allocate_nothing() {
     assert!((first.steering_rad + core::f64::consts::FRAC_PI_6).abs() < 1e-12);
     assert_eq!(first.mode, FgMode::PathTracking);
     assert!((first.lateral_error_m - 0.5).abs() < 1e-12);
-    // Converged after 16 m.
-    assert!(last.lateral_error_m.abs() < 1e-4, "{last:?}");
+    // Converged after 16 m; under Miri, on its way after 1.6 m.
+    let bound = if cfg!(miri) { 0.3 } else { 1e-4 };
+    assert!(last.lateral_error_m.abs() < bound, "{last:?}");
     free(p);
 }
 
