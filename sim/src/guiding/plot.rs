@@ -183,7 +183,7 @@ pub fn histogram_svg(
     svg.frame(
         &axes,
         unit,
-        "manoeuvres",
+        "count",
         &format!("{title}: {} values, mean {mean:.2} {short}", shown.len()),
     );
     for (k, &c) in counts.iter().enumerate() {
