@@ -332,3 +332,158 @@ fn indicators_match_the_ground_truth_of_the_trace() {
         assert!(reach.axis_m <= reach.distance_m + 1e-12);
     }
 }
+
+/// Whether the footprint at `pose` lies inside the rectangle [x0, x1] ×
+/// [y0, y1] grown by `tolerance` and outside the open rectangle `notch`.
+fn inside_with_notch(
+    corners: [(f64, f64); 4],
+    outer: (f64, f64, f64, f64),
+    notch: Option<(f64, f64, f64, f64)>,
+    tolerance: f64,
+) -> bool {
+    let (x0, y0, x1, y1) = outer;
+    let in_outer = corners.iter().all(|&(x, y)| {
+        x >= x0 - tolerance && x <= x1 + tolerance && y >= y0 - tolerance && y <= y1 + tolerance
+    });
+    // The footprint (a convex quadrilateral) meets the notch when a corner
+    // lies in the notch or a notch corner lies in the footprint (the notch
+    // is wider than the footprint is thin, so edges alone cannot cross).
+    let meets = notch.is_some_and(|(a, b, c, d)| {
+        let in_notch = |(x, y): (f64, f64)| x > a && x < c && y > b && y < d;
+        let in_foot = |p: (f64, f64)| {
+            (0..4).all(|k| {
+                let (u, v) = (corners[k], corners[(k + 1) % 4]);
+                (v.0 - u.0) * (p.1 - u.1) - (v.1 - u.1) * (p.0 - u.0) >= 0.0
+            }) || (0..4).all(|k| {
+                let (u, v) = (corners[k], corners[(k + 1) % 4]);
+                (v.0 - u.0) * (p.1 - u.1) - (v.1 - u.1) * (p.0 - u.0) <= 0.0
+            })
+        };
+        corners.iter().any(|&p| in_notch(p))
+            || [(a, b), (c, b), (c, d), (a, d)].iter().any(|&p| in_foot(p))
+    });
+    in_outer && !meets
+}
+
+//= spec/emmi2024.md#em-sim-boundary-turns-inside-the-field
+//= type=test
+//# With a field boundary, GoToGoal MUST check the robot's footprint at every
+//# pose sampled at most 0.02 m apart along a word, and return the shortest word
+//# whose footprint stays inside.
+#[test]
+fn a_turn_takes_the_shortest_word_that_stays_inside() {
+    use fieldguide::planning::dubins::{path_with_word, shortest, TurningRadius, Word};
+    use fieldguide::{Meters, Pose2};
+    use fieldguide_sim::guiding::boundary::{footprint, shortest_inside, Boundary};
+    use fieldguide_sim::guiding::RobotSpec;
+    let robot = RobotSpec::DEFAULT;
+    let r = TurningRadius::new(Meters::new(1.0).unwrap()).unwrap();
+    let start = Pose2::new(0.0, 0.0, 0.0).unwrap();
+    let goal = Pose2::new(0.0, 3.0, core::f64::consts::PI).unwrap();
+    // A field with a notch cut in from its right side between the two
+    // passes: the shortest U-turn (LSL, through x = 1 m) crosses it.
+    let outer = (-5.0, -5.0, 5.0, 8.0);
+    let notch = (0.5, 0.8, 5.0, 2.2);
+    let field = Boundary {
+        vertices: vec![
+            (-5.0, -5.0),
+            (5.0, -5.0),
+            (5.0, 0.8),
+            (0.5, 0.8),
+            (0.5, 2.2),
+            (5.0, 2.2),
+            (5.0, 8.0),
+            (-5.0, 8.0),
+        ],
+    };
+    let free = shortest(&start, &goal, r).unwrap();
+    assert_eq!(free.word(), Word::Lsl);
+    let fits = |p: &fieldguide::planning::dubins::DubinsPath| {
+        let l = p.length().get();
+        (0..=2000).all(|k| {
+            let pose = p
+                .pose_at(Meters::new(l * f64::from(k) / 2000.0).unwrap())
+                .unwrap();
+            inside_with_notch(footprint(&robot, &pose), outer, Some(notch), 0.0)
+        })
+    };
+    assert!(!fits(&free));
+    let inside = shortest_inside(&start, &goal, r, &field, &robot).unwrap();
+    assert_ne!(inside.word(), Word::Lsl);
+    assert!(fits(&inside), "{:?}", inside.word());
+    // No word that stays inside is shorter.
+    for w in Word::ALL {
+        if let Ok(p) = path_with_word(&start, &goal, r, w) {
+            if p.length().get() < inside.length().get() - 1e-12 {
+                assert!(!fits(&p), "{w:?} is shorter and inside");
+            }
+        }
+    }
+    eprintln!(
+        "notched field: {:?} {:.3} m instead of LSL {:.3} m",
+        inside.word(),
+        inside.length().get(),
+        free.length().get()
+    );
+}
+
+//= spec/emmi2024.md#em-sim-boundary-turns-inside-the-field
+//= type=test
+//# When no word stays inside, GoToGoal MUST refuse with the `EM-SIM-BOUNDARY`
+//# error, naming the reason: no turn fits this headland with this radius.
+#[test]
+fn a_headland_just_wide_enough_holds_every_u_turn_and_a_narrower_one_is_refused() {
+    use fieldguide_sim::guiding::boundary::footprint;
+    let narrow = |headland: f64| {
+        let mut run = lines();
+        run.field.headland_m = headland;
+        run.stay_inside = true;
+        run
+    };
+    // 2.6 m: the pass ends 1 m into the headland, and the U-turn's footprint
+    // reaches 1.36 m past it.
+    let run = narrow(2.6);
+    let outer = (0.0, 0.0, run.field.length_m, run.field.width_m);
+    let mut closest: f64 = f64::INFINITY;
+    for (seed, o) in sweep(&run) {
+        show("headland 2.6 m", seed, &o);
+        assert!(failures(&o).is_empty(), "seed {seed}: {:?}", failures(&o));
+        for t in &o.ticks {
+            let c = footprint(&run.robot, &t.truth);
+            // The plan is checked from the fix; the true footprint may stray
+            // by the tracking error.
+            assert!(
+                inside_with_notch(c, outer, None, 0.05),
+                "seed {seed}: {t:?}"
+            );
+            for (x, _) in c {
+                closest = closest.min(run.field.length_m - x).min(x);
+            }
+        }
+    }
+    eprintln!("headland 2.6 m: the footprint came within {closest:.3} m of the field's end");
+    // 2.2 m: no U-turn fits; without the check the robot leaves the field.
+    let o = drive(&narrow(2.2));
+    match &o.end {
+        End::Refused(why) => assert!(
+            why.contains("EM-SIM-BOUNDARY") && why.contains("no turn fits this headland"),
+            "{why}"
+        ),
+        other => panic!("not refused: {other:?}"),
+    }
+    assert_eq!(o.reaches.len(), 1);
+    let free = GuidingRun {
+        stay_inside: false,
+        ..narrow(2.2)
+    };
+    let o = drive(&free);
+    let outside = o.ticks.iter().any(|t| {
+        footprint(&free.robot, &t.truth)
+            .iter()
+            .any(|&(x, _)| x > free.field.length_m || x < 0.0)
+    });
+    assert!(
+        outside,
+        "the unchecked turns should leave the 2.2 m headland"
+    );
+}

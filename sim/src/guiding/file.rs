@@ -63,6 +63,9 @@ pub struct GuidingSection {
     pub turn_speed_mps: f64,
     /// Turning radii of the U-turns, used in turn, m.
     pub turn_radii_m: Vec<f64>,
+    /// Every U-turn's footprint stays inside the field's outline.
+    #[serde(default)]
+    pub stay_inside: bool,
 }
 
 /// `[field]`: each key replaces the layout's own.
@@ -262,6 +265,7 @@ impl GuidingFile {
             start_offset_m: 0.05,
             duration_s: 3600.0,
             fault: None,
+            stay_inside: g.stay_inside,
         };
         set(
             &mut run.start_offset_m,

@@ -14,6 +14,7 @@
 //! true pose against the planned path, the goal against the true pose, and
 //! every crop plant under a track.
 
+pub mod boundary;
 pub mod field;
 pub mod file;
 pub mod plot;
@@ -169,6 +170,9 @@ pub struct GuidingRun {
     pub duration_s: f64,
     /// A fault, for the tests that show the checks bite.
     pub fault: Option<Fault>,
+    /// Every U-turn's footprint stays inside the field's outline
+    /// ([`boundary::shortest_inside`]).
+    pub stay_inside: bool,
 }
 
 /// What a manoeuvre followed.
@@ -405,7 +409,13 @@ fn plan(
     let (path, segments, profile, radius) = match planner {
         Planner::GoToGoal => {
             let radius = TurningRadius::for_vehicle(Meters::new(goal.radius_m)?, vehicle)?;
-            let turn = shortest(fix, &goal.pose, radius)?;
+            let turn = if run.stay_inside {
+                let f = &run.field;
+                let outline = boundary::Boundary::rectangle(0.0, 0.0, f.length_m, f.width_m);
+                boundary::shortest_inside(fix, &goal.pose, radius, &outline, &run.robot)?
+            } else {
+                shortest(fix, &goal.pose, radius)?
+            };
             let path: ReferencePath<PATH_CAPACITY> =
                 turn.to_reference_path(Meters::new(PATH_SPACING_M)?)?;
             let mut end = 0.0;
