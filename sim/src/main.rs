@@ -17,6 +17,10 @@
 //! below) and the seeds whose run failed, and writes the rows to
 //! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot.
 //!
+//! A crop drive (`[crop_drive]`) and a guided mission of Emmi 2024
+//! (`[guiding]`, `welaser-lines`, `welaser-turns`) write their own files
+//! and print their own table (`sim/scenarios/README.md`).
+//!
 //! An unusable scenario stops the program with a message naming the file and
 //! the field, and exit code 2; so do an unknown scenario and a malformed or
 //! empty seed range (`--seeds 5..=4`).

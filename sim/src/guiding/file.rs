@@ -242,13 +242,13 @@ impl GuidingFile {
             MetersPerSecond::new(robot.max_track_speed)
                 .map_err(|e| check.refused("robot.track_m", "track speed", &e))?,
         )
-        .map_err(|e| check.refused("robot.track_m", "the robot", &e))?;
+        .map_err(|e| check.refused("robot.track_m", "robot", &e))?;
         for (k, &radius) in g.turn_radii_m.iter().enumerate() {
             let at = format!("guiding.turn_radii_m[{k}]");
             let radius = check.range(&at, radius, 0.1, 20.0)?;
             let m = Meters::new(radius).map_err(|e| check.refused(&at, "radius", &e))?;
             TurningRadius::for_vehicle(m, &vehicle)
-                .map_err(|e| check.refused(&at, "the turning radius", &e))?;
+                .map_err(|e| check.refused(&at, "turning radius", &e))?;
             if 2.0 * radius + robot.length_m / 2.0 + field.overhang_m > field.headland_m + 2.0 {
                 return Err(check.error(&at, "the U-turn does not fit the headland"));
             }
