@@ -17,6 +17,10 @@
 //! below) and the seeds whose run failed, and writes the rows to
 //! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot.
 //!
+//! A crop drive (`[crop_drive]`) and a guided mission of Emmi 2024
+//! (`[guiding]`, `welaser-lines`, `welaser-turns`) write their own files
+//! and print their own table (`sim/scenarios/README.md`).
+//!
 //! An unusable scenario stops the program with a message naming the file and
 //! the field, and exit code 2; so do an unknown scenario and a malformed or
 //! empty seed range (`--seeds 5..=4`).
@@ -29,6 +33,7 @@ use clap::{Parser, Subcommand};
 
 use fieldguide_sim::crop_drive::file::CropDriveFile;
 use fieldguide_sim::crop_drive::{self, campaign, CropRun};
+use fieldguide_sim::guiding::{self, file::GuidingFile, GuidingRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
@@ -89,11 +94,9 @@ fn main() -> ExitCode {
             list();
             Ok(())
         }
-        Some(Command::Run { scenario }) => match crop_drive_named(&scenario) {
-            Ok(Some(run)) => run_drive(&run, &cli.out).map(|row| print_drives(&[row])),
-            Ok(None) => run_one(&scenario, &cli.out).map(|s| {
-                print_table(&[s]);
-            }),
+        Some(Command::Run { scenario }) => match guiding_named(&scenario) {
+            Ok(Some(run)) => run_mission(&run, &cli.out).map(|row| print_missions(&[row])),
+            Ok(None) => run_scenario(&scenario, &cli.out),
             Err(e) => Err(e),
         },
         Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
@@ -106,6 +109,17 @@ fn main() -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
+    }
+}
+
+/// Runs a crop drive or a scenario of the general runner.
+fn run_scenario(scenario: &str, out: &Path) -> Result<(), SimError> {
+    match crop_drive_named(scenario) {
+        Ok(Some(run)) => run_drive(&run, out).map(|row| print_drives(&[row])),
+        Ok(None) => run_one(scenario, out).map(|s| {
+            print_table(&[s]);
+        }),
+        Err(e) => Err(e),
     }
 }
 
@@ -122,6 +136,11 @@ fn list() {
                 || text.lines().next().unwrap_or("").to_owned(),
                 |f| f.description,
             );
+        println!("{name:32} {description}");
+    }
+    for (name, text) in guiding::file::BUILTIN {
+        let description =
+            GuidingFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
         println!("{name:32} {description}");
     }
 }
@@ -160,7 +179,77 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     }
     println!();
     print_drives(&drives);
+    let mut missions = Vec::new();
+    for (name, _) in guiding::file::BUILTIN {
+        if let Some(run) = guiding::file::builtin(name) {
+            missions.push(run_mission(&run?, out)?);
+        }
+    }
+    println!();
+    print_missions(&missions);
     Ok(())
+}
+
+/// The guided mission `scenario` names: a built-in one, or a file with a
+/// `[guiding]` table; `None` for any other scenario.
+fn guiding_named(scenario: &str) -> Result<Option<GuidingRun>, SimError> {
+    if let Some(run) = guiding::file::builtin(scenario) {
+        return Ok(Some(run?));
+    }
+    match std::fs::read_to_string(Path::new(scenario)) {
+        Ok(text) if guiding::file::is_guiding(&text) => {
+            Ok(Some(GuidingFile::parse(&text, scenario)?.run(scenario)?))
+        }
+        _ => Ok(None),
+    }
+}
+
+/// Drives the mission `run`, writes its files, returns its summary.
+fn run_mission(run: &GuidingRun, out: &Path) -> Result<(String, guiding::Outcome), SimError> {
+    let outcome = guiding::drive(run);
+    let dir = guiding::write_mission(out, run, &outcome)?;
+    println!("{}: wrote {}", run.name, dir.display());
+    Ok((run.name.clone(), outcome))
+}
+
+/// The guided missions' table.
+fn print_missions(rows: &[(String, guiding::Outcome)]) {
+    println!(
+        "{:24} {:>8} {:>7} {:>9} {:>10} {:>10} {:>10} {:>10} {:>8}",
+        "guided mission",
+        "time s",
+        "goals",
+        "reach",
+        "lat line",
+        "lat spiral",
+        "ang line",
+        "ang spiral",
+        "crushed"
+    );
+    for (name, o) in rows {
+        println!(
+            "{:24} {:>8.1} {:>7} {:>9.4} {:>10.4} {:>10.4} {:>10.4} {:>10.4} {:>8}",
+            name,
+            o.ticks.last().map_or(0.0, |t| t.t_s),
+            format!("{}/{}", o.reaches.len(), o.goals.len()),
+            o.reach_error().mean_abs,
+            o.lateral_line().mean_abs,
+            o.lateral_spiral().mean_abs,
+            o.angular_line().mean_abs,
+            o.angular_spiral().mean_abs,
+            o.crushed.len()
+        );
+    }
+    println!(
+        "\n  reach       m, mean distance from each goal to the robot's axis at rest (Emmi 2024, section 5.1)\n  \
+         lat line    m, mean over the lines of each line's mean |lateral error| (ground truth)\n  \
+         lat spiral  m, the same over the arcs, |distance to the centre - radius|\n  \
+         ang line    rad, mean over the lines of each line's mean |heading error|\n  \
+         ang spiral  rad, mean over the arcs of each arc's mean |alpha - alpha_d|"
+    );
+    for (name, o) in rows.iter().filter(|(_, o)| o.end != guiding::End::Done) {
+        println!("  {name}: {}", guiding::end_label(&o.end));
+    }
 }
 
 /// The built-in crop drives (`guyonneau-crop1` to `guyonneau-crop4`).

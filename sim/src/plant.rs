@@ -224,6 +224,87 @@ impl Plant for DifferentialPlant {
     }
 }
 
+/// A tracked (skid-steer) robot (Emmi 2024, section 2): commanded by its
+/// linear and angular speed, each track asked for v ∓ ω B/2 (`track_m` B
+/// apart), saturated to `max_track_speed`, followed with a first-order lag
+/// of time constant `time_constant_s`; the ground delivers each track's
+/// speed times 1 − its slip, and the tracks' skidding widens the effective
+/// track to `icr_factor` B (χ ≥ 1). O (the middle between the tracks) moves
+/// as the unicycle of the delivered speeds, integrated exactly over each
+/// sub-step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SkidSteerPlant {
+    /// Distance between the tracks' centres, m (> 0).
+    pub track_m: f64,
+    /// Time constant of each track's speed, s (0: none).
+    pub time_constant_s: f64,
+    /// Largest track speed, m/s (> 0).
+    pub max_track_speed: f64,
+    /// Longitudinal slip of the left and right tracks, share of their speed.
+    pub slip: (f64, f64),
+    /// Effective track over geometric track, χ ≥ 1 (1: no skidding).
+    pub icr_factor: f64,
+}
+
+impl Plant for SkidSteerPlant {
+    fn actuation(&self) -> Actuation {
+        Actuation::SkidSteer
+    }
+
+    fn advance(
+        &self,
+        state: &VehicleState,
+        command: &Command,
+        _terrain: &Terrain,
+        period: f64,
+        substeps: u32,
+    ) -> Result<VehicleState, Precondition> {
+        let Command::SkidSteer { speed, yaw_rate } = *command else {
+            return Err(Precondition::new(
+                "GD-VEHICLE",
+                "the skid-steer plant takes skid-steer commands only",
+            ));
+        };
+        let n = substeps.max(1);
+        let h = period / f64::from(n);
+        let max = self.max_track_speed;
+        let half = 0.5 * self.track_m * yaw_rate.get();
+        let (target_l, target_r) = (
+            (speed.get() - half).clamp(-max, max),
+            (speed.get() + half).clamp(-max, max),
+        );
+        let keep = if self.time_constant_s > 0.0 {
+            (-h / self.time_constant_s).exp()
+        } else {
+            0.0
+        };
+        let width = self.track_m * self.icr_factor.max(1.0);
+        let mut next = *state;
+        for _ in 0..n {
+            let (l, r) = next.wheel_speeds;
+            let (l, r) = (
+                target_l + (l - target_l) * keep,
+                target_r + (r - target_r) * keep,
+            );
+            next.wheel_speeds = (l, r);
+            let (dl, dr) = (l * (1.0 - self.slip.0), r * (1.0 - self.slip.1));
+            let (v, w) = (0.5 * (dl + dr), (dr - dl) / width);
+            let p = next.pose;
+            let (x, y, th) = (p.position.x(), p.position.y(), p.heading.get());
+            let turn = w * h;
+            let chord = if turn.abs() < 1e-9 {
+                v * h
+            } else {
+                2.0 * v * (turn / 2.0).sin() / w
+            };
+            let mid = th + turn / 2.0;
+            next.pose = Pose2::new(x + chord * mid.cos(), y + chord * mid.sin(), th + turn)?;
+            next.distance_m += v.abs() * h;
+        }
+        Ok(next)
+    }
+}
+
 /// The true state of the vehicle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VehicleState {
@@ -491,5 +572,91 @@ mod tests {
         assert!((w[0][0] - 0.25).abs() < 1e-12 && (w[0][1] - 1.0).abs() < 1e-12);
         assert!((w[1][0] - 1.75).abs() < 1e-12);
         assert!((w[2][1] - 3.0).abs() < 1e-12 && (w[3][0] - 1.75).abs() < 1e-12);
+    }
+    #[test]
+    fn a_tracked_robot_drives_the_arc_of_its_delivered_track_speeds() {
+        let plant = SkidSteerPlant {
+            track_m: 0.8,
+            time_constant_s: 0.0,
+            max_track_speed: 1.0,
+            slip: (0.0, 0.0),
+            icr_factor: 1.0,
+        };
+        let terrain = Terrain::default();
+        let command = |v: f64, w: f64| Command::SkidSteer {
+            speed: MetersPerSecond::new(v).unwrap(),
+            yaw_rate: RadiansPerSecond::new(w).unwrap(),
+        };
+        // v = 0.5 m/s, ω = 0.4 rad/s: tracks at 0.34 and 0.66 m/s, a circle
+        // of 1.25 m; a quarter turn ends at (R, R) heading north.
+        let quarter = std::f64::consts::FRAC_PI_2 / 0.4;
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        for _ in 0..10 {
+            s = plant
+                .advance(&s, &command(0.5, 0.4), &terrain, quarter / 10.0, 3)
+                .unwrap();
+        }
+        assert!((s.wheel_speeds.0 - 0.34).abs() < 1e-12);
+        assert!((s.wheel_speeds.1 - 0.66).abs() < 1e-12);
+        assert!((s.pose.position.x() - 1.25).abs() < 1e-9, "{:?}", s.pose);
+        assert!((s.pose.position.y() - 1.25).abs() < 1e-9);
+        assert!((s.pose.heading.get() - std::f64::consts::FRAC_PI_2).abs() < 1e-9);
+        // A turn in place beyond the limit: each track saturated at 1 m/s,
+        // so ω = 2 / 0.8 = 2.5 rad/s instead of 4.
+        let s = plant
+            .advance(
+                &VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain),
+                &command(0.0, 4.0),
+                &terrain,
+                0.1,
+                1,
+            )
+            .unwrap();
+        assert!((s.pose.heading.get() - 0.25).abs() < 1e-12);
+        assert!(s.pose.position.x().abs() < 1e-12);
+        // Slip of 10 % on the right track and a wider effective track
+        // (χ = 1.25): straight ahead at 1 m/s becomes v = 0.95 m/s and
+        // ω = −0.1 / 1.0 rad/s, the robot drifting right.
+        let slipping = SkidSteerPlant {
+            slip: (0.0, 0.1),
+            icr_factor: 1.25,
+            ..plant
+        };
+        let s = slipping
+            .advance(
+                &VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain),
+                &command(1.0, 0.0),
+                &terrain,
+                1.0,
+                1,
+            )
+            .unwrap();
+        assert!((s.pose.heading.get() + 0.1).abs() < 1e-12);
+        assert!((s.distance_m - 0.95).abs() < 1e-12);
+        // A lag of 0.1 s: after 0.3 s each track is at 1 − e⁻³ of its step.
+        let lagged = SkidSteerPlant {
+            time_constant_s: 0.1,
+            ..plant
+        };
+        let mut s = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        for _ in 0..3 {
+            s = lagged
+                .advance(&s, &command(0.5, 0.0), &terrain, 0.1, 5)
+                .unwrap();
+        }
+        let k = 1.0 - (-3.0_f64).exp();
+        assert!((s.wheel_speeds.0 - 0.5 * k).abs() < 1e-12);
+        // Another actuation is refused.
+        let wheels = Command::Differential {
+            left: MetersPerSecond::new(1.0).unwrap(),
+            right: MetersPerSecond::new(1.0).unwrap(),
+        };
+        assert_eq!(
+            plant
+                .advance(&s, &wheels, &terrain, 0.1, 1)
+                .unwrap_err()
+                .requirement,
+            "GD-VEHICLE"
+        );
     }
 }

@@ -1,0 +1,314 @@
+//! Guided missions as TOML files (`sim/scenarios/README.md`, "Guided
+//! missions on a tracked robot"): a file with a `[guiding]` table names the
+//! layout of the field and the speeds and turning radii, and may change the
+//! field, the robot and the GNSS; the built-in `welaser-lines` and
+//! `welaser-turns` are such files. Every table refuses unknown keys, and a
+//! value out of range is an error naming its field.
+
+use serde::Deserialize;
+
+use fieldguide::model::skid_steer::SkidSteer;
+use fieldguide::planning::dubins::TurningRadius;
+use fieldguide::{Meters, MetersPerSecond};
+
+use super::field::{FieldSpec, Layout};
+use super::{ControlSpec, GuidingRun, RobotSpec};
+use crate::error::ScenarioError;
+use crate::scenario::check::Checker;
+
+/// The built-in guided missions: `(name, TOML text)`.
+pub const BUILTIN: &[(&str, &str)] = &[
+    (
+        "welaser-lines",
+        include_str!("../../scenarios/welaser-lines.toml"),
+    ),
+    (
+        "welaser-turns",
+        include_str!("../../scenarios/welaser-turns.toml"),
+    ),
+];
+
+/// A guided-mission file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GuidingFile {
+    /// The mission's name: the output folder.
+    pub name: String,
+    /// One line saying what it shows.
+    pub description: String,
+    /// The seed of the plants and of every noise.
+    pub seed: u64,
+    /// The layout, speeds and radii.
+    pub guiding: GuidingSection,
+    /// Changes to the field (`[field]`, optional).
+    #[serde(default)]
+    pub field: FieldSection,
+    /// Changes to the robot (`[robot]`, optional).
+    #[serde(default)]
+    pub robot: RobotSection,
+    /// Changes to the GNSS (`[gnss]`, optional).
+    #[serde(default)]
+    pub gnss: GnssSection,
+}
+
+/// `[guiding]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GuidingSection {
+    /// `rows` (row following, one radius) or `turns` (passes 2 r apart).
+    pub layout: String,
+    /// Nominal speed on lines, m/s.
+    pub line_speed_mps: f64,
+    /// Nominal speed in turns, m/s.
+    pub turn_speed_mps: f64,
+    /// Turning radii of the U-turns, used in turn, m.
+    pub turn_radii_m: Vec<f64>,
+    /// Every U-turn's footprint stays inside the field's outline.
+    #[serde(default)]
+    pub stay_inside: bool,
+}
+
+/// `[field]`: each key replaces the layout's own.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldSection {
+    /// Along the rows, m.
+    pub length_m: Option<f64>,
+    /// Across the rows, m.
+    pub width_m: Option<f64>,
+    /// Depth of each headland, m.
+    pub headland_m: Option<f64>,
+    /// Distance between crop rows, m (`rows` only).
+    pub row_spacing_m: Option<f64>,
+    /// Rows from one pass to the next (`rows` only).
+    pub pass_rows: Option<u32>,
+    /// Distance between plants, m.
+    pub plant_gap_m: Option<f64>,
+}
+
+/// `[robot]`: each key replaces the default robot's.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotSection {
+    /// Distance between the tracks, m.
+    pub track_m: Option<f64>,
+    /// Time constant of the tracks, s.
+    pub lag_s: Option<f64>,
+    /// Slip of the left track, share.
+    pub slip_left: Option<f64>,
+    /// Slip of the right track, share.
+    pub slip_right: Option<f64>,
+    /// Effective over geometric track, ≥ 1.
+    pub icr_factor: Option<f64>,
+    /// O starts this far left of the first pass, m.
+    pub start_offset_m: Option<f64>,
+    /// The longest the mission may take, s.
+    pub duration_s: Option<f64>,
+}
+
+/// `[gnss]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GnssSection {
+    /// Position noise σ per axis, m.
+    pub sigma_m: Option<f64>,
+    /// Heading noise σ, rad.
+    pub heading_sigma_rad: Option<f64>,
+}
+
+/// Whether the TOML `text` is a guided mission (it has a `[guiding]` table).
+#[must_use]
+pub fn is_guiding(text: &str) -> bool {
+    text.parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("guiding"))
+}
+
+impl GuidingFile {
+    /// Parses `text` (`origin` names it in messages).
+    ///
+    /// # Errors
+    /// A syntax error, an unknown key or a mistyped value, naming the field.
+    pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
+        crate::scenario::parse_as(text, origin)
+    }
+
+    /// The validated run.
+    ///
+    /// # Errors
+    /// A value out of range, naming its field.
+    #[allow(clippy::too_many_lines)]
+    pub fn run(&self, origin: &str) -> Result<GuidingRun, ScenarioError> {
+        let check = Checker::new(origin);
+        crate::scenario::setup::check_name(&check, &self.name)?;
+        let g = &self.guiding;
+        let mut field = match g.layout.as_str() {
+            "rows" => FieldSpec::lines(),
+            "turns" => FieldSpec::turns(),
+            _ => return Err(check.error("guiding.layout", "must be `rows` or `turns`")),
+        };
+        let f = &self.field;
+        let set = |dst: &mut f64, value: Option<f64>, name, lo, hi| -> Result<(), ScenarioError> {
+            if let Some(x) = value {
+                *dst = check.range(name, x, lo, hi)?;
+            }
+            Ok(())
+        };
+        set(
+            &mut field.length_m,
+            f.length_m,
+            "field.length_m",
+            6.0,
+            500.0,
+        )?;
+        set(&mut field.width_m, f.width_m, "field.width_m", 2.0, 500.0)?;
+        set(
+            &mut field.headland_m,
+            f.headland_m,
+            "field.headland_m",
+            1.0,
+            50.0,
+        )?;
+        if 2.0 * field.headland_m >= field.length_m - 1.0 {
+            return Err(check.error(
+                "field.headland_m",
+                "the headlands leave no room for rows (need 2 headlands + 1 m <= length)",
+            ));
+        }
+        set(
+            &mut field.plant_gap_m,
+            f.plant_gap_m,
+            "field.plant_gap_m",
+            0.05,
+            5.0,
+        )?;
+        if let Layout::Rows {
+            row_spacing_m,
+            pass_rows,
+        } = &mut field.layout
+        {
+            set(
+                row_spacing_m,
+                f.row_spacing_m,
+                "field.row_spacing_m",
+                0.3,
+                5.0,
+            )?;
+            if let Some(p) = f.pass_rows {
+                *pass_rows = u32::try_from(check.count("field.pass_rows", p, 1, 20)?).unwrap_or(1);
+            }
+        } else if f.row_spacing_m.is_some() || f.pass_rows.is_some() {
+            return Err(check.error(
+                "field.row_spacing_m",
+                "only for layout `rows` (layout `turns` puts a row under each pass)",
+            ));
+        }
+        let mut robot = RobotSpec::DEFAULT;
+        let r = &self.robot;
+        set(&mut robot.track_m, r.track_m, "robot.track_m", 0.3, 3.0)?;
+        set(&mut robot.lag_s, r.lag_s, "robot.lag_s", 0.0, 2.0)?;
+        set(&mut robot.slip.0, r.slip_left, "robot.slip_left", 0.0, 0.3)?;
+        set(
+            &mut robot.slip.1,
+            r.slip_right,
+            "robot.slip_right",
+            0.0,
+            0.3,
+        )?;
+        set(
+            &mut robot.icr_factor,
+            r.icr_factor,
+            "robot.icr_factor",
+            1.0,
+            2.0,
+        )?;
+        let mut control = ControlSpec::DEFAULT;
+        control.line_speed = check.range(
+            "guiding.line_speed_mps",
+            g.line_speed_mps,
+            0.1,
+            robot.max_track_speed,
+        )?;
+        control.turn_speed = check.range(
+            "guiding.turn_speed_mps",
+            g.turn_speed_mps,
+            0.1,
+            robot.max_track_speed,
+        )?;
+        if g.turn_radii_m.is_empty() || g.turn_radii_m.len() > 20 {
+            return Err(check.error("guiding.turn_radii_m", "one to twenty radii"));
+        }
+        let vehicle = SkidSteer::new(
+            Meters::new(robot.track_m).map_err(|e| check.refused("robot.track_m", "track", &e))?,
+            MetersPerSecond::new(robot.max_track_speed)
+                .map_err(|e| check.refused("robot.track_m", "track speed", &e))?,
+        )
+        .map_err(|e| check.refused("robot.track_m", "robot", &e))?;
+        for (k, &radius) in g.turn_radii_m.iter().enumerate() {
+            let at = format!("guiding.turn_radii_m[{k}]");
+            let radius = check.range(&at, radius, 0.1, 20.0)?;
+            let m = Meters::new(radius).map_err(|e| check.refused(&at, "radius", &e))?;
+            TurningRadius::for_vehicle(m, &vehicle)
+                .map_err(|e| check.refused(&at, "turning radius", &e))?;
+            if 2.0 * radius + robot.length_m / 2.0 + field.overhang_m > field.headland_m + 2.0 {
+                return Err(check.error(&at, "the U-turn does not fit the headland"));
+            }
+        }
+        field.turn_radii_m.clone_from(&g.turn_radii_m);
+        let mut run = GuidingRun {
+            name: self.name.clone(),
+            seed: self.seed,
+            field,
+            robot,
+            control,
+            gnss_sigma_m: 0.015,
+            gnss_heading_sigma_rad: 0.009,
+            start_offset_m: 0.05,
+            duration_s: 3600.0,
+            fault: None,
+            stay_inside: g.stay_inside,
+        };
+        set(
+            &mut run.start_offset_m,
+            r.start_offset_m,
+            "robot.start_offset_m",
+            -0.5,
+            0.5,
+        )?;
+        set(
+            &mut run.duration_s,
+            r.duration_s,
+            "robot.duration_s",
+            1.0,
+            86_400.0,
+        )?;
+        set(
+            &mut run.gnss_sigma_m,
+            self.gnss.sigma_m,
+            "gnss.sigma_m",
+            0.0,
+            0.5,
+        )?;
+        set(
+            &mut run.gnss_heading_sigma_rad,
+            self.gnss.heading_sigma_rad,
+            "gnss.heading_sigma_rad",
+            0.0,
+            0.2,
+        )?;
+        if run.field.passes().len() < 2 {
+            return Err(check.error("field.width_m", "the field holds fewer than two passes"));
+        }
+        Ok(run)
+    }
+}
+
+/// The built-in mission `name`, validated.
+///
+/// # Errors
+/// When the built-in file is not valid (a bug).
+pub fn builtin(name: &str) -> Option<Result<GuidingRun, ScenarioError>> {
+    BUILTIN.iter().find(|(n, _)| *n == name).map(|(n, text)| {
+        let origin = format!("built-in scenario `{n}`");
+        GuidingFile::parse(text, &origin)?.run(&origin)
+    })
+}
