@@ -487,3 +487,47 @@ fn a_headland_just_wide_enough_holds_every_u_turn_and_a_narrower_one_is_refused(
         "the unchecked turns should leave the 2.2 m headland"
     );
 }
+
+#[test]
+fn a_fix_lost_in_a_turn_stops_the_robot_until_it_returns() {
+    //= spec/emmi2024.md#em-sim-gnss-lost-no-fix-no-motion
+    //= type=test
+    //# While the GNSS has no fix the robot MUST be commanded to stand still,
+    //# and the mission MUST go on from the next fix.
+    let clean = drive(&lines());
+    // 3 s into the first U-turn (GoToGoal to goal 1, turning 0.2 m/s on
+    // 0.75 m arcs): turning at more than 0.1 rad/s.
+    let turning = clean.ticks.iter().find(|t| t.goal == Some(1)).unwrap().t_s + 3.0;
+    let at = clean.ticks.iter().find(|t| t.t_s >= turning + 1.0).unwrap();
+    assert!(at.command.1.abs() > 0.1, "not turning: {:?}", at.command);
+    let lost = GuidingRun {
+        gnss_outage_s: Some((turning + 1.0, turning + 6.0)),
+        ..lines()
+    };
+    let o = drive(&lost);
+    let during: Vec<_> = o.ticks.iter().filter(|t| !t.gnss_valid).collect();
+    // 5 s at 10 Hz (a tick either way with the window's rounding).
+    assert!((49..=51).contains(&during.len()), "{}", during.len());
+    assert!(during.iter().all(|t| t.command == (0.0, 0.0)));
+    // Standing still once the tracks' lag (0.15 s) has run out: under a
+    // millimetre in the last 4 s.
+    let settled: Vec<_> = during.iter().skip(10).collect();
+    let (a, b) = (settled[0].truth, settled[settled.len() - 1].truth);
+    let moved = (a.position.x() - b.position.x()).hypot(a.position.y() - b.position.y());
+    assert!(moved < 1e-3, "moved {moved} m without a fix");
+    // The mission goes on and meets every bound.
+    let f = failures(&o);
+    show("welaser-lines, fix lost 5 s in a turn", 1, &o);
+    assert!(f.is_empty(), "{f:?}");
+    // The turn ends at least the outage later (the noise after it differs,
+    // so later goals are not compared).
+    let turn_end = |o: &Outcome| {
+        o.ticks
+            .iter()
+            .filter(|t| t.goal == Some(1))
+            .last()
+            .unwrap()
+            .t_s
+    };
+    assert!(turn_end(&o) >= turn_end(&clean) + 4.0);
+}

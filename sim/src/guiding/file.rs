@@ -114,6 +114,8 @@ pub struct GnssSection {
     pub sigma_m: Option<f64>,
     /// Heading noise σ, rad.
     pub heading_sigma_rad: Option<f64>,
+    /// No fix from the first time to the second, s.
+    pub outage_s: Option<[f64; 2]>,
 }
 
 /// Whether the TOML `text` is a guided mission (it has a `[guiding]` table).
@@ -266,6 +268,7 @@ impl GuidingFile {
             duration_s: 3600.0,
             fault: None,
             stay_inside: g.stay_inside,
+            gnss_outage_s: None,
         };
         set(
             &mut run.start_offset_m,
@@ -295,6 +298,13 @@ impl GuidingFile {
             0.0,
             0.2,
         )?;
+        if let Some([from, to]) = self.gnss.outage_s {
+            let from = check.non_negative("gnss.outage_s", from)?;
+            if !(to.is_finite() && to > from) {
+                return Err(check.error("gnss.outage_s", "must be [from, to] with to > from"));
+            }
+            run.gnss_outage_s = Some((from, to));
+        }
         if run.field.passes().len() < 2 {
             return Err(check.error("field.width_m", "the field holds fewer than two passes"));
         }

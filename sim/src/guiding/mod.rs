@@ -164,6 +164,9 @@ pub struct GuidingRun {
     pub gnss_sigma_m: f64,
     /// The GNSS heading noise σ, rad (the paper's angular accuracy, 0.009).
     pub gnss_heading_sigma_rad: f64,
+    /// No fix from the first time to the second, s: the robot stands still
+    /// until the fix returns (EM-SIM-GNSS-LOST).
+    pub gnss_outage_s: Option<(f64, f64)>,
     /// O's start this far left of the first pass, m.
     pub start_offset_m: f64,
     /// The longest the mission may take, s.
@@ -232,8 +235,10 @@ pub struct Tick {
     pub t_s: f64,
     /// True pose.
     pub truth: Pose2<World>,
-    /// GNSS fix.
+    /// GNSS fix (drawn every tick; used only when `gnss_valid`).
     pub fix: Pose2<World>,
+    /// Whether the fix was valid in this tick.
+    pub gnss_valid: bool,
     /// Commanded linear and angular speed.
     pub command: (f64, f64),
     /// The goal being driven to (index), if any.
@@ -589,6 +594,28 @@ fn drive_in(
             truth.heading.get() + rng.gaussian(run.gnss_heading_sigma_rad),
         )?;
         mark_crushed(&index, r, &truth, &mut crushed, &mut near);
+        //= spec/emmi2024.md#em-sim-gnss-lost-no-fix-no-motion
+        //# While the GNSS has no fix the robot MUST be commanded to stand still,
+        //# and the mission MUST go on from the next fix.
+        if run.gnss_outage_s.is_some_and(|(a, b)| (a..b).contains(&t)) {
+            out.ticks.push(Tick {
+                t_s: t,
+                truth,
+                fix,
+                gnss_valid: false,
+                command: (0.0, 0.0),
+                goal: active.as_ref().map(|a| a.goal),
+                lateral_m: None,
+            });
+            let stop = Command::SkidSteer {
+                speed: MetersPerSecond::ZERO,
+                yaw_rate: RadiansPerSecond::ZERO,
+            };
+            state = plant.advance(&state, &stop, &terrain, PERIOD_S, SUBSTEPS)?;
+            // The rest at a goal lasts a second of valid fixes.
+            rest_until += PERIOD_S;
+            continue;
+        }
         // At rest after a goal: measure the reach error once the rest is over.
         //= spec/emmi2024.md#em-sim-kpi-reach-lateral-and-angular-errors
         //# Each goal's reach error MUST be the distance from the goal to the robot's
@@ -621,6 +648,7 @@ fn drive_in(
                     t_s: t,
                     truth,
                     fix,
+                    gnss_valid: true,
                     command,
                     goal: None,
                     lateral_m: None,
@@ -751,6 +779,7 @@ fn drive_in(
             t_s: t,
             truth,
             fix,
+            gnss_valid: true,
             command,
             goal: active.as_ref().map(|a| a.goal),
             lateral_m: lateral_now,
@@ -778,16 +807,17 @@ fn write_files(dir: &Path, files: &[(&str, String)]) -> Result<(), SimError> {
 #[must_use]
 pub fn trace_csv(outcome: &Outcome) -> String {
     let mut csv = String::from(
-        "t_s,x_m,y_m,heading_rad,fix_x_m,fix_y_m,fix_heading_rad,v_mps,w_radps,goal,lateral_m\n",
+        "t_s,x_m,y_m,heading_rad,gnss_valid,fix_x_m,fix_y_m,fix_heading_rad,v_mps,w_radps,goal,lateral_m\n",
     );
     for t in &outcome.ticks {
         let _ = writeln!(
             csv,
-            "{:.2},{:.5},{:.5},{:.5},{:.5},{:.5},{:.5},{:.4},{:.4},{},{}",
+            "{:.2},{:.5},{:.5},{:.5},{},{:.5},{:.5},{:.5},{:.4},{:.4},{},{}",
             t.t_s,
             t.truth.position.x(),
             t.truth.position.y(),
             t.truth.heading.get(),
+            t.gnss_valid,
             t.fix.position.x(),
             t.fix.position.y(),
             t.fix.heading.get(),
