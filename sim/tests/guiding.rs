@@ -524,8 +524,8 @@ fn a_fix_lost_in_a_turn_stops_the_robot_until_it_returns() {
     let turn_end = |o: &Outcome| {
         o.ticks
             .iter()
-            .filter(|t| t.goal == Some(1))
-            .last()
+            .rev()
+            .find(|t| t.goal == Some(1))
             .unwrap()
             .t_s
     };
