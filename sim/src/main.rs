@@ -32,6 +32,8 @@ use fieldguide_sim::crop_drive::{self, campaign, CropRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
+use fieldguide_sim::vineyard::file::VineyardFile;
+use fieldguide_sim::vineyard::{self, VineyardRun};
 use fieldguide_sim::{output, runner, SimError};
 
 #[derive(Debug, Parser)]
@@ -91,9 +93,13 @@ fn main() -> ExitCode {
         }
         Some(Command::Run { scenario }) => match crop_drive_named(&scenario) {
             Ok(Some(run)) => run_drive(&run, &cli.out).map(|row| print_drives(&[row])),
-            Ok(None) => run_one(&scenario, &cli.out).map(|s| {
-                print_table(&[s]);
-            }),
+            Ok(None) => match vineyard_named(&scenario) {
+                Ok(Some(run)) => run_vineyard(&run, &cli.out).map(|row| print_vineyards(&[row])),
+                Ok(None) => run_one(&scenario, &cli.out).map(|s| {
+                    print_table(&[s]);
+                }),
+                Err(e) => Err(e),
+            },
             Err(e) => Err(e),
         },
         Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
@@ -113,6 +119,11 @@ fn list() {
     for (name, text) in crop_drive::file::BUILTIN {
         let description =
             CropDriveFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
+        println!("{name:32} {description}");
+    }
+    for (name, text) in vineyard::file::BUILTIN {
+        let description =
+            VineyardFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
         println!("{name:32} {description}");
     }
     for (name, text) in BUILTIN {
@@ -160,7 +171,92 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     }
     println!();
     print_drives(&drives);
+    let mut rows = Vec::new();
+    for run in vineyards()? {
+        rows.push(run_vineyard(&run, out)?);
+    }
+    println!();
+    print_vineyards(&rows);
     Ok(())
+}
+
+/// The built-in vine-row runs (`vineyard-*`).
+fn vineyards() -> Result<Vec<VineyardRun>, SimError> {
+    vineyard::file::BUILTIN
+        .iter()
+        .map(|(name, text)| {
+            let origin = format!("built-in scenario `{name}`");
+            Ok(VineyardFile::parse(text, &origin)?.run(&origin)?)
+        })
+        .collect()
+}
+
+/// The vine-row run `scenario` names: a built-in one, or a file with a
+/// `[vineyard]` table; `None` for any other scenario.
+fn vineyard_named(scenario: &str) -> Result<Option<VineyardRun>, SimError> {
+    if let Some((name, text)) = vineyard::file::BUILTIN.iter().find(|(n, _)| *n == scenario) {
+        let origin = format!("built-in scenario `{name}`");
+        return Ok(Some(VineyardFile::parse(text, &origin)?.run(&origin)?));
+    }
+    match std::fs::read_to_string(Path::new(scenario)) {
+        Ok(text) if vineyard::file::is_vineyard(&text) => {
+            Ok(Some(VineyardFile::parse(&text, scenario)?.run(scenario)?))
+        }
+        _ => Ok(None),
+    }
+}
+
+/// A vine-row run's row of the table.
+struct VineRow {
+    name: String,
+    outcome: vineyard::VineOutcome,
+    settled: Option<vineyard::Settled>,
+}
+
+/// Drives the vine-row run `run`, writes its files, returns its row.
+fn run_vineyard(run: &VineyardRun, out: &Path) -> Result<VineRow, SimError> {
+    let outcome = vineyard::drive(run);
+    let dir = vineyard::write_drive(out, run, &outcome)?;
+    println!("{}: wrote {}", run.name, dir.display());
+    Ok(VineRow {
+        name: run.name.clone(),
+        settled: outcome.settled(run.settle_m),
+        outcome,
+    })
+}
+
+/// The vine-row runs' table.
+fn print_vineyards(rows: &[VineRow]) {
+    println!(
+        "{:32} {:>8} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}",
+        "vine row", "time s", "max |y|", "mean |θ|", "max |θ|", "max |δR|", "touched", "success"
+    );
+    let fig = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |v| format!("{v:.4}"));
+    for r in rows {
+        let o = &r.outcome;
+        println!(
+            "{:32} {:>8.1} {:>10} {:>10} {:>10} {:>10.3} {:>9} {:>8}",
+            r.name,
+            o.ticks.last().map_or(0.0, |t| t.t_s),
+            fig(r.settled.map(|s| s.lateral_max_abs)),
+            fig(r.settled.map(|s| s.angular_mean_abs)),
+            fig(r.settled.map(|s| s.angular_max_abs)),
+            o.rear_max_abs(),
+            format!("{}/{}", o.touched_in_row, o.touched),
+            if o.success() { "yes" } else { "NO" }
+        );
+    }
+    println!(
+        "\n  max |y|     m, the largest lateral deviation of R from the true row centre line\n              \
+         once R is 10 m into the row\n  \
+         |θ|         rad, the heading relative to the row, same stretch\n  \
+         max |δR|    rad, the largest rear steering angle of the run\n  \
+         touched     trunks and posts a wheel met past the entry (3 m) / in all\n  \
+         success     the end of the row reached touching no vine past the entry"
+    );
+    for r in rows.iter().filter(|r| !r.outcome.success()) {
+        println!("  {}: {:?}", r.name, r.outcome.end);
+    }
 }
 
 /// The built-in crop drives (`guyonneau-crop1` to `guyonneau-crop4`).
