@@ -65,6 +65,19 @@ fn holds(run: &VineyardRun, out: &VineOutcome) -> Result<(f64, f64), String> {
     Ok((s.lateral_max_abs, s.angular_max_abs))
 }
 
+//= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
+//= type=test
+//# Once R is 10 m into the row, a robot following a vine row with four-wheel
+//# steering MUST stay within 0.03 m of the true row centre line, in summer and
+//# in winter, with either strategy.
+//= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
+//= type=test
+//# Its angular deviation to the true row
+//# MUST stay within 0.03 rad with strategy 1 and within 0.06 rad with
+//# strategy 2.
+//= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
+//= type=test
+//# No wheel MUST touch a trunk or a post past the row's entry.
 #[test]
 fn both_strategies_hold_the_row_in_summer_and_winter() {
     for season in [Season::Summer, Season::Winter] {
@@ -89,6 +102,11 @@ fn both_strategies_hold_the_row_in_summer_and_winter() {
     }
 }
 
+//= spec/iberraken2022.md#fws-2ws-comparison-two-wheel-steering-turns-the-robot-more
+//= type=test
+//# With the rear steering held at 0, the robot's angular deviation to the true
+//# row after stabilisation MUST be larger than with strategy 1 on the same
+//# field and seed.
 #[test]
 fn two_wheel_steering_turns_the_robot_more_than_strategy_1() {
     let two = sweep(Season::Summer, Strategy::TwoWheel);

@@ -307,6 +307,18 @@ impl VineOutcome {
 }
 
 /// Runs `run`.
+//= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
+//# Once R is 10 m into the row, a robot following a vine row with four-wheel
+//# steering MUST stay within 0.03 m of the true row centre line, in summer and
+//# in winter, with either strategy.
+//= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
+//# Its angular deviation to the true row
+//# MUST stay within 0.03 rad with strategy 1 and within 0.06 rad with
+//# strategy 2.
+//= spec/iberraken2022.md#fws-2ws-comparison-two-wheel-steering-turns-the-robot-more
+//# With the rear steering held at 0, the robot's angular deviation to the true
+//# row after stabilisation MUST be larger than with strategy 1 on the same
+//# field and seed.
 #[must_use]
 pub fn drive(run: &VineyardRun) -> VineOutcome {
     let mut rng = SimRng::from_seed(run.seed);
@@ -563,6 +575,8 @@ pub fn wheels(pose: &Pose2<World>) -> [(f64, f64); 4] {
 
 /// Marks the trunks and posts a wheel's contact patch (a rectangle
 /// [`TYRE_M`] aligned with the body) meets.
+//= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
+//# No wheel MUST touch a trunk or a post past the row's entry.
 fn mark_touched(pose: &Pose2<World>, solid: &[Stem], touched: &mut [bool]) {
     let (s, c) = pose.heading.get().sin_cos();
     for (w, wy) in wheels(pose) {

@@ -77,8 +77,8 @@ pub fn deviations_svg(run: &VineyardRun, outcome: &VineOutcome) -> String {
     };
     panel(
         &format!(
-            "{}: deviations to the true row (seed {}, {} vines touched)",
-            run.name, run.seed, outcome.touched
+            "{}: deviations to the true row (seed {}; vines touched past the entry {}, in all {})",
+            run.name, run.seed, outcome.touched_in_row, outcome.touched
         ),
         "lateral (m) / angular (rad)",
         &[
