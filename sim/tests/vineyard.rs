@@ -260,3 +260,49 @@ fn a_bad_file_names_its_field() {
     assert!(e.contains("vineyard.season"), "{e}");
     assert!(!is_vineyard("name = \"x\"\n[crop_drive]\ncrop = 1\n"));
 }
+
+#[test]
+fn the_summary_reports_the_errors_after_stabilisation_and_the_rear_angle() {
+    let mut run = VineyardRun::paper(Season::Winter, Strategy::One, 7);
+    run.field.length = 20.0;
+    run.settle_m = 8.0;
+    run.low_grip = None;
+    let out = drive(&run);
+    let json = fieldguide_sim::vineyard::summary_json(&run, &out);
+    let s = out.settled(8.0).unwrap();
+    assert_eq!(json["angular_error_rad"]["max_abs"], s.angular_max_abs);
+    assert_eq!(json["angular_error_rad"]["mean_abs"], s.angular_mean_abs);
+    assert_eq!(json["lateral_error_m"]["max_abs"], s.lateral_max_abs);
+    assert_eq!(json["steering_rear_rad"]["max_abs"], out.rear_max_abs());
+    // The figures are the true pose's: recomputed here from the trace.
+    let after: Vec<_> = out
+        .ticks
+        .iter()
+        .filter(|t| t.truth.position.x() >= 8.0)
+        .collect();
+    let worst = after
+        .iter()
+        .map(|t| t.truth.position.y().abs())
+        .fold(0.0, f64::max);
+    assert_eq!(worst, s.lateral_max_abs);
+    let worst = after
+        .iter()
+        .map(|t| t.truth.heading.get().abs())
+        .fold(0.0, f64::max);
+    assert_eq!(worst, s.angular_max_abs);
+    // The run ends 3 m before the row's end.
+    let last = out.ticks.last().unwrap().truth.position.x();
+    assert!((17.0..17.1).contains(&last), "{last}");
+    let dir = std::env::temp_dir().join(format!("vineyard-test-{}", std::process::id()));
+    let written = fieldguide_sim::vineyard::write_drive(&dir, &run, &out).unwrap();
+    for f in [
+        "trace.csv",
+        "summary.json",
+        "deviations.svg",
+        "steering.svg",
+        "trajectory.svg",
+    ] {
+        assert!(written.join(f).is_file(), "{f}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
