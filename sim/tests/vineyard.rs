@@ -3,8 +3,9 @@
 //! and the four-wheel-steering plant, over seed sweeps; the two-wheel-steering
 //! comparison of Fig. 12; a flipped gain caught; fields of our own (wider
 //! rows on a steeper slope, a winter row full of gaps, a start in line with
-//! the row); the scenario files. Every figure is measured against the true
-//! row centre line.
+//! the row); vine following switched with path tracking by the core
+//! pipeline through a headland turn; the scenario files. Every figure is
+//! measured against the true row centre line.
 //!
 //! `cargo test --release -p fieldguide-sim --test vineyard -- --nocapture`
 //! prints the figures the README quotes.
@@ -226,7 +227,9 @@ fn the_built_in_files_are_the_paper_runs() {
         ("vineyard-winter-s2", Season::Winter, Strategy::Two),
         ("vineyard-summer-2ws", Season::Summer, Strategy::TwoWheel),
     ];
-    assert_eq!(BUILTIN.len(), expected.len());
+    assert_eq!(BUILTIN.len(), expected.len() + 1);
+    let turns = rows_and_turns(1);
+    assert!(turns.turns && turns.strategy == Strategy::One && turns.field.length == 30.0);
     for ((name, text), (want, season, strategy)) in BUILTIN.iter().zip(expected) {
         assert_eq!(*name, want);
         assert!(is_vineyard(text));
@@ -305,4 +308,72 @@ fn the_summary_reports_the_errors_after_stabilisation_and_the_rear_angle() {
         assert!(written.join(f).is_file(), "{f}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The rows-and-turns run of `seed`, as the built-in file gives it.
+fn rows_and_turns(seed: u64) -> VineyardRun {
+    let text = BUILTIN
+        .iter()
+        .find(|(n, _)| *n == "vineyard-rows-and-turns")
+        .unwrap()
+        .1;
+    let mut run = VineyardFile::parse(text, "t").unwrap().run("t").unwrap();
+    run.seed = seed;
+    run
+}
+
+/// The checks of a rows-and-turns run: back at the start of row 2 with no
+/// vine touched; on the vines for nearly all of each row's middle, within
+/// 0.05 m and 0.03 rad of the true row from 10 m into it; path tracking on
+/// the half circle.
+fn turns_hold(run: &VineyardRun, out: &VineOutcome) -> Result<f64, String> {
+    let who = format!("seed {}", run.seed);
+    if out.end != VineEnd::Done || out.touched > 0 {
+        return Err(format!("{who}: {:?}, {} touched", out.end, out.touched));
+    }
+    let length = run.field.length;
+    for back in [false, true] {
+        let middle: Vec<_> = out
+            .ticks
+            .iter()
+            .filter(|t| (t.truth.heading.get().cos() < 0.0) == back)
+            .filter(|t| (5.0..=length - 5.0).contains(&t.along_m))
+            .collect();
+        let on = middle.iter().filter(|t| t.following == Some(true)).count();
+        if middle.is_empty() || on * 10 < middle.len() * 9 {
+            return Err(format!(
+                "{who}: on the vines {on} of {} ticks",
+                middle.len()
+            ));
+        }
+    }
+    let s = out.settled(run.settle_m).ok_or("never settled")?;
+    if s.lateral_max_abs > 0.05 || s.angular_max_abs > 0.03 {
+        return Err(format!("{who}: {s:?}"));
+    }
+    let turning = out
+        .ticks
+        .iter()
+        .filter(|t| t.truth.position.x() > length + 2.0);
+    if turning.clone().count() == 0 || turning.clone().any(|t| t.following != Some(false)) {
+        return Err(format!("{who}: vine following in the headland turn"));
+    }
+    Ok(s.lateral_max_abs)
+}
+
+#[test]
+fn rows_and_a_headland_turn_switched_by_the_core_pipeline() {
+    let runs: Vec<_> = (1..=3).map(rows_and_turns).collect();
+    for (run, out) in runs.iter().zip(drive_all(&runs)) {
+        let worst = turns_hold(run, &out).unwrap();
+        println!(
+            "rows and turns, seed {}: in the rows max |y| {worst:.4} m",
+            run.seed
+        );
+    }
+    // The law's gains flipped in both modes fail the same checks.
+    let mut broken = rows_and_turns(1);
+    broken.fault = Some(Fault::FlippedLateralGain);
+    let out = drive(&broken);
+    assert!(turns_hold(&broken, &out).is_err());
 }

@@ -35,6 +35,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "vineyard-summer-2ws",
         include_str!("../../scenarios/vineyard-summer-2ws.toml"),
     ),
+    (
+        "vineyard-rows-and-turns",
+        include_str!("../../scenarios/vineyard-rows-and-turns.toml"),
+    ),
 ];
 
 /// A vine-row file.
@@ -67,6 +71,10 @@ pub struct VineyardSection {
     pub season: String,
     /// `s1`, `s2` or `2ws` (strategy 1 with the rear steering held at 0).
     pub strategy: String,
+    /// Follow row 0, turn in the headland, follow row 2 back, switched by
+    /// the core pipeline (strategy 1 only).
+    #[serde(default)]
+    pub turns: bool,
 }
 
 /// `[field]`: each key replaces the season's own.
@@ -179,6 +187,16 @@ impl VineyardFile {
             _ => return Err(check.error("vineyard.strategy", "must be s1, s2 or 2ws")),
         };
         let mut run = VineyardRun::paper(season, strategy, self.seed);
+        if self.vineyard.turns {
+            if strategy != Strategy::One {
+                return Err(check.error(
+                    "vineyard.turns",
+                    "the headland turn runs with strategy s1 only",
+                ));
+            }
+            run.turns = true;
+            run.low_grip = None;
+        }
         crate::scenario::setup::check_name(&check, &self.name)?;
         run.name.clone_from(&self.name);
         let set = |dst: &mut f64, value: Option<f64>, field, lo, hi| -> Result<(), ScenarioError> {

@@ -10,11 +10,13 @@
 //! drives straight. Errors are measured against the true row centre line
 //! (y = 0, along x), never the robot's estimate: the lateral deviation of R
 //! and the heading. A vine is touched when a wheel's contact patch meets a
-//! trunk or a post.
+//! trunk or a post. [`turns`] runs the same robot and vineyard through the
+//! core's switching pipeline, with a headland turn.
 
 pub mod field;
 pub mod file;
 pub mod plot;
+pub mod turns;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -88,7 +90,9 @@ impl Strategy {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Fault {
     /// The law reads the lateral deviation negated: the sign of its lateral
-    /// gain (k_y, or K_R and K_F on the lateral part) flipped.
+    /// gain (k_y, or K_R and K_F on the lateral part) flipped. In the run
+    /// with turns, where the law is inside the core pipeline, its angles are
+    /// negated: every gain's sign flipped.
     FlippedLateralGain,
 }
 
@@ -136,6 +140,9 @@ pub struct VineyardRun {
     pub stop_before_end_m: f64,
     /// A fault, for the tests that show the checks bite.
     pub fault: Option<Fault>,
+    /// Whether the run follows row 0, turns in the headland and follows
+    /// row 2 back, switched by the core pipeline ([`turns`]).
+    pub turns: bool,
 }
 
 impl VineyardRun {
@@ -174,6 +181,7 @@ impl VineyardRun {
             settle_m: 10.0,
             stop_before_end_m: 3.0,
             fault: None,
+            turns: false,
         }
     }
 
@@ -222,6 +230,11 @@ pub struct VineTick {
     pub lateral_m: f64,
     /// The heading relative to the row, rad.
     pub angular_rad: f64,
+    /// How far R is along the row it drives, from the row's start in its
+    /// direction of travel, m; negative outside the rows.
+    pub along_m: f64,
+    /// Whether the switching pipeline followed the vines (runs with turns).
+    pub following: Option<bool>,
     /// The actual front and rear steering angles, rad.
     pub steering: (f64, f64),
     /// The detector's estimate (lateral, angular), when it had a line.
@@ -274,7 +287,7 @@ impl VineOutcome {
         let after: Vec<&VineTick> = self
             .ticks
             .iter()
-            .filter(|t| t.truth.position.x() >= settle_m)
+            .filter(|t| t.along_m >= settle_m)
             .collect();
         if after.is_empty() {
             return None;
@@ -323,7 +336,12 @@ impl VineOutcome {
 pub fn drive(run: &VineyardRun) -> VineOutcome {
     let mut rng = SimRng::from_seed(run.seed);
     let (seen, solid) = run.field.generate(&mut rng);
-    match drive_in(run, &seen, &solid, &mut rng) {
+    let result = if run.turns {
+        turns::drive_in(run, &seen, &solid, &mut rng)
+    } else {
+        drive_in(run, &seen, &solid, &mut rng)
+    };
+    match result {
         Ok(outcome) => outcome,
         Err(e) => VineOutcome {
             ticks: Vec::new(),
@@ -464,6 +482,8 @@ fn drive_in(
             truth,
             lateral_m: truth.position.y() - run.field.row_y(0),
             angular_rad: truth.heading.get(),
+            along_m: truth.position.x(),
+            following: None,
             steering: (state.steering, state.rear_steering),
             estimate: d.error.map(|e| (e.y.get(), e.angular_deviation.get())),
         });
@@ -553,7 +573,7 @@ impl FourWsOdometry {
 }
 
 /// `a` wrapped to (−π, π].
-fn wrap(a: f64) -> f64 {
+pub(crate) fn wrap(a: f64) -> f64 {
     Radians::new(a).map_or(0.0, |r| fieldguide::geometry::units::wrap_angle(r).get())
 }
 
@@ -577,7 +597,7 @@ pub fn wheels(pose: &Pose2<World>) -> [(f64, f64); 4] {
 /// [`TYRE_M`] aligned with the body) meets.
 //= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
 //# No wheel MUST touch a trunk or a post past the row's entry.
-fn mark_touched(pose: &Pose2<World>, solid: &[Stem], touched: &mut [bool]) {
+pub(crate) fn mark_touched(pose: &Pose2<World>, solid: &[Stem], touched: &mut [bool]) {
     let (s, c) = pose.heading.get().sin_cos();
     for (w, wy) in wheels(pose) {
         for (p, hit) in solid.iter().zip(touched.iter_mut()) {
@@ -611,7 +631,7 @@ fn write_files(dir: &Path, files: &[(&str, String)]) -> Result<(), SimError> {
 #[must_use]
 pub fn trace_csv(outcome: &VineOutcome) -> String {
     let mut csv = String::from(
-        "t_s,x_m,y_m,heading_rad,lateral_m,angular_rad,front_rad,rear_rad,est_lateral_m,est_angular_rad\n",
+        "t_s,x_m,y_m,heading_rad,lateral_m,angular_rad,front_rad,rear_rad,est_lateral_m,est_angular_rad,mode\n",
     );
     for t in &outcome.ticks {
         let (ey, et) = t
@@ -621,7 +641,7 @@ pub fn trace_csv(outcome: &VineOutcome) -> String {
             });
         let _ = writeln!(
             csv,
-            "{:.3},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{ey},{et}",
+            "{:.3},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{ey},{et},{}",
             t.t_s,
             t.truth.position.x(),
             t.truth.position.y(),
@@ -630,6 +650,11 @@ pub fn trace_csv(outcome: &VineOutcome) -> String {
             t.angular_rad,
             t.steering.0,
             t.steering.1,
+            match t.following {
+                None => "",
+                Some(true) => "vine_following",
+                Some(false) => "path_tracking",
+            },
         );
     }
     csv

@@ -121,8 +121,12 @@ pub fn trajectory_svg(run: &VineyardRun, outcome: &VineOutcome) -> String {
         .map(|t| (t.truth.position.x(), t.truth.position.y()))
         .collect();
     let x0 = path.first().map_or(-3.0, |p| p.0 - 0.5);
+    let x1 = path
+        .iter()
+        .map(|p| p.0 + 0.5)
+        .fold(spec.length + 0.5, f64::max);
     let y0 = spec.row_y(spec.rows.saturating_sub(1)).min(-1.0) - 0.5;
-    let axes = Axes::new((x0, spec.length + 0.5), (y0, 1.5), 1000.0, 420.0);
+    let axes = Axes::new((x0, x1), (y0, 1.5), 1000.0, 420.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
     svg.frame(
@@ -142,13 +146,25 @@ pub fn trajectory_svg(run: &VineyardRun, outcome: &VineOutcome) -> String {
         .collect();
     svg.dots(&axes, &plants, 1.5, "#2ca02c");
     svg.polyline(&axes, &path, line(LATERAL));
-    svg.legend(
-        &axes,
-        &[
-            (line(LATERAL), false, "R"),
-            (line("#2ca02c"), true, "canopies, trunks, posts"),
-        ],
-        &path,
-    );
+    // With the switching pipeline: the stretches on the vines over it.
+    let mut on_vines = Vec::new();
+    for (t, p) in outcome.ticks.iter().zip(&path) {
+        if t.following == Some(true) {
+            on_vines.push(*p);
+        } else if !on_vines.is_empty() {
+            svg.polyline(&axes, &on_vines, line(REAR));
+            on_vines.clear();
+        }
+    }
+    svg.polyline(&axes, &on_vines, line(REAR));
+    let mut legend = vec![
+        (line(LATERAL), false, "R"),
+        (line("#2ca02c"), true, "canopies, trunks, posts"),
+    ];
+    if outcome.ticks.iter().any(|t| t.following.is_some()) {
+        legend[0].2 = "R, path tracking";
+        legend.push((line(REAR), false, "R, vine following"));
+    }
+    svg.legend(&axes, &legend, &path);
     svg.finish()
 }
