@@ -23,7 +23,11 @@ type Curve<'a> = (&'a str, &'a str, Vec<(f64, f64)>);
 
 /// One panel of curves against the distance travelled by R.
 fn panel(title: &str, y_label: &str, curves: &[Curve<'_>], band: Option<f64>) -> String {
-    let all: Vec<(f64, f64)> = curves.iter().flat_map(|c| c.2.iter().copied()).collect();
+    let all: Vec<(f64, f64)> = curves
+        .iter()
+        .flat_map(|c| c.2.iter().copied())
+        .filter(|p| p.1.is_finite())
+        .collect();
     let x1 = all.iter().map(|p| p.0).fold(1.0, f64::max);
     let lim = all.iter().map(|p| p.1.abs()).fold(0.05, f64::max);
     let axes = Axes::new((0.0, x1), (-lim, lim), 1000.0, 380.0);
@@ -38,8 +42,11 @@ fn panel(title: &str, y_label: &str, curves: &[Curve<'_>], band: Option<f64>) ->
             0.3,
         );
     }
+    // A NaN splits a curve (a stretch where the figure has no meaning).
     for (colour, _, points) in curves {
-        svg.polyline(&axes, points, line(colour));
+        for piece in points.split(|p| !p.1.is_finite()) {
+            svg.polyline(&axes, piece, line(colour));
+        }
     }
     let legend: Vec<(Stroke<'_>, bool, &str)> =
         curves.iter().map(|c| (line(c.0), false, c.1)).collect();
@@ -65,14 +72,19 @@ fn distance(outcome: &VineOutcome) -> Vec<f64> {
 }
 
 /// The lateral (m) and angular (rad) deviations to the true row against the
-/// distance, the ±0.03 band shaded (Figs. 10, 12, 14, top).
+/// distance, the ±0.03 band shaded (Figs. 10, 12, 14, top); left out in a
+/// headland turn, where no row is followed.
 #[must_use]
 pub fn deviations_svg(run: &VineyardRun, outcome: &VineOutcome) -> String {
     let d = distance(outcome);
+    let length = run.field.length;
     let of = |f: fn(&super::VineTick) -> f64| -> Vec<(f64, f64)> {
         d.iter()
             .zip(&outcome.ticks)
-            .map(|(s, t)| (*s, f(t)))
+            .map(|(s, t)| {
+                let turning = run.turns && t.truth.position.x() > length;
+                (*s, if turning { f64::NAN } else { f(t) })
+            })
             .collect()
     };
     panel(
