@@ -28,6 +28,7 @@ pub mod runner;
 pub mod scenario;
 pub mod sensors;
 pub mod sweep;
+pub mod vineyard;
 pub mod world;
 
 pub use error::{ScenarioError, SimError};

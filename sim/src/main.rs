@@ -17,9 +17,12 @@
 //! below) and the seeds whose run failed, and writes the rows to
 //! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot.
 //!
-//! A crop drive (`[crop_drive]`) and a guided mission of Emmi 2024
-//! (`[guiding]`, `welaser-lines`, `welaser-turns`) write their own files
-//! and print their own table (`sim/scenarios/README.md`).
+//! A crop drive of Guyonneau 2022 (`[crop_drive]`, `guyonneau-crop*`), a
+//! guided mission of Emmi 2024 (`[guiding]`, `welaser-*`) and a vine-row run
+//! of Iberraken 2022 (`[vineyard]`, `vineyard-*`) write their own files and
+//! print their own table (`sim/scenarios/README.md`);
+//! `fieldguide campaign guyonneau2022 [--runs N]` runs that paper's test
+//! plan.
 //!
 //! An unusable scenario stops the program with a message naming the file and
 //! the field, and exit code 2; so do an unknown scenario and a malformed or
@@ -37,6 +40,8 @@ use fieldguide_sim::guiding::{self, file::GuidingFile, GuidingRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
+use fieldguide_sim::vineyard::file::VineyardFile;
+use fieldguide_sim::vineyard::{self, VineyardRun};
 use fieldguide_sim::{output, runner, SimError};
 
 #[derive(Debug, Parser)]
@@ -112,23 +117,20 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs a crop drive or a scenario of the general runner.
+/// Runs a crop drive, a vine-row run or a scenario of the general runner.
 fn run_scenario(scenario: &str, out: &Path) -> Result<(), SimError> {
-    match crop_drive_named(scenario) {
-        Ok(Some(run)) => run_drive(&run, out).map(|row| print_drives(&[row])),
-        Ok(None) => run_one(scenario, out).map(|s| {
-            print_table(&[s]);
-        }),
-        Err(e) => Err(e),
+    if let Some(run) = crop_drive_named(scenario)? {
+        return run_drive(&run, out).map(|row| print_drives(&[row]));
     }
+    if let Some(run) = vineyard_named(scenario)? {
+        return run_vineyard(&run, out).map(|row| print_vineyards(&[row]));
+    }
+    run_one(scenario, out).map(|s| {
+        print_table(&[s]);
+    })
 }
 
 fn list() {
-    for (name, text) in crop_drive::file::BUILTIN {
-        let description =
-            CropDriveFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
-        println!("{name:32} {description}");
-    }
     for (name, text) in BUILTIN {
         let description = Source::builtin(name)
             .and_then(|s| s.parse().ok())
@@ -138,9 +140,19 @@ fn list() {
             );
         println!("{name:32} {description}");
     }
+    for (name, text) in crop_drive::file::BUILTIN {
+        let description =
+            CropDriveFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
+        println!("{name:32} {description}");
+    }
     for (name, text) in guiding::file::BUILTIN {
         let description =
             GuidingFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
+        println!("{name:32} {description}");
+    }
+    for (name, text) in vineyard::file::BUILTIN {
+        let description =
+            VineyardFile::parse(text, name).map_or_else(|e| e.to_string(), |f| f.description);
         println!("{name:32} {description}");
     }
 }
@@ -187,6 +199,12 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     }
     println!();
     print_missions(&missions);
+    let mut rows = Vec::new();
+    for run in vineyards()? {
+        rows.push(run_vineyard(&run, out)?);
+    }
+    println!();
+    print_vineyards(&rows);
     Ok(())
 }
 
@@ -199,6 +217,32 @@ fn guiding_named(scenario: &str) -> Result<Option<GuidingRun>, SimError> {
     match std::fs::read_to_string(Path::new(scenario)) {
         Ok(text) if guiding::file::is_guiding(&text) => {
             Ok(Some(GuidingFile::parse(&text, scenario)?.run(scenario)?))
+        }
+        _ => Ok(None),
+    }
+}
+
+/// The built-in vine-row runs (`vineyard-*`).
+fn vineyards() -> Result<Vec<VineyardRun>, SimError> {
+    vineyard::file::BUILTIN
+        .iter()
+        .map(|(name, text)| {
+            let origin = format!("built-in scenario `{name}`");
+            Ok(VineyardFile::parse(text, &origin)?.run(&origin)?)
+        })
+        .collect()
+}
+
+/// The vine-row run `scenario` names: a built-in one, or a file with a
+/// `[vineyard]` table; `None` for any other scenario.
+fn vineyard_named(scenario: &str) -> Result<Option<VineyardRun>, SimError> {
+    if let Some((name, text)) = vineyard::file::BUILTIN.iter().find(|(n, _)| *n == scenario) {
+        let origin = format!("built-in scenario `{name}`");
+        return Ok(Some(VineyardFile::parse(text, &origin)?.run(&origin)?));
+    }
+    match std::fs::read_to_string(Path::new(scenario)) {
+        Ok(text) if vineyard::file::is_vineyard(&text) => {
+            Ok(Some(VineyardFile::parse(&text, scenario)?.run(scenario)?))
         }
         _ => Ok(None),
     }
@@ -249,6 +293,59 @@ fn print_missions(rows: &[(String, guiding::Outcome)]) {
     );
     for (name, o) in rows.iter().filter(|(_, o)| o.end != guiding::End::Done) {
         println!("  {name}: {}", guiding::end_label(&o.end));
+    }
+}
+
+/// A vine-row run's row of the table.
+struct VineRow {
+    name: String,
+    outcome: vineyard::VineOutcome,
+    settled: Option<vineyard::Settled>,
+}
+
+/// Drives the vine-row run `run`, writes its files, returns its row.
+fn run_vineyard(run: &VineyardRun, out: &Path) -> Result<VineRow, SimError> {
+    let outcome = vineyard::drive(run);
+    let dir = vineyard::write_drive(out, run, &outcome)?;
+    println!("{}: wrote {}", run.name, dir.display());
+    Ok(VineRow {
+        name: run.name.clone(),
+        settled: outcome.settled(run.settle_m),
+        outcome,
+    })
+}
+
+/// The vine-row runs' table.
+fn print_vineyards(rows: &[VineRow]) {
+    println!(
+        "{:32} {:>8} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8}",
+        "vine row", "time s", "max |y|", "mean |θ|", "max |θ|", "max |δR|", "touched", "success"
+    );
+    let fig = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |v| format!("{v:.4}"));
+    for r in rows {
+        let o = &r.outcome;
+        println!(
+            "{:32} {:>8.1} {:>10} {:>10} {:>10} {:>10.3} {:>9} {:>8}",
+            r.name,
+            o.ticks.last().map_or(0.0, |t| t.t_s),
+            fig(r.settled.map(|s| s.lateral_max_abs)),
+            fig(r.settled.map(|s| s.angular_mean_abs)),
+            fig(r.settled.map(|s| s.angular_max_abs)),
+            o.rear_max_abs(),
+            format!("{}/{}", o.touched_in_row, o.touched),
+            if o.success() { "yes" } else { "NO" }
+        );
+    }
+    println!(
+        "\n  max |y|     m, the largest lateral deviation of R from the true row centre line\n              \
+         once R is 10 m into the row\n  \
+         |θ|         rad, the heading relative to the row, same stretch\n  \
+         max |δR|    rad, the largest rear steering angle of the run\n  \
+         touched     trunks and posts a wheel met past the entry (3 m) / in all\n  \
+         success     the end of the row reached touching no vine past the entry"
+    );
+    for r in rows.iter().filter(|r| !r.outcome.success()) {
+        println!("  {}: {:?}", r.name, r.outcome.end);
     }
 }
 

@@ -305,13 +305,96 @@ impl Plant for SkidSteerPlant {
     }
 }
 
+/// A four-wheel-steering robot (Iberraken 2022, section 2.2.1): a bicycle
+/// steered at both ends, each axle's angle following its command through its
+/// own [`SteeringActuator`] (lag, rate limit, saturation), the pose of R
+/// integrated by RK4 sub-steps of the core's `model::four_ws::world_rates`
+/// with the terrain's sideslip at the sub-step's start (low grip).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FourWsPlant {
+    /// The wheelbase L, R to F.
+    pub wheelbase: Wheelbase,
+    /// The front steering actuator.
+    pub front: SteeringActuator,
+    /// The rear steering actuator.
+    pub rear: SteeringActuator,
+}
+
+impl Plant for FourWsPlant {
+    fn actuation(&self) -> Actuation {
+        Actuation::FourWheelSteering
+    }
+
+    fn advance(
+        &self,
+        state: &VehicleState,
+        command: &Command,
+        terrain: &Terrain,
+        period: f64,
+        substeps: u32,
+    ) -> Result<VehicleState, Precondition> {
+        let Command::FourWheelSteering { speed, front, rear } = *command else {
+            return Err(Precondition::new(
+                "GD-VEHICLE",
+                "the four-wheel-steering plant takes four-wheel-steering commands only",
+            ));
+        };
+        let n = substeps.max(1);
+        let h = period / f64::from(n);
+        let mut next = *state;
+        for _ in 0..n {
+            next.steering = self.front.advance(next.steering, front.get(), h);
+            next.rear_steering = self.rear.advance(next.rear_steering, rear.get(), h);
+            let p = next.pose;
+            next.sideslip = terrain.sideslip_at(p.position.x(), p.position.y());
+            let (f, r, slip) = (
+                Radians::new(next.steering)?,
+                Radians::new(next.rear_steering)?,
+                next.sideslip,
+            );
+            let rates = |q: &Pose2<World>| {
+                fieldguide::model::four_ws::world_rates(q, speed, f, r, slip, self.wheelbase)
+            };
+            next.pose = rk4_with(&p, h, rates)?;
+            next.distance_m += speed.get().abs() * h;
+        }
+        Ok(next)
+    }
+}
+
+/// One RK4 step of length `h` of the world-frame rates `f`.
+fn rk4_with(
+    pose: &Pose2<World>,
+    h: f64,
+    f: impl Fn(&Pose2<World>) -> Result<fieldguide::model::bicycle::WorldRates, Precondition>,
+) -> Result<Pose2<World>, Precondition> {
+    let (x, y, th) = (pose.position.x(), pose.position.y(), pose.heading.get());
+    let shift = |k: &fieldguide::model::bicycle::WorldRates, a: f64| {
+        Pose2::<World>::new(x + a * k.x_dot, y + a * k.y_dot, th + a * k.heading_dot)
+    };
+    let k1 = f(pose)?;
+    let k2 = f(&shift(&k1, h / 2.0)?)?;
+    let k3 = f(&shift(&k2, h / 2.0)?)?;
+    let k4 = f(&shift(&k3, h)?)?;
+    let w = h / 6.0;
+    Pose2::new(
+        x + w * (k1.x_dot + 2.0 * k2.x_dot + 2.0 * k3.x_dot + k4.x_dot),
+        y + w * (k1.y_dot + 2.0 * k2.y_dot + 2.0 * k3.y_dot + k4.y_dot),
+        th + w * (k1.heading_dot + 2.0 * k2.heading_dot + 2.0 * k3.heading_dot + k4.heading_dot),
+    )
+}
+
 /// The true state of the vehicle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VehicleState {
     /// Pose of the middle of the rear axle O, world frame.
     pub pose: Pose2<World>,
-    /// Actual steering angle δ, radians, positive to the left.
+    /// Actual steering angle δ, radians, positive to the left (the front
+    /// angle δ_F of a four-wheel-steering robot).
     pub steering: f64,
+    /// Actual rear steering angle δ_R of a four-wheel-steering robot,
+    /// radians (0 for the other vehicles).
+    pub rear_steering: f64,
     /// The sideslip acting at the start of the last sub-step.
     pub sideslip: Sideslip,
     /// Distance travelled by O since the start, metres.
@@ -328,6 +411,7 @@ impl VehicleState {
         Self {
             pose,
             steering: 0.0,
+            rear_steering: 0.0,
             sideslip: terrain.sideslip_at(pose.position.x(), pose.position.y()),
             distance_m: 0.0,
             wheel_speeds: (0.0, 0.0),
@@ -371,7 +455,7 @@ pub fn step(
     Ok(next)
 }
 
-/// One RK4 step of length `h` of the world-frame model.
+/// One RK4 step of length `h` of the bicycle's world-frame model.
 fn rk4(
     params: &VehicleParams,
     pose: &Pose2<World>,
@@ -380,21 +464,9 @@ fn rk4(
     speed: MetersPerSecond,
     h: f64,
 ) -> Result<Pose2<World>, Precondition> {
-    let f = |p: &Pose2<World>| world_rates(p, speed, steering, sideslip, params.wheelbase);
-    let (x, y, th) = (pose.position.x(), pose.position.y(), pose.heading.get());
-    let shift = |k: &fieldguide::model::bicycle::WorldRates, a: f64| {
-        Pose2::<World>::new(x + a * k.x_dot, y + a * k.y_dot, th + a * k.heading_dot)
-    };
-    let k1 = f(pose)?;
-    let k2 = f(&shift(&k1, h / 2.0)?)?;
-    let k3 = f(&shift(&k2, h / 2.0)?)?;
-    let k4 = f(&shift(&k3, h)?)?;
-    let w = h / 6.0;
-    Pose2::new(
-        x + w * (k1.x_dot + 2.0 * k2.x_dot + 2.0 * k3.x_dot + k4.x_dot),
-        y + w * (k1.y_dot + 2.0 * k2.y_dot + 2.0 * k3.y_dot + k4.y_dot),
-        th + w * (k1.heading_dot + 2.0 * k2.heading_dot + 2.0 * k3.heading_dot + k4.heading_dot),
-    )
+    rk4_with(pose, h, |p| {
+        world_rates(p, speed, steering, sideslip, params.wheelbase)
+    })
 }
 
 #[cfg(test)]
@@ -558,6 +630,59 @@ mod tests {
         assert_eq!(
             plant
                 .advance(&s, &bicycle, &terrain, 0.1, 1)
+                .unwrap_err()
+                .requirement,
+            "GD-VEHICLE"
+        );
+    }
+
+    #[test]
+    fn a_four_wheel_steering_robot_crabs_and_turns_as_its_two_axles_say() {
+        let limit = SteeringLimit::new(0.5).unwrap();
+        let plant = FourWsPlant {
+            wheelbase: Wheelbase::new(1.2).unwrap(),
+            front: SteeringActuator::from_settling(0.0, 1e6, limit),
+            rear: SteeringActuator::from_settling(0.0, 1e6, limit),
+        };
+        let terrain = Terrain::default();
+        let s0 = VehicleState::at(Pose2::new(0.0, 0.0, 0.0).unwrap(), &terrain);
+        let cmd = |f: f64, r: f64| Command::FourWheelSteering {
+            speed: MetersPerSecond::new(1.0).unwrap(),
+            front: Radians::new(f).unwrap(),
+            rear: Radians::new(r).unwrap(),
+        };
+        // Both axles at 0.2 rad: a crab walk, straight along 0.2 rad, heading kept.
+        let s = plant
+            .advance(&s0, &cmd(0.2, 0.2), &terrain, 2.0, 200)
+            .unwrap();
+        assert!((s.pose.heading.get()).abs() < 1e-12);
+        assert!((s.pose.position.x() - 2.0 * 0.2_f64.cos()).abs() < 1e-9);
+        assert!((s.pose.position.y() - 2.0 * 0.2_f64.sin()).abs() < 1e-9);
+        assert_eq!((s.steering, s.rear_steering), (0.2, 0.2));
+        // Opposite angles: yaw rate v cos(δ_R)(tan δ_F − tan δ_R)/L.
+        let s = plant
+            .advance(&s0, &cmd(0.2, -0.2), &terrain, 0.5, 100)
+            .unwrap();
+        let rate = 0.2_f64.cos() * 2.0 * 0.2_f64.tan() / 1.2;
+        assert!((s.pose.heading.get() - 0.5 * rate).abs() < 1e-9);
+        // Saturation, and the rate limit on a slow actuator.
+        let slow = FourWsPlant {
+            rear: SteeringActuator::from_settling(0.0, 0.1, limit),
+            ..plant
+        };
+        let s = slow
+            .advance(&s0, &cmd(0.9, 0.9), &terrain, 1.0, 10)
+            .unwrap();
+        assert!((s.steering - 0.5).abs() < 1e-12);
+        assert!((s.rear_steering - 0.1).abs() < 1e-12);
+        // Another actuation is refused.
+        let diff = Command::Differential {
+            left: MetersPerSecond::new(1.0).unwrap(),
+            right: MetersPerSecond::new(1.0).unwrap(),
+        };
+        assert_eq!(
+            plant
+                .advance(&s0, &diff, &terrain, 0.1, 1)
                 .unwrap_err()
                 .requirement,
             "GD-VEHICLE"
