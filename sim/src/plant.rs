@@ -192,36 +192,63 @@ impl Plant for DifferentialPlant {
         let h = period / f64::from(n);
         let max = self.max_wheel_speed;
         let (target_l, target_r) = (left.get().clamp(-max, max), right.get().clamp(-max, max));
-        let keep = if self.time_constant_s > 0.0 {
-            (-h / self.time_constant_s).exp()
-        } else {
-            0.0
-        };
-        let mut next = *state;
-        for _ in 0..n {
-            let (l, r) = next.wheel_speeds;
-            let (l, r) = (
-                target_l + (l - target_l) * keep,
-                target_r + (r - target_r) * keep,
-            );
-            next.wheel_speeds = (l, r);
-            let (v, w) = (0.5 * (l + r), (r - l) / self.track_m);
-            let p = next.pose;
-            let (x, y, th) = (p.position.x(), p.position.y(), p.heading.get());
-            let turn = w * h;
-            // The chord of the arc: its length 2 sin(turn/2)/w, along the
-            // mean heading (exactly v h straight ahead when w = 0).
-            let chord = if turn.abs() < 1e-9 {
-                v * h
-            } else {
-                2.0 * v * (turn / 2.0).sin() / w
-            };
-            let mid = th + turn / 2.0;
-            next.pose = Pose2::new(x + chord * mid.cos(), y + chord * mid.sin(), th + turn)?;
-            next.distance_m += v.abs() * h;
-        }
-        Ok(next)
+        let track = self.track_m;
+        two_sides(
+            state,
+            (target_l, target_r),
+            lag_keep(self.time_constant_s, h),
+            (h, n),
+            |l, r| (0.5 * (l + r), (r - l) / track),
+        )
     }
+}
+
+/// e^{−h/τ}: the share of a first-order lag's error kept over `h` seconds
+/// (0 without lag).
+fn lag_keep(time_constant_s: f64, h: f64) -> f64 {
+    if time_constant_s > 0.0 {
+        (-h / time_constant_s).exp()
+    } else {
+        0.0
+    }
+}
+
+/// `n` sub-steps of `h` seconds of a vehicle on two wheels or tracks: each
+/// side's speed follows its target with a first-order lag (`keep` of the
+/// error kept per sub-step), and O moves on the arc of the speed and yaw
+/// rate that `motion` makes of the sides' actual speeds, integrated exactly
+/// (the chord of the arc along the mean heading).
+fn two_sides(
+    state: &VehicleState,
+    (target_l, target_r): (f64, f64),
+    keep: f64,
+    (h, n): (f64, u32),
+    motion: impl Fn(f64, f64) -> (f64, f64),
+) -> Result<VehicleState, Precondition> {
+    let mut next = *state;
+    for _ in 0..n {
+        let (l, r) = next.wheel_speeds;
+        let (l, r) = (
+            target_l + (l - target_l) * keep,
+            target_r + (r - target_r) * keep,
+        );
+        next.wheel_speeds = (l, r);
+        let (v, w) = motion(l, r);
+        let p = next.pose;
+        let (x, y, th) = (p.position.x(), p.position.y(), p.heading.get());
+        let turn = w * h;
+        // The chord of the arc: its length 2 sin(turn/2)/w, along the mean
+        // heading (exactly v h straight ahead when w = 0).
+        let chord = if turn.abs() < 1e-9 {
+            v * h
+        } else {
+            2.0 * v * (turn / 2.0).sin() / w
+        };
+        let mid = th + turn / 2.0;
+        next.pose = Pose2::new(x + chord * mid.cos(), y + chord * mid.sin(), th + turn)?;
+        next.distance_m += v.abs() * h;
+    }
+    Ok(next)
 }
 
 /// A tracked (skid-steer) robot (Emmi 2024, section 2): commanded by its
@@ -273,35 +300,18 @@ impl Plant for SkidSteerPlant {
             (speed.get() - half).clamp(-max, max),
             (speed.get() + half).clamp(-max, max),
         );
-        let keep = if self.time_constant_s > 0.0 {
-            (-h / self.time_constant_s).exp()
-        } else {
-            0.0
-        };
         let width = self.track_m * self.icr_factor.max(1.0);
-        let mut next = *state;
-        for _ in 0..n {
-            let (l, r) = next.wheel_speeds;
-            let (l, r) = (
-                target_l + (l - target_l) * keep,
-                target_r + (r - target_r) * keep,
-            );
-            next.wheel_speeds = (l, r);
-            let (dl, dr) = (l * (1.0 - self.slip.0), r * (1.0 - self.slip.1));
-            let (v, w) = (0.5 * (dl + dr), (dr - dl) / width);
-            let p = next.pose;
-            let (x, y, th) = (p.position.x(), p.position.y(), p.heading.get());
-            let turn = w * h;
-            let chord = if turn.abs() < 1e-9 {
-                v * h
-            } else {
-                2.0 * v * (turn / 2.0).sin() / w
-            };
-            let mid = th + turn / 2.0;
-            next.pose = Pose2::new(x + chord * mid.cos(), y + chord * mid.sin(), th + turn)?;
-            next.distance_m += v.abs() * h;
-        }
-        Ok(next)
+        let slip = self.slip;
+        two_sides(
+            state,
+            (target_l, target_r),
+            lag_keep(self.time_constant_s, h),
+            (h, n),
+            |l, r| {
+                let (dl, dr) = (l * (1.0 - slip.0), r * (1.0 - slip.1));
+                (0.5 * (dl + dr), (dr - dl) / width)
+            },
+        )
     }
 }
 

@@ -177,38 +177,32 @@ impl CropDriveFile {
         run.name.clone_from(&self.name);
         let f = &self.field;
         let c = &mut run.crop;
-        let set = |dst: &mut f64, value: Option<f64>, field, lo, hi| -> Result<(), ScenarioError> {
-            if let Some(x) = value {
-                *dst = check.range(field, x, lo, hi)?;
-            }
-            Ok(())
-        };
-        set(&mut c.spacing, f.spacing_m, "field.spacing_m", 0.3, 3.0)?;
-        set(&mut c.length, f.length_m, "field.length_m", 0.0, 500.0)?;
-        set(
+        check.replace(&mut c.spacing, f.spacing_m, "field.spacing_m", 0.3, 3.0)?;
+        check.replace(&mut c.length, f.length_m, "field.length_m", 0.0, 500.0)?;
+        check.replace(
             &mut c.plant_gap,
             f.plant_gap_m,
             "field.plant_gap_m",
             0.02,
             5.0,
         )?;
-        set(
+        check.replace(
             &mut c.jitter_share,
             f.jitter_share,
             "field.jitter_share",
             0.0,
             0.5,
         )?;
-        set(
+        check.replace(
             &mut c.lateral_jitter,
             f.lateral_jitter_m,
             "field.lateral_jitter_m",
             0.0,
             0.2,
         )?;
-        set(&mut c.missing, f.missing, "field.missing", 0.0, 1.0)?;
-        set(&mut c.hole, f.hole_m, "field.hole_m", 0.0, 100.0)?;
-        set(
+        check.replace(&mut c.missing, f.missing, "field.missing", 0.0, 1.0)?;
+        check.replace(&mut c.hole, f.hole_m, "field.hole_m", 0.0, 100.0)?;
+        check.replace(
             &mut c.ragged_ends,
             f.ragged_ends_m,
             "field.ragged_ends_m",
@@ -219,49 +213,49 @@ impl CropDriveFile {
             c.weeds = check.count("field.weeds", w, 0, 100_000)?;
         }
         let r = &self.robot;
-        set(
+        check.replace(
             &mut run.start.0,
             r.start_along_m,
             "robot.start_along_m",
             0.0,
             100.0,
         )?;
-        set(
+        check.replace(
             &mut run.start.1,
             r.start_offset_m,
             "robot.start_offset_m",
             -1.0,
             1.0,
         )?;
-        set(
+        check.replace(
             &mut run.top_speed_m_s,
             r.top_speed_m_s,
             "robot.top_speed_m_s",
             0.01,
             1.0,
         )?;
-        set(
+        check.replace(
             &mut run.wheel_lag_s,
             r.wheel_lag_s,
             "robot.wheel_lag_s",
             0.0,
             5.0,
         )?;
-        set(
+        check.replace(
             &mut run.wheel_slip,
             r.wheel_slip,
             "robot.wheel_slip",
             0.0,
             0.5,
         )?;
-        set(
+        check.replace(
             &mut run.lidar_noise_m,
             r.lidar_noise_m,
             "robot.lidar_noise_m",
             0.0,
             0.5,
         )?;
-        set(
+        check.replace(
             &mut run.duration_s,
             r.duration_s,
             "robot.duration_s",

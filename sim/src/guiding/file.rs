@@ -149,21 +149,15 @@ impl GuidingFile {
             _ => return Err(check.error("guiding.layout", "must be `rows` or `turns`")),
         };
         let f = &self.field;
-        let set = |dst: &mut f64, value: Option<f64>, name, lo, hi| -> Result<(), ScenarioError> {
-            if let Some(x) = value {
-                *dst = check.range(name, x, lo, hi)?;
-            }
-            Ok(())
-        };
-        set(
+        check.replace(
             &mut field.length_m,
             f.length_m,
             "field.length_m",
             6.0,
             500.0,
         )?;
-        set(&mut field.width_m, f.width_m, "field.width_m", 2.0, 500.0)?;
-        set(
+        check.replace(&mut field.width_m, f.width_m, "field.width_m", 2.0, 500.0)?;
+        check.replace(
             &mut field.headland_m,
             f.headland_m,
             "field.headland_m",
@@ -176,7 +170,7 @@ impl GuidingFile {
                 "the headlands leave no room for rows (need 2 headlands + 1 m <= length)",
             ));
         }
-        set(
+        check.replace(
             &mut field.plant_gap_m,
             f.plant_gap_m,
             "field.plant_gap_m",
@@ -188,7 +182,7 @@ impl GuidingFile {
             pass_rows,
         } = &mut field.layout
         {
-            set(
+            check.replace(
                 row_spacing_m,
                 f.row_spacing_m,
                 "field.row_spacing_m",
@@ -206,17 +200,17 @@ impl GuidingFile {
         }
         let mut robot = RobotSpec::DEFAULT;
         let r = &self.robot;
-        set(&mut robot.track_m, r.track_m, "robot.track_m", 0.3, 3.0)?;
-        set(&mut robot.lag_s, r.lag_s, "robot.lag_s", 0.0, 2.0)?;
-        set(&mut robot.slip.0, r.slip_left, "robot.slip_left", 0.0, 0.3)?;
-        set(
+        check.replace(&mut robot.track_m, r.track_m, "robot.track_m", 0.3, 3.0)?;
+        check.replace(&mut robot.lag_s, r.lag_s, "robot.lag_s", 0.0, 2.0)?;
+        check.replace(&mut robot.slip.0, r.slip_left, "robot.slip_left", 0.0, 0.3)?;
+        check.replace(
             &mut robot.slip.1,
             r.slip_right,
             "robot.slip_right",
             0.0,
             0.3,
         )?;
-        set(
+        check.replace(
             &mut robot.icr_factor,
             r.icr_factor,
             "robot.icr_factor",
@@ -270,28 +264,28 @@ impl GuidingFile {
             stay_inside: g.stay_inside,
             gnss_outage_s: None,
         };
-        set(
+        check.replace(
             &mut run.start_offset_m,
             r.start_offset_m,
             "robot.start_offset_m",
             -0.5,
             0.5,
         )?;
-        set(
+        check.replace(
             &mut run.duration_s,
             r.duration_s,
             "robot.duration_s",
             1.0,
             86_400.0,
         )?;
-        set(
+        check.replace(
             &mut run.gnss_sigma_m,
             self.gnss.sigma_m,
             "gnss.sigma_m",
             0.0,
             0.5,
         )?;
-        set(
+        check.replace(
             &mut run.gnss_heading_sigma_rad,
             self.gnss.heading_sigma_rad,
             "gnss.heading_sigma_rad",

@@ -63,6 +63,22 @@ impl<'a> Checker<'a> {
         }
     }
 
+    /// Replaces `*dst` by `value` when a file gives one, if finite and within
+    /// `[lo, hi]`; leaves it otherwise.
+    pub fn replace(
+        &self,
+        dst: &mut f64,
+        value: Option<f64>,
+        field: &str,
+        lo: f64,
+        hi: f64,
+    ) -> Result<(), ScenarioError> {
+        if let Some(x) = value {
+            *dst = self.range(field, x, lo, hi)?;
+        }
+        Ok(())
+    }
+
     /// `value` as a count if within `[lo, hi]`.
     pub fn count(
         &self,

@@ -199,51 +199,45 @@ impl VineyardFile {
         }
         crate::scenario::setup::check_name(&check, &self.name)?;
         run.name.clone_from(&self.name);
-        let set = |dst: &mut f64, value: Option<f64>, field, lo, hi| -> Result<(), ScenarioError> {
-            if let Some(x) = value {
-                *dst = check.range(field, x, lo, hi)?;
-            }
-            Ok(())
-        };
         let f = &self.field;
         let c = &mut run.field;
         if let Some(r) = f.rows {
             c.rows = check.count("field.rows", r, 1, 20)?;
         }
-        set(&mut c.spacing, f.spacing_m, "field.spacing_m", 1.5, 4.0)?;
-        set(&mut c.length, f.length_m, "field.length_m", 15.0, 300.0)?;
-        set(&mut c.vine_gap, f.vine_gap_m, "field.vine_gap_m", 0.5, 3.0)?;
-        set(
+        check.replace(&mut c.spacing, f.spacing_m, "field.spacing_m", 1.5, 4.0)?;
+        check.replace(&mut c.length, f.length_m, "field.length_m", 15.0, 300.0)?;
+        check.replace(&mut c.vine_gap, f.vine_gap_m, "field.vine_gap_m", 0.5, 3.0)?;
+        check.replace(
             &mut c.canopy_width,
             f.canopy_width_m,
             "field.canopy_width_m",
             0.05,
             0.8,
         )?;
-        set(
+        check.replace(
             &mut c.canopy_height,
             f.canopy_height_m,
             "field.canopy_height_m",
             0.3,
             1.6,
         )?;
-        set(&mut c.density, f.density, "field.density", 0.0, 1.0)?;
-        set(&mut c.missing, f.missing, "field.missing", 0.0, 1.0)?;
-        set(
+        check.replace(&mut c.density, f.density, "field.density", 0.0, 1.0)?;
+        check.replace(&mut c.missing, f.missing, "field.missing", 0.0, 1.0)?;
+        check.replace(
             &mut c.post_gap,
             f.post_gap_m,
             "field.post_gap_m",
             1.0,
             100.0,
         )?;
-        set(
+        check.replace(
             &mut c.slope[0],
             f.slope_along,
             "field.slope_along",
             -0.3,
             0.3,
         )?;
-        set(
+        check.replace(
             &mut c.slope[1],
             f.slope_across,
             "field.slope_across",
@@ -251,14 +245,14 @@ impl VineyardFile {
             0.3,
         )?;
         let (mut amp, mut wave, heading) = c.bumps.unwrap_or((0.0, 3.0, 0.6));
-        set(
+        check.replace(
             &mut amp,
             f.bump_amplitude_m,
             "field.bump_amplitude_m",
             0.0,
             0.2,
         )?;
-        set(
+        check.replace(
             &mut wave,
             f.bump_wavelength_m,
             "field.bump_wavelength_m",
@@ -267,15 +261,15 @@ impl VineyardFile {
         )?;
         c.bumps = (amp > 0.0).then_some((amp, wave, heading));
         let r = &self.robot;
-        set(&mut run.speed_mps, r.speed_mps, "robot.speed_mps", 0.1, 3.0)?;
-        set(
+        check.replace(&mut run.speed_mps, r.speed_mps, "robot.speed_mps", 0.1, 3.0)?;
+        check.replace(
             &mut run.start.0,
             r.start_before_m,
             "robot.start_before_m",
             0.0,
             20.0,
         )?;
-        set(
+        check.replace(
             &mut run.start.1,
             r.start_offset_m,
             "robot.start_offset_m",
@@ -293,21 +287,21 @@ impl VineyardFile {
             check.range("robot.gains_s2.K_R", k_r, 1e-3, 20.0)?;
             run.gains2 = (k_f, k_r);
         }
-        set(
+        check.replace(
             &mut run.steering.0,
             r.steering_settling_s,
             "robot.steering_settling_s",
             0.0,
             5.0,
         )?;
-        set(
+        check.replace(
             &mut run.steering.1,
             r.steering_rate_rad_s,
             "robot.steering_rate_rad_s",
             0.01,
             10.0,
         )?;
-        set(
+        check.replace(
             &mut run.steering.2,
             r.steering_limit_rad,
             "robot.steering_limit_rad",
@@ -332,14 +326,14 @@ impl VineyardFile {
         if let Some(k) = r.sideslip_known {
             run.sideslip_known = k;
         }
-        set(
+        check.replace(
             &mut run.lidar_resolution_deg,
             r.lidar_resolution_deg,
             "robot.lidar_resolution_deg",
             0.25,
             3.0,
         )?;
-        set(
+        check.replace(
             &mut run.lidar_noise_m,
             r.lidar_noise_m,
             "robot.lidar_noise_m",
@@ -349,7 +343,7 @@ impl VineyardFile {
         if let Some(m) = r.model_margin {
             run.model_margin = check.count("robot.model_margin", m, 1, 20)?;
         }
-        set(&mut run.settle_m, r.settle_m, "robot.settle_m", 0.0, 300.0)?;
+        check.replace(&mut run.settle_m, r.settle_m, "robot.settle_m", 0.0, 300.0)?;
         if let Some(o) = &self.odometry {
             run.odometry = OdometryErrors {
                 scale: check.range("odometry.scale", o.scale, -0.5, 0.5)?,
