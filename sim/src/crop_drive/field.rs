@@ -18,7 +18,7 @@ use crate::world::{Plant, PlantKind};
 
 /// Rows of every crop: six (five inter-rows).
 pub const ROWS: usize = 6;
-/// A stem's radius, m (the 2 cm).
+/// A stem's radius, m.
 pub const STEM_RADIUS: f64 = 0.02;
 /// A crop plant's height, m (above both LiDARs).
 pub const PLANT_HEIGHT: f64 = 0.5;
