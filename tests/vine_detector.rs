@@ -492,7 +492,7 @@ proptest! {
     #[test]
     fn the_deviations_do_not_depend_on_the_odometry_frame(
         angle in -3.1..3.1_f64, tx in -100.0..100.0_f64, ty in -100.0..100.0_f64,
-        y0 in -0.4..0.4_f64, heading in -0.08..0.08_f64,
+        y0 in -0.3..0.3_f64, heading in -0.05..0.05_f64,
     ) {
         let world = vineyard(World::ground(0.02, -0.15), 2.2, SUMMER_WIDTH, &[]);
         let params = VineParams::summer();
@@ -508,7 +508,9 @@ proptest! {
                 prop_assert!((ea.angular_deviation.get() - eb.angular_deviation.get()).abs() < 1e-9);
             }
         }
-        prop_assert!(a.last().unwrap().verdict.estimate_is_valid());
+        // Not vacuous: from a start within 0.3 m and 0.05 rad of the row the
+        // row is found (0.4 m and 0.08 rad can leave it out of view).
+        prop_assert!(a.iter().any(|d| d.verdict.estimate_is_valid()));
     }
 }
 
