@@ -363,6 +363,6 @@ pub fn write(out: &Path, campaign: &Campaign) -> Result<PathBuf, SimError> {
     if let Some((run, outcome)) = &campaign.failure {
         files.push(("failure.svg", plot::trajectory_svg(run, outcome)));
     }
-    super::write_files(&dir, &files)?;
+    crate::output::write_files(&dir, &files)?;
     Ok(dir)
 }

@@ -478,19 +478,6 @@ fn mark_crushed(
     }
 }
 
-/// Writes each `(name, text)` into `dir`, creating it.
-pub fn write_files(dir: &Path, files: &[(&str, String)]) -> Result<(), SimError> {
-    std::fs::create_dir_all(dir).map_err(|source| SimError::Write {
-        file: dir.to_path_buf(),
-        source,
-    })?;
-    for (name, text) in files {
-        let file = dir.join(name);
-        std::fs::write(&file, text).map_err(|source| SimError::Write { file, source })?;
-    }
-    Ok(())
-}
-
 /// The trace of a drive: one line per tick.
 #[must_use]
 pub fn trace_csv(outcome: &CropOutcome) -> String {
@@ -563,6 +550,6 @@ pub fn write_drive(out: &Path, run: &CropRun, outcome: &CropOutcome) -> Result<P
         ),
         ("trajectory.svg", plot::trajectory_svg(run, outcome)),
     ];
-    write_files(&dir, &files)?;
+    crate::output::write_files(&dir, &files)?;
     Ok(dir)
 }

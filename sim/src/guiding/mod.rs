@@ -798,11 +798,6 @@ fn drive_in(
     Ok(())
 }
 
-/// Writes each `(name, text)` into `dir`, creating it.
-fn write_files(dir: &Path, files: &[(&str, String)]) -> Result<(), SimError> {
-    crate::crop_drive::write_files(dir, files)
-}
-
 /// The trace of a mission: one line per tick.
 #[must_use]
 pub fn trace_csv(outcome: &Outcome) -> String {
@@ -873,6 +868,6 @@ pub fn write_mission(out: &Path, run: &GuidingRun, outcome: &Outcome) -> Result<
         ("trajectory.svg", plot::trajectory_svg(run, outcome)),
     ];
     files.extend(plot::histograms(outcome));
-    write_files(&dir, &files)?;
+    crate::output::write_files(&dir, &files)?;
     Ok(dir)
 }

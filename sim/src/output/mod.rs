@@ -89,3 +89,16 @@ pub fn write_sweep(out_root: &Path, sweep: &Sweep) -> Result<PathBuf, SimError> 
     })?;
     Ok(file)
 }
+
+/// Writes each `(name, text)` into `dir`, creating it.
+pub fn write_files(dir: &Path, files: &[(&str, String)]) -> Result<(), SimError> {
+    std::fs::create_dir_all(dir).map_err(|source| SimError::Write {
+        file: dir.to_path_buf(),
+        source,
+    })?;
+    for (name, text) in files {
+        let file = dir.join(name);
+        std::fs::write(&file, text).map_err(|source| SimError::Write { file, source })?;
+    }
+    Ok(())
+}

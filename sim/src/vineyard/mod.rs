@@ -281,6 +281,31 @@ pub struct Settled {
 }
 
 impl VineOutcome {
+    /// The outcome of a loop that recorded `ticks` and ended with `end`:
+    /// `touched` marks the trunks and posts of `solid` a wheel met, `seen`
+    /// is what the LiDAR saw, `detected` the ticks with a row line.
+    pub(crate) fn of(
+        ticks: Vec<VineTick>,
+        end: VineEnd,
+        touched: &[bool],
+        solid: &[Stem],
+        seen: &[Stem],
+        detected: usize,
+    ) -> Self {
+        Self {
+            ticks,
+            end,
+            touched: touched.iter().filter(|t| **t).count(),
+            touched_in_row: touched
+                .iter()
+                .zip(solid)
+                .filter(|(t, p)| **t && p.position.x() >= ENTRY_M)
+                .count(),
+            plants: seen.to_vec(),
+            detected,
+        }
+    }
+
     /// The errors once R is `settle_m` along the row.
     #[must_use]
     pub fn settled(&self, settle_m: f64) -> Option<Settled> {
@@ -497,18 +522,7 @@ fn drive_in(
             .map_err(|e| format!("t = {t_s:.2} s: {e}"))?;
         odometry.update(&before, &state, slip.rear.get(), rng);
     }
-    Ok(VineOutcome {
-        ticks,
-        end,
-        touched: touched.iter().filter(|t| **t).count(),
-        touched_in_row: touched
-            .iter()
-            .zip(solid)
-            .filter(|(t, p)| **t && p.position.x() >= ENTRY_M)
-            .count(),
-        plants: seen.to_vec(),
-        detected,
-    })
+    Ok(VineOutcome::of(ticks, end, &touched, solid, seen, detected))
 }
 
 /// The odometry of a four-wheel-steering robot: the distance the wheels
@@ -614,19 +628,6 @@ pub(crate) fn mark_touched(pose: &Pose2<World>, solid: &[Stem], touched: &mut [b
     }
 }
 
-/// Writes each `(name, text)` into `dir`, creating it.
-fn write_files(dir: &Path, files: &[(&str, String)]) -> Result<(), SimError> {
-    std::fs::create_dir_all(dir).map_err(|source| SimError::Write {
-        file: dir.to_path_buf(),
-        source,
-    })?;
-    for (name, text) in files {
-        let file = dir.join(name);
-        std::fs::write(&file, text).map_err(|source| SimError::Write { file, source })?;
-    }
-    Ok(())
-}
-
 /// The trace of a run: one line per tick.
 #[must_use]
 pub fn trace_csv(outcome: &VineOutcome) -> String {
@@ -703,6 +704,6 @@ pub fn write_drive(
         ("steering.svg", plot::steering_svg(run, outcome)),
         ("trajectory.svg", plot::trajectory_svg(run, outcome)),
     ];
-    write_files(&dir, &files)?;
+    crate::output::write_files(&dir, &files)?;
     Ok(dir)
 }

@@ -25,8 +25,8 @@ use fieldguide::supervisor::switching::PlanTolerance;
 use fieldguide::{Curvature, Meters, MetersPerSecond, Pose2, Radians, Seconds, World};
 
 use super::{
-    mark_touched, FourWsOdometry, VineEnd, VineOutcome, VineTick, VineyardRun, ENTRY_M, PERIOD_S,
-    POINTS, RAYS, WHEELBASE_M,
+    mark_touched, FourWsOdometry, VineEnd, VineOutcome, VineTick, VineyardRun, PERIOD_S, POINTS,
+    RAYS, WHEELBASE_M,
 };
 use crate::plant::{FourWsPlant, Plant, SteeringActuator, VehicleState};
 use crate::rng::SimRng;
@@ -253,16 +253,5 @@ pub fn drive_in(
             .map_err(|e| format!("t = {t_s:.2} s: {e}"))?;
         odometry.update(&before, &state, slip.rear.get(), rng);
     }
-    Ok(VineOutcome {
-        ticks,
-        end,
-        touched: touched.iter().filter(|t| **t).count(),
-        touched_in_row: touched
-            .iter()
-            .zip(solid)
-            .filter(|(t, p)| **t && p.position.x() >= ENTRY_M)
-            .count(),
-        plants: seen.to_vec(),
-        detected,
-    })
+    Ok(VineOutcome::of(ticks, end, &touched, solid, seen, detected))
 }
