@@ -9,6 +9,7 @@
 pub mod detector;
 pub mod edge;
 pub mod furrow;
+pub mod obstacles;
 pub mod rows;
 pub mod scan;
 pub mod vine;
