@@ -369,17 +369,34 @@ fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
     })
 }
 
-/// No model: a point's slot while it is an outlier.
-const NO_SLOT: u8 = u8::MAX;
+/// Slot `k` as the rank 2^k, an `f64` ordered as the slots are (exact for
+/// k ≤ 64; 2^64 stands for no model), so that the re-attachment's inner
+/// loop runs on one type and vectorises.
+#[inline]
+fn rank(k: usize) -> f64 {
+    let k = u64::try_from(k).map_or(64, |k| k.min(64));
+    f64::from_bits(k.saturating_add(1023) << 52)
+}
+
+/// The slot of a rank made by [`rank`] (its binary exponent): `MAX_MODELS`
+/// for no model.
+#[inline]
+fn slot_of(rank: f64) -> usize {
+    usize::try_from((rank.to_bits() >> 52).saturating_sub(1023))
+        .map_or(MAX_MODELS, |k| k.min(MAX_MODELS))
+}
+
+/// The rank of no model.
+const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
 /// The points' coordinates in columns and each point's closest model so
-/// far, for the re-attachment's inner loops.
+/// far (its distance and [`rank`]), for the re-attachment's inner loops.
 #[derive(Debug, Clone)]
 struct Columns<const N: usize> {
     xs: [f64; N],
     ys: [f64; N],
     best: [f64; N],
-    slot: [u8; N],
+    rank: [f64; N],
 }
 
 /// A set of models and which points belong to each.
@@ -525,7 +542,7 @@ impl<const N: usize> Ruby<N> {
                 xs: [0.0; N],
                 ys: [0.0; N],
                 best: [0.0; N],
-                slot: [NO_SLOT; N],
+                rank: [NO_RANK; N],
             },
         }
     }
@@ -1079,54 +1096,58 @@ fn reattach<const N: usize>(
         // models that did not move: only the moved ones can take it. The
         // closest is the least (distance, slot), as a scan of every model
         // in slot order finds it.
-        let closer = |d: f64, k: u8, best: f64, slot: u8| {
-            d <= limit && (d < best || (d <= best && k < slot))
-        };
-        for (((&x, &y), &old), (best, slot)) in xy
-            .clone()
+        let xs = cols.xs.get(..n).unwrap_or(&[]);
+        let ys = cols.ys.get(..n).unwrap_or(&[]);
+        let best = cols.best.get_mut(..n).unwrap_or(&mut []);
+        let ranks = cols.rank.get_mut(..n).unwrap_or(&mut []);
+        for (((&x, &y), &old), (best, r)) in xs
+            .iter()
+            .zip(ys)
             .zip(set.masks.iter())
-            .zip(cols.best.iter_mut().zip(cols.slot.iter_mut()))
+            .zip(best.iter_mut().zip(ranks.iter_mut()))
         {
-            (*best, *slot) = (f64::INFINITY, NO_SLOT);
+            let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
             if old & moved != 0 {
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
-                    if closer(d, k, *best, *slot) {
-                        (*best, *slot) = (d, k);
+                    let k = usize::from(k);
+                    if d <= limit && (d < d_best || (d <= d_best && k < k_best)) {
+                        (d_best, k_best) = (d, k);
                     }
                 }
             } else if old != 0 {
                 let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
-                *best = set.line(k).distance_xy(x, y);
-                *slot = u8::try_from(k).unwrap_or(NO_SLOT);
+                (d_best, k_best) = (set.line(k).distance_xy(x, y), k);
             }
+            // With no model yet, the limit stands for the distance to beat:
+            // a moved model takes the point when within it (RUBY-REATTACH),
+            // and no test of the limit is left in the loop below.
+            (*best, *r) = if k_best < MAX_MODELS {
+                (d_best, rank(k_best))
+            } else {
+                (limit, NO_RANK)
+            };
         }
-        // Each moved model over every point: one tight loop per model,
-        // without branches (a select per point).
+        // Each moved model over every point: one loop per model on f64
+        // columns alone, without branches (a select per point), which the
+        // compiler vectorises. A point's distance to beat is never above
+        // the limit: the closest within it wins, ties to the lower slot.
         for &(_, k, line) in &changed {
-            for ((&x, &y), (best, slot)) in xy
-                .clone()
-                .zip(cols.best.iter_mut().zip(cols.slot.iter_mut()))
+            let k = rank(usize::from(k));
+            for ((&x, &y), (best, r)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let d = line.distance_xy(x, y);
-                let take = (d <= limit) & ((d < *best) | ((d <= *best) & (k < *slot)));
+                let take = (d < *best) | ((d <= *best) & (k < *r));
                 *best = if take { d } else { *best };
-                *slot = if take { k } else { *slot };
+                *r = if take { k } else { *r };
             }
         }
-        for (m, (&best, &slot)) in set
-            .masks
-            .iter_mut()
-            .zip(cols.best.iter().zip(cols.slot.iter()))
-            .take(n)
-        {
-            *m = if slot == NO_SLOT {
-                0
-            } else {
-                bit(usize::from(slot))
-            };
-            if slot != NO_SLOT {
-                stats.add(usize::from(slot), best);
+        for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
+            let k = slot_of(r);
+            *m = bit(k);
+            if k < MAX_MODELS {
+                stats.add(k, best);
             }
         }
     }
