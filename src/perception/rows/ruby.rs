@@ -303,17 +303,20 @@ impl Line {
     //# least squares: a least-squares start (FIT-LINE), then the configured
     //# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
     //# point's residual in y to the line before.
-    fn fit<I>(points: I, rounds: u8) -> Option<Self>
-    where
-        I: Iterator<Item = Point2<Robot>> + Clone,
-    {
-        let mut line = fit_line(points.clone()).ok()?;
+    ///
+    /// Each round's weights are computed once into `weights` (as long as
+    /// `points` at least; the rounds stop where it is shorter).
+    fn fit(points: &[Point2<Robot>], rounds: u8, weights: &mut [f64]) -> Option<Self> {
+        let mut line = fit_line(points.iter()).ok()?;
         for _ in 0..rounds {
-            let weighted = points.clone().map(|p| {
+            let Some(weights) = weights.get_mut(..points.len()) else {
+                break;
+            };
+            for (w, p) in weights.iter_mut().zip(points) {
                 let r = libm::fabs(p.y() - line.a * p.x() - line.b);
-                (p, 1.0 / r.max(LAD_FLOOR))
-            });
-            match fit_line_weighted(weighted) {
+                *w = 1.0 / r.max(LAD_FLOOR);
+            }
+            match fit_line_weighted(points.iter().zip(weights.iter().copied())) {
                 Ok(next) => line = next,
                 Err(_) => break,
             }
@@ -492,6 +495,13 @@ impl<const N: usize> ModelSet<N> {
     }
 }
 
+/// Room for one model's fit: its points and their weights.
+#[derive(Debug, Clone)]
+struct Scratch<const N: usize> {
+    points: [Point2<Robot>; N],
+    weights: [f64; N],
+}
+
 /// Ruby's line finder with its seeded generator and the set it carries from
 /// scan to scan; `N` points at most per scan.
 #[derive(Debug, Clone)]
@@ -507,8 +517,8 @@ pub struct Ruby<const N: usize> {
     kept: usize,
     /// w_pq of each pair of consecutive points (eq. 5).
     weights: [f64; N],
-    /// One model's points, gathered for its fit.
-    scratch: [Point2<Robot>; N],
+    /// One model's points, gathered for its fit, and their weights.
+    scratch: Scratch<N>,
     /// The points in columns, for the re-attachment.
     columns: Columns<N>,
 }
@@ -537,7 +547,10 @@ impl<const N: usize> Ruby<N> {
             sets: [empty.clone(), empty],
             kept: 0,
             weights: [0.0; N],
-            scratch: [Point2::origin(); N],
+            scratch: Scratch {
+                points: [Point2::origin(); N],
+                weights: [0.0; N],
+            },
             columns: Columns {
                 xs: [0.0; N],
                 ys: [0.0; N],
@@ -828,7 +841,7 @@ fn search_side<const N: usize>(
         let seeds = seed.map(|i| points.get(i).map(|q| q.position));
         if let [Some(a), Some(b), Some(c)] = seeds {
             if let (Some(line), Some(l)) =
-                (Line::fit([a, b, c].into_iter(), 0), set.lines.get_mut(slot))
+                (Line::fit(&[a, b, c], 0, &mut []), set.lines.get_mut(slot))
             {
                 *l = line;
                 set.alive |= bit(slot);
@@ -867,7 +880,7 @@ fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
 fn merge<const N: usize>(
     set: &mut ModelSet<N>,
     points: &[RowPoint],
-    scratch: &mut [Point2<Robot>; N],
+    scratch: &mut Scratch<N>,
     p: &RubyParams,
 ) {
     let n = points.len();
@@ -905,8 +918,8 @@ fn merge<const N: usize>(
                 set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                let members = set.members(points, j, scratch).iter().copied();
-                if let Some(line) = Line::fit(members, p.fit_rounds) {
+                let members = set.members(points, j, &mut scratch.points);
+                if let Some(line) = Line::fit(members, p.fit_rounds, &mut scratch.weights) {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
                         if *l != line {
