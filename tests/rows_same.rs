@@ -17,7 +17,9 @@ mod crop_scans;
 mod rows_reference;
 
 use crop_scans::{crop, Lidar, Mount, Pose};
-use fieldguide::perception::rows::points::{merge_runs, scan_points, Points, RowPoint};
+use fieldguide::perception::rows::points::{
+    merge_runs, scan_points, scan_points_with, Points, Rays, RowPoint,
+};
 use fieldguide::perception::rows::ruby::{Found, Ruby, RubyConfig, RubyParams, Variant};
 use fieldguide::{Point2, Robot};
 use proptest::prelude::*;
@@ -117,6 +119,59 @@ fn every_variant_matches_the_reference_bit_for_bit_on_the_crops() {
             }
         }
     }
+}
+
+/// One ray table against the rays computed afresh: the same points, bit for
+/// bit, when the LiDAR's geometry changes between scans and for rays beyond
+/// the table.
+//= spec/guyonneau2022.md#rows-points-scan-points-in-the-robot-frame
+//= type=test
+//# Every ray whose range the scan's limits accept MUST become the point
+//# (r cos φ, r sin φ) of the sensor frame, φ = start + k · increment, moved into
+//# the robot frame through the sensor's mount; rays are kept in ray order.
+#[test]
+fn a_table_of_the_rays_gives_the_same_points() {
+    let field = crop(4, 3, 0.75).build();
+    let mount = Mount::front(0.3);
+    let transform = mount.transform();
+    let mut wide = Lidar::paper();
+    wide.rays = 541;
+    wide.start = -2.35;
+    wide.increment = 4.7 / 540.0;
+    let mut short: Rays<100> = Rays::new();
+    let mut long: Rays<N> = Rays::new();
+    let mut compared = 0;
+    for k in 0_u32..12 {
+        let lidar = if k % 3 == 2 { wide } else { Lidar::paper() };
+        let robot = field.between(1, 2, 1.0 + 0.3 * f64::from(k));
+        let raw = field.cast(&robot, &mount, &lidar, u64::from(k));
+        let scan = raw.scan();
+        let mut plain = Points::<N>::new();
+        let g = scan_points(&scan, &transform, &mut plain).unwrap();
+        for tabled in [
+            {
+                let mut out = Points::<N>::new();
+                let h = scan_points_with(&scan, &transform, &mut short, &mut out).unwrap();
+                assert_eq!(h, g);
+                out
+            },
+            {
+                let mut out = Points::<N>::new();
+                let h = scan_points_with(&scan, &transform, &mut long, &mut out).unwrap();
+                assert_eq!(h, g);
+                out
+            },
+        ] {
+            assert_eq!(tabled.len(), plain.len());
+            for (t, p) in tabled.iter().zip(&plain) {
+                assert_eq!(t.position.x().to_bits(), p.position.x().to_bits());
+                assert_eq!(t.position.y().to_bits(), p.position.y().to_bits());
+                assert_eq!(t.returns, p.returns);
+            }
+            compared += plain.len();
+        }
+    }
+    assert!(compared > 12 * 100, "{compared}");
 }
 
 fn variant() -> impl Strategy<Value = Variant> {
