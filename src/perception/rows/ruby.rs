@@ -1145,13 +1145,35 @@ fn reattach<const N: usize>(
         // columns alone, without branches (a select per point), which the
         // compiler vectorises. A point's distance to beat is never above
         // the limit: the closest within it wins, ties to the lower slot.
-        for &(_, k, line) in &changed {
+        // Two models per pass over the points, in slot order, halve the
+        // loads and stores of the columns.
+        let closer = |d: f64, k: f64, best: f64, r: f64| (d < best) | ((d <= best) & (k < r));
+        let mut pairs = changed.chunks_exact(2);
+        for pair in pairs.by_ref() {
+            let [(_, k1, l1), (_, k2, l2)] = pair else {
+                continue;
+            };
+            let (k1, k2) = (rank(usize::from(*k1)), rank(usize::from(*k2)));
+            for ((&x, &y), (best, r)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
+            {
+                let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
+                let (mut b, mut q) = (*best, *r);
+                let take = closer(d1, k1, b, q);
+                b = if take { d1 } else { b };
+                q = if take { k1 } else { q };
+                let take = closer(d2, k2, b, q);
+                *best = if take { d2 } else { b };
+                *r = if take { k2 } else { q };
+            }
+        }
+        for &(_, k, line) in pairs.remainder() {
             let k = rank(usize::from(k));
             for ((&x, &y), (best, r)) in
                 xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let d = line.distance_xy(x, y);
-                let take = (d < *best) | ((d <= *best) & (k < *r));
+                let take = closer(d, k, *best, *r);
                 *best = if take { d } else { *best };
                 *r = if take { k } else { *r };
             }
