@@ -86,7 +86,9 @@ use fieldguide::perception::rows::filter::{
     seen_from, side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig,
     RowFilter,
 };
-use fieldguide::perception::rows::points::{merge_runs, scan_points, Points, RowPoint};
+use fieldguide::perception::rows::points::{
+    merge_runs, scan_points, scan_points_with, Points, Rays, RowPoint,
+};
 use fieldguide::perception::rows::ruby::{Ruby, RubyConfig, RubyParams, Variant};
 use fieldguide::perception::rows::spacing::{
     closest_pair, row_distance, SpacingConfig, SpacingEstimator,
@@ -1487,6 +1489,12 @@ proptest! {
         let gathered = check!("perception::rows::points::scan_points", scan_points(&scan, &mount, &mut points));
         names_a_requirement("scan_points", &gathered);
         all_finite("scan_points' points", &points);
+        // The same points through a table of the rays, shorter than the scan.
+        let mut rays: Rays<16> = check!("perception::rows::points::Rays::new", Rays::new());
+        let mut tabled: Points<64> = Points::new();
+        let again = check!("perception::rows::points::scan_points_with", scan_points_with(&scan, &mount, &mut rays, &mut tabled));
+        prop_assert_eq!(&again, &gathered);
+        prop_assert_eq!(&tabled, &points);
         check!("perception::rows::points::merge_runs", { merge_runs(&mut points, merge); points.clone() });
         let mut drawn: Points<64> = xy
             .iter()
