@@ -913,3 +913,55 @@ fn detour_is_what_assess_uses() {
         fieldguide::perception::obstacles::detour(&post, &[post], &pose, &goal, &config()).unwrap();
     assert_eq!(d, DetourPlan::Waypoint(w));
 }
+
+/// Standard normal draws (Box–Muller) from a seeded generator.
+fn gaussian(rng: &mut rand_xoshiro::Xoshiro256PlusPlus) -> f64 {
+    use rand_core::RngCore;
+    let u = |r: &mut rand_xoshiro::Xoshiro256PlusPlus| {
+        ((r.next_u64() >> 11) as f64 + 0.5) / (1_u64 << 53) as f64
+    };
+    let (a, b) = (u(rng), u(rng));
+    (-2.0 * a.ln()).sqrt() * (TAU * b).cos()
+}
+
+/// Posts seen through 1 cm of range noise (σ), 200 seeds: one circle each,
+/// centre and radius against the ground truth.
+//= spec/emmi2024.md#em-obst-shape-circles-and-segments
+//= type=test
+//# A cluster whose points all lie within a circle of at most the largest
+//# circle radius MUST become such a circle, enclosing every point of the
+//# cluster.
+#[test]
+fn posts_through_range_noise() {
+    use rand_core::SeedableRng;
+    let (mut worst_centre, mut worst_radius, mut sum_radius) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for seed in 0..200_u64 {
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+        let d = 2.0 + 4.0 * (seed % 17) as f64 / 16.0;
+        let bearing = -1.0 + 2.0 * (seed % 13) as f64 / 12.0;
+        let r = 0.1 + 0.3 * (seed % 7) as f64 / 6.0;
+        let (x, y) = (d * bearing.cos(), d * bearing.sin());
+        let mut ranges = ray_cast(&[circle(x, y, r)]);
+        for v in &mut ranges {
+            if v.is_finite() {
+                *v += 0.01 * gaussian(&mut rng);
+            }
+        }
+        let obs = cluster::<8>(&scan(&ranges), &identity(), &ClusterConfig::emmi2024());
+        assert_eq!(obs.as_slice().len(), 1, "seed {seed}: {:?}", obs.as_slice());
+        let Obstacle::Circle { centre, radius } = obs.as_slice()[0] else {
+            panic!("seed {seed}: {:?}", obs.as_slice());
+        };
+        let e = centre.distance_to(pt(x, y)).unwrap().get();
+        worst_centre = worst_centre.max(e);
+        worst_radius = worst_radius.max((radius.get() - r).abs());
+        sum_radius += radius.get() - r;
+        // The circle always covers the true post's visible face.
+        assert!(radius.get() + e >= r - 0.03, "seed {seed}");
+    }
+    println!(
+        "posts through 1 cm noise, 200 seeds: centre error <= {worst_centre:.4} m, radius error <= {worst_radius:.4} m, mean radius bias {:.4} m",
+        sum_radius / 200.0
+    );
+    assert!(worst_centre < 0.07 && worst_radius < 0.05);
+}
