@@ -2097,7 +2097,7 @@ proptest! {
             }
         }
         for o in list.as_slice() {
-            let plan = check!("perception::obstacles::detour::detour", detour(o, list.as_slice(), &a, &b, &config));
+            let plan = check!("perception::obstacles::detour::detour", detour(o, list.as_slice(), &a, &b, lengths[3], &config));
             names_a_requirement("detour", &plan);
         }
         for l in [&list, &found] {

@@ -13,6 +13,7 @@ use super::areas::{above, at_least, ObstacleConfig, Shape, Xy};
 use super::Obstacle;
 use crate::error::Precondition;
 use crate::geometry::frame::{Pose2, World};
+use crate::geometry::units::Meters;
 use crate::planning::dubins::{shortest, DubinsPath};
 
 /// Extra lateral offsets of the waypoint tried in turn, in units of half the
@@ -112,7 +113,7 @@ fn clear_along(path: &DubinsPath, upto: f64, scene: &Scene<'_>, config: &Obstacl
     let end = path.length().get().min(upto);
     let mut s = 0.0_f64;
     for _ in 0..MAX_SAMPLES {
-        let Ok(pose) = path.pose_at(crate::geometry::units::Meters(s)) else {
+        let Ok(pose) = path.pose_at(Meters(s)) else {
             return false;
         };
         let c = scene.clearance(raw(&pose), config);
@@ -150,9 +151,7 @@ fn heading_beside(nominal: &DubinsPath, from: Xy, point: Xy, r: f64) -> Option<f
     let ds = span / f64::from(HEADING_SAMPLES);
     (0..=HEADING_SAMPLES)
         .filter_map(|i| {
-            let p = nominal
-                .pose_at(crate::geometry::units::Meters(ds * f64::from(i)))
-                .ok()?;
+            let p = nominal.pose_at(Meters(ds * f64::from(i))).ok()?;
             let (x, y, h) = raw(&p);
             Some((libm::hypot(x - point.0, y - point.1), h))
         })
@@ -165,7 +164,9 @@ fn heading_beside(nominal: &DubinsPath, from: Xy, point: Xy, r: f64) -> Option<f
 
 /// The intermediate waypoint going round `target`, one of `obstacles` (all
 /// in the robot frame at `pose`), on the way to `goal` (Emmi 2024, section
-/// 3.2, Fig. 8).
+/// 3.2, Fig. 8). Waypoints whose second leg meets another obstacle only
+/// beyond `horizon` metres are taken when no other is clear: that obstacle
+/// is met again, in the warning area, later on.
 ///
 /// # Errors
 /// The errors of [`shortest`] for the planned path `pose` → `goal`
@@ -183,11 +184,17 @@ fn heading_beside(nominal: &DubinsPath, from: Xy, point: Xy, r: f64) -> Option<f
 //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
 //# Among the candidate waypoints whose two legs are clear, the one of least
 //# total length start → waypoint → goal MUST be chosen.
+//= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
+//# When no candidate has two clear legs, the candidate of least total length
+//# whose first leg is clear and whose second leg is clear of the obstacle
+//# gone round, and of every obstacle over its first `horizon` metres, MUST
+//# be chosen.
 pub fn detour(
     target: &Obstacle,
     obstacles: &[Obstacle],
     pose: &Pose2<World>,
     goal: &Pose2<World>,
+    horizon: Meters,
     config: &ObstacleConfig,
 ) -> Result<DetourPlan, Precondition> {
     let radius = config.radius();
@@ -252,15 +259,22 @@ pub fn detour(
         }
     }
     candidates.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    for (_, _, waypoint, first, second) in &candidates {
-        if clear_along(first, f64::INFINITY, &scene, config)
-            && clear_along(second, f64::INFINITY, &scene, config)
-        {
-            return Ok(DetourPlan::Waypoint(*waypoint));
+    let alone = Scene::new(core::slice::from_ref(target), pose);
+    for strict in [true, false] {
+        for (_, _, waypoint, first, second) in &candidates {
+            let second_clear = if strict {
+                clear_along(second, f64::INFINITY, &scene, config)
+            } else {
+                clear_along(second, horizon.get(), &scene, config)
+                    && clear_along(second, f64::INFINITY, &alone, config)
+            };
+            if second_clear && clear_along(first, f64::INFINITY, &scene, config) {
+                return Ok(DetourPlan::Waypoint(*waypoint));
+            }
         }
     }
     //= spec/emmi2024.md#em-obst-no-detour-no-way-round
-    //# When no candidate waypoint has two clear legs, re-planning MUST report
-    //# that no side is clear.
+    //# When no candidate waypoint qualifies, re-planning MUST report that no
+    //# side is clear.
     Ok(DetourPlan::NoClearSide)
 }

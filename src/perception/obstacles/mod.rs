@@ -126,6 +126,8 @@ impl Assessment {
 //# The detour of a `Warning` MUST be the waypoint of EM-OBST-DETOUR round the
 //# obstacle of the path nearest to the robot, or `None` with the reason when
 //# there is none.
+//= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
+//# The horizon of the second leg MUST be the warning area's far edge.
 pub fn assess<const N: usize>(
     obstacles: &Obstacles<N>,
     pose: &Pose2<World>,
@@ -175,15 +177,17 @@ pub fn assess<const N: usize>(
             Reason::InCropField,
         ));
     }
-    Ok(match detour(target, all, pose, goal, config)? {
-        DetourPlan::Waypoint(w) => {
-            Assessment::new(Hazard::Warning { detour: Some(w) }, Reason::Detour)
-        }
-        DetourPlan::GoalBlocked => {
-            Assessment::new(Hazard::Warning { detour: None }, Reason::GoalBlocked)
-        }
-        DetourPlan::NoClearSide => {
-            Assessment::new(Hazard::Warning { detour: None }, Reason::NoClearSide)
-        }
-    })
+    Ok(
+        match detour(target, all, pose, goal, areas.warning_end(), config)? {
+            DetourPlan::Waypoint(w) => {
+                Assessment::new(Hazard::Warning { detour: Some(w) }, Reason::Detour)
+            }
+            DetourPlan::GoalBlocked => {
+                Assessment::new(Hazard::Warning { detour: None }, Reason::GoalBlocked)
+            }
+            DetourPlan::NoClearSide => {
+                Assessment::new(Hazard::Warning { detour: None }, Reason::NoClearSide)
+            }
+        },
+    )
 }
