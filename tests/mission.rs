@@ -447,6 +447,13 @@ fn lost_localisation_stops_and_the_leg_goes_on_after_a_fix() {
     assert!(matches!(out.command, Command::Follow(l) if (l.task, l.leg) == (0, 0)));
 }
 
+//= spec/emmi2024.md#em-mission-machine-states-events-and-transitions
+//= type=test
+//# In each tick it MUST read the events: the hazard (Clear, Warning with or
+//# without a detour, Critical), whether the robot is inside the task's field,
+//# the localisation (GNSS, odometry, Lost), whether the leg's plan exists,
+//# whether the robot progressed, and the arrival (en route, reached within the
+//# tolerance, missed).
 //= spec/emmi2024.md#em-mission-obstacle-obstacles
 //= type=test
 //# With the hazard Critical the command MUST be Stop with the reason Obstacle,
@@ -612,6 +619,16 @@ fn malfunctions_abort_with_their_reason() {
     assert!(truth.position.x() > 30.0 && truth.position.x() < 30.3);
 }
 
+//= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg
+//= type=test
+//# A leg that cannot be planned, or whose path is longer than the configured
+//# longest leg (a goal unreachable with the turning radius), MUST stop the
+//# mission with the reason Unplannable.
+//= spec/emmi2024.md#em-mission-machine-states-events-and-transitions
+//= type=test
+//# The machine MUST have the phases Running, Done and Aborted, and start
+//# Running at the first leg of the first task, or Aborted with the reason
+//# EmptyMission when the mission has no task.
 /// Bad input: a defined Stop with a named reason, no panic, no task skipped.
 #[test]
 fn bad_missions_stop_with_a_reason() {
