@@ -215,6 +215,14 @@ fn missions_of_a_road_and_a_field_are_done_leg_by_leg() {
                 }
                 let plan = out.plan.unwrap();
                 assert!(plan.is_forward(), "seed {seed}");
+                // The pipeline's reference path ends at the leg's goal.
+                if plan.length().get() >= 1e-3 {
+                    let path = plan.to_reference_path::<512>(m(0.1)).unwrap();
+                    let end = path.vertices().last().unwrap().position;
+                    assert!(end.distance_to(plan.goal().position).unwrap().get() < 1e-6);
+                    let (a, b) = (path.length().get(), plan.length().get());
+                    assert!((a - b).abs() <= 1e-3 * b + 1e-6, "{a} vs {b}");
+                }
                 assert!(out.speed.get() > 0.0);
                 // The tool is on exactly on the passes, which are lines along the row.
                 let pass = leg.task == 1 && leg.leg % 2 == 1;

@@ -1689,6 +1689,7 @@ proptest! {
                 check!("supervisor::mission::supervisor::Plan::goal", plan.goal());
                 check!("supervisor::mission::supervisor::Plan::length", plan.length());
                 prop_assert!(check!("supervisor::mission::supervisor::Plan::is_forward", plan.is_forward()));
+                check!("supervisor::mission::supervisor::Plan::to_reference_path", plan.to_reference_path::<64>(lengths.1));
             }
             let events = mi::Events { in_field, localisation: fix.status(), ..mi::Events::NOMINAL };
             let (next, _) = check!("supervisor::mission::machine::step", mi::step(&machine, &shape, &state, &events));

@@ -6,7 +6,8 @@ use heapless::Vec;
 
 use crate::error::Precondition;
 use crate::geometry::frame::{Pose2, Robot, World};
-use crate::geometry::units::{Meters, MetersPerSecond};
+use crate::geometry::path::ReferencePath;
+use crate::geometry::units::{Curvature, Meters, MetersPerSecond};
 use crate::perception::obstacles::Hazard;
 use crate::planning::dubins::{shortest, DubinsPath};
 use crate::planning::line_following::goal_ahead;
@@ -77,6 +78,37 @@ impl Plan {
                 let dx = goal.position.x() - start.position.x();
                 let dy = goal.position.y() - start.position.y();
                 dx * libm::cos(h) + dy * libm::sin(h) >= 0.0
+            }
+        }
+    }
+}
+
+impl Plan {
+    /// The plan as a reference path of at most `N` vertices for the
+    /// trackers: the Dubins path sampled at most `spacing` apart
+    /// ([`DubinsPath::to_reference_path`]), or the line's two ends, heading
+    /// along the line, curvature 0.
+    ///
+    /// # Errors
+    /// Those of [`DubinsPath::to_reference_path`] and
+    /// [`ReferencePath::from_exact`] (`PATH-WAYPOINTS` for a leg shorter than
+    /// 1 mm: it is reached already).
+    pub fn to_reference_path<const N: usize>(
+        &self,
+        spacing: Meters,
+    ) -> Result<ReferencePath<N>, Precondition> {
+        match self {
+            Self::GoToGoal { path, .. } => path.to_reference_path(spacing),
+            Self::Line { start, goal } => {
+                let heading = libm::atan2(
+                    goal.position.y() - start.position.y(),
+                    goal.position.x() - start.position.x(),
+                );
+                let at = |p: &Pose2<World>| Pose2::new(p.position.x(), p.position.y(), heading);
+                ReferencePath::from_exact([
+                    (at(start)?, Curvature::ZERO),
+                    (at(goal)?, Curvature::ZERO),
+                ])
             }
         }
     }
