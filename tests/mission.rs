@@ -693,3 +693,36 @@ fn bad_missions_stop_with_a_reason() {
     let out = mission.tick(&input(None, still(), Hazard::Clear, false));
     assert_eq!(out.command, Command::Stop(StopReason::LocalisationLost));
 }
+
+/// A task of no leg (possible only in a hand-made shape) stops the mission
+/// when it is reached: the task after it is never started.
+#[test]
+fn a_task_of_no_leg_aborts_and_nothing_is_skipped() {
+    use fieldguide::supervisor::mission::{step, Arrival, Events, MissionState, Shape};
+    let shape = Shape::from_legs(&[
+        (TaskKind::Approximation, 1),
+        (TaskKind::Treatment, 0),
+        (TaskKind::Approximation, 1),
+    ]);
+    let config = MachineConfig::from_ticks(10, 10).unwrap();
+    let state = MissionState::initial(&shape);
+    let (state, out) = step(&config, &shape, &state, &Events::NOMINAL);
+    assert!(matches!(out.command, Command::Follow(l) if (l.task, l.leg) == (0, 0)));
+    let reached = Events {
+        arrival: Arrival::Reached,
+        ..Events::NOMINAL
+    };
+    let (mut state, out) = step(&config, &shape, &state, &reached);
+    assert_eq!(out.command, Command::Stop(StopReason::EmptyTask));
+    for _ in 0..20 {
+        let (next, out) = step(&config, &shape, &state, &reached);
+        assert_eq!(out.phase, Phase::Aborted(StopReason::EmptyTask));
+        assert_eq!(next.leg(), (1, 0));
+        state = next;
+    }
+    let empty_first = Shape::from_legs(&[(TaskKind::Treatment, 0)]);
+    assert_eq!(
+        MissionState::initial(&empty_first).phase(),
+        Phase::Aborted(StopReason::EmptyTask)
+    );
+}
