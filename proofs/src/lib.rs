@@ -10,6 +10,11 @@
 //!   of its delays, a [`switching::Monitor`] that keeps the history counters
 //!   the properties need, and the stateright [`switching::SwitchingModel`]
 //!   whose transitions call the real `step`.
+//! - [`mission`]: the mission machine of Emmi 2024, sections 3.1-3.2
+//!   (`spec/emmi2024.md`, EM-MISSION-M1 to M5): a [`mission::Monitor`] of the
+//!   properties and the stateright [`mission::MissionModel`] whose transitions
+//!   call the real `step`.
 #![forbid(unsafe_code)]
 
+pub mod mission;
 pub mod switching;
