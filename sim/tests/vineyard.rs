@@ -16,6 +16,7 @@
     clippy::panic
 )]
 
+use fieldguide_sim::sweep::{sweep_csv, vine_sweep, Seeds, VineSummary};
 use fieldguide_sim::vineyard::field::Season;
 use fieldguide_sim::vineyard::file::{is_vineyard, VineyardFile, BUILTIN};
 use fieldguide_sim::vineyard::{
@@ -445,4 +446,65 @@ fn rows_and_a_headland_turn_switched_by_the_core_pipeline() {
     broken.fault = Some(Fault::FlippedLateralGain);
     let out = drive(&broken);
     assert!(turns_hold(&broken, &out).is_err());
+}
+
+#[test]
+fn a_sweep_of_a_vine_row_run_is_its_single_runs() {
+    // `fieldguide sweep` on a built-in vine-row run and on a file of one:
+    // one row per seed, the same as the single runs, the worst row on
+    // screen, `sweep.csv` written.
+    let dir = std::env::temp_dir().join(format!("vineyard-sweep-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let name = "vineyard-winter-s2";
+    let text = BUILTIN.iter().find(|(n, _)| *n == name).unwrap().1;
+    let file = dir.join("mine.toml");
+    std::fs::write(&file, text.replace(name, "my-vines")).unwrap();
+    let base = VineyardFile::parse(text, name).unwrap().run(name).unwrap();
+    let singles: Vec<VineSummary> = [3, 4]
+        .iter()
+        .map(|&seed| {
+            let run = VineyardRun {
+                seed,
+                ..base.clone()
+            };
+            VineSummary::of(&run, &drive(&run))
+        })
+        .collect();
+    assert_ne!(singles[0], singles[1]);
+    let library = vine_sweep(&base, Seeds::new(3, 4).unwrap(), |_| {});
+    assert_eq!(library.rows, singles);
+    for (scenario, folder) in [
+        (name.to_owned(), name),
+        (file.display().to_string(), "my-vines"),
+    ] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_fieldguide"))
+            .args(["sweep", &scenario, "--seeds", "3..=4", "--out"])
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{stdout}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let csv = std::fs::read_to_string(dir.join(folder).join("sweep.csv")).unwrap();
+        assert_eq!(csv, sweep_csv(&singles), "{scenario}");
+        assert!(
+            csv.starts_with("seed,success,reached_end,vines_touched,"),
+            "{csv}"
+        );
+        let worst = singles
+            .iter()
+            .map(|s| s.settled.unwrap().lateral_max_abs)
+            .fold(0.0, f64::max);
+        let line = stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with("worst"))
+            .unwrap();
+        assert!(line.contains(&format!("{worst:.4}")), "{line}");
+        assert!(stdout.contains("failed: none"), "{stdout}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
