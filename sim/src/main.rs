@@ -15,7 +15,8 @@
 //! metrics per seed as it goes, then a "worst" row (the largest value of
 //! each metric over the seeds, with the seed it came from, on the line
 //! below) and the seeds whose run failed, and writes the rows to
-//! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot.
+//! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot. A
+//! vine-row run's sweep has the vine-row figures for columns.
 //!
 //! A crop drive of Guyonneau 2022 (`[crop_drive]`, `guyonneau-crop*`), a
 //! guided mission of Emmi 2024 (`[guiding]`, `welaser-*`) and a vine-row run
@@ -39,7 +40,7 @@ use fieldguide_sim::crop_drive::{self, campaign, CropRun};
 use fieldguide_sim::guiding::{self, file::GuidingFile, GuidingRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
-use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
+use fieldguide_sim::sweep::{self, Cell, Seeds};
 use fieldguide_sim::vineyard::file::VineyardFile;
 use fieldguide_sim::vineyard::{self, VineyardRun};
 use fieldguide_sim::{output, runner, SimError};
@@ -342,7 +343,7 @@ fn print_vineyards(rows: &[VineRow]) {
          |θ|         rad, the heading relative to the row, same stretch\n  \
          max |δR|    rad, the largest rear steering angle of the run\n  \
          touched     trunks and posts a wheel met past the entry (3 m) / in all\n  \
-         success     the end of the row reached touching no vine past the entry"
+         success     the end of the row reached touching no vine from the start"
     );
     for r in rows.iter().filter(|r| !r.outcome.success()) {
         println!("  {}: {:?}", r.name, r.outcome.end);
@@ -455,87 +456,126 @@ fn run_campaign(plan: &str, runs: u32, out: &Path) -> Result<(), SimError> {
 }
 
 /// Runs `scenario` for each seed, printing a row per seed, then the worst
-/// row and the failures; writes `sweep.csv`.
+/// row and the failures; writes `sweep.csv`. A vine-row run sweeps through
+/// `sweep::vine_sweep`, any other scenario through `sweep::sweep`.
 fn run_sweep(scenario: &str, seeds: Seeds, out: &Path) -> Result<(), SimError> {
+    if let Some(run) = vineyard_named(scenario)? {
+        let mut table = SweepTable::<sweep::VineSummary>::new(seeds);
+        let result = sweep::vine_sweep(&run, seeds, |s| table.row(s));
+        return table.finish(out, &result);
+    }
     let source = Source::resolve(scenario)?;
-    let widths: Vec<usize> = COLUMNS.iter().map(|c| c.name.len().max(8)).collect();
-    let line = |first: &str, cells: &mut dyn Iterator<Item = String>| {
+    let mut table = SweepTable::<Summary>::new(seeds);
+    let result = sweep::sweep(&source, seeds, |s| table.row(s))?;
+    table.finish(out, &result)
+}
+
+/// The table a sweep prints as its rows come.
+struct SweepTable<R> {
+    widths: Vec<usize>,
+    total: usize,
+    done: usize,
+    progress: bool,
+    seeds: Seeds,
+    rows: std::marker::PhantomData<R>,
+}
+
+impl<R: sweep::Row> SweepTable<R> {
+    /// Prints the heading.
+    fn new(seeds: Seeds) -> Self {
+        let table = Self {
+            widths: R::COLUMNS.iter().map(|c| c.name.len().max(8)).collect(),
+            total: seeds.iter().count(),
+            done: 0,
+            progress: std::io::stderr().is_terminal(),
+            seeds,
+            rows: std::marker::PhantomData,
+        };
+        println!(
+            "{}",
+            table.line("seed", &mut R::COLUMNS.iter().map(|c| c.name.to_owned()))
+        );
+        table
+    }
+
+    fn line(&self, first: &str, cells: &mut dyn Iterator<Item = String>) -> String {
         let mut text = format!("{first:>10}");
-        for (cell, width) in cells.zip(&widths) {
+        for (cell, width) in cells.zip(&self.widths) {
             text.push_str(&format!(" {cell:>width$}"));
         }
         text
-    };
-    println!(
-        "{}",
-        line("seed", &mut COLUMNS.iter().map(|c| c.name.to_owned()))
-    );
-    let total = seeds.iter().count();
-    let mut done = 0;
-    let progress = std::io::stderr().is_terminal();
-    let result = sweep::sweep(&source, seeds, |s| {
-        done += 1;
-        if progress {
-            eprint!("\r{done}/{total} seeds\r");
+    }
+
+    /// Prints one seed's row.
+    fn row(&mut self, s: &R) {
+        self.done += 1;
+        if self.progress {
+            eprint!("\r{}/{} seeds\r", self.done, self.total);
         }
-        let row = line(
-            &s.seed.to_string(),
-            &mut COLUMNS.iter().map(|c| show((c.cell)(s))),
+        let row = self.line(
+            &s.seed().to_string(),
+            &mut R::COLUMNS.iter().map(|c| show((c.cell)(s))),
         );
         println!("{row}");
-        if let Some(why) = &s.aborted {
-            eprintln!("seed {}: run stopped early: {why}", s.seed);
+        if let Some(why) = s.aborted() {
+            eprintln!("seed {}: run stopped early: {why}", s.seed());
         }
-    })?;
-    let worst: Vec<Option<(u64, Cell)>> = COLUMNS
-        .iter()
-        .map(|c| sweep::worst(&result.rows, c))
-        .collect();
-    println!(
-        "{}",
-        line(
-            "worst",
-            &mut worst
-                .iter()
-                .map(|w| w.map_or_else(|| "-".to_owned(), |(_, c)| show(c)))
-        )
-    );
-    println!(
-        "{}",
-        line(
-            "at seed",
-            &mut worst.iter().map(|w| match w {
-                // No seed is to blame for a column where every run did well.
-                None | Some((_, Cell::Flag(true) | Cell::Count(0))) => "-".to_owned(),
-                Some((seed, _)) => seed.to_string(),
-            })
-        )
-    );
-    let failed = sweep::failed_seeds(&result.rows);
-    let failures = if failed.is_empty() {
-        "none".to_owned()
-    } else {
-        failed
+    }
+
+    /// Prints the worst row, the seeds it came from and the failures;
+    /// writes `sweep.csv`.
+    fn finish(&self, out: &Path, result: &sweep::Sweep<R>) -> Result<(), SimError> {
+        let worst: Vec<Option<(u64, Cell)>> = R::COLUMNS
             .iter()
-            .map(u64::to_string)
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    println!(
-        "{}: {} seeds ({seeds}), failed: {failures}",
-        result.scenario,
-        result.rows.len()
-    );
-    let file = output::write_sweep(out, &result)?;
-    println!("{}: wrote {}", result.scenario, file.display());
-    Ok(())
+            .map(|c| sweep::worst(&result.rows, c))
+            .collect();
+        println!(
+            "{}",
+            self.line(
+                "worst",
+                &mut worst
+                    .iter()
+                    .map(|w| w.map_or_else(|| "-".to_owned(), |(_, c)| show(c)))
+            )
+        );
+        println!(
+            "{}",
+            self.line(
+                "at seed",
+                &mut worst.iter().map(|w| match w {
+                    // No seed is to blame for a column where every run did well.
+                    None | Some((_, Cell::Flag(true) | Cell::Count(0))) => "-".to_owned(),
+                    Some((seed, _)) => seed.to_string(),
+                })
+            )
+        );
+        let failed = sweep::failed_seeds(&result.rows);
+        let failures = if failed.is_empty() {
+            "none".to_owned()
+        } else {
+            failed
+                .iter()
+                .map(u64::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        println!(
+            "{}: {} seeds ({}), failed: {failures}",
+            result.scenario,
+            result.rows.len(),
+            self.seeds
+        );
+        let file = output::write_sweep(out, result)?;
+        println!("{}: wrote {}", result.scenario, file.display());
+        Ok(())
+    }
 }
 
 /// A cell of the sweep table as printed.
 fn show(cell: Cell) -> String {
     match cell {
-        Cell::Metres(None) => "-".to_owned(),
-        Cell::Metres(Some(v)) => format!("{v:.4}"),
+        Cell::Metres(None) | Cell::Radians(None) => "-".to_owned(),
+        Cell::Metres(Some(v)) | Cell::Radians(Some(v)) => format!("{v:.4}"),
         Cell::Plain(v) => format!("{v:.2}"),
         Cell::Count(n) => n.to_string(),
         Cell::Flag(true) => "yes".to_owned(),
