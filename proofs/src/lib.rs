@@ -10,6 +10,9 @@
 //!   of its delays, a [`switching::Monitor`] that keeps the history counters
 //!   the properties need, and the stateright [`switching::SwitchingModel`]
 //!   whose transitions call the real `step`.
+//! - [`evidence`]: the record of what each proof explored, for
+//!   `fieldguide evidence`.
 #![forbid(unsafe_code)]
 
+pub mod evidence;
 pub mod switching;
