@@ -89,13 +89,11 @@ pub fn gather(root: &Path, duvet: &Path) -> Matrix {
     if requirements.is_empty() {
         problems.push("no `### ID: title` requirement found in spec/*.md".to_owned());
     }
-    let citations = match run_duvet(root, duvet) {
-        Ok(c) => c,
-        Err(e) => {
-            problems.push(e);
-            BTreeMap::new()
-        }
+    let (citations, duvet_failed) = match run_duvet(root, duvet) {
+        Ok(found) => found,
+        Err(e) => (BTreeMap::new(), Some(e)),
     };
+    problems.extend(duvet_failed);
     for r in &mut requirements {
         for (kind, (file, line)) in citations
             .get(&(r.file.clone(), r.heading()))
@@ -270,9 +268,17 @@ enum Kind {
 type Citations = BTreeMap<(String, String), Vec<(Kind, (String, u64))>>;
 
 /// Runs `duvet report --ci --require-citations true --require-tests true
-/// --json` in `root` and reads its JSON.
-fn run_duvet(root: &Path, duvet: &Path) -> Result<Citations, String> {
-    let dir = std::env::temp_dir().join(format!("fieldguide-evidence-{}", std::process::id()));
+/// --json` in `root` and reads its JSON: the citations, and duvet's own
+/// check failing, in words (its JSON is still read then).
+///
+/// # Errors
+/// When duvet cannot run or writes no readable JSON.
+fn run_duvet(root: &Path, duvet: &Path) -> Result<(Citations, Option<String>), String> {
+    let dir = std::env::temp_dir().join(format!(
+        "fieldguide-evidence-{}-{:?}",
+        std::process::id(),
+        std::thread::current().id()
+    ));
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let json = dir.join("duvet.json");
     let json_arg = json.to_string_lossy().into_owned();
@@ -292,12 +298,15 @@ fn run_duvet(root: &Path, duvet: &Path) -> Result<Citations, String> {
     );
     let text = std::fs::read_to_string(&json);
     let _ = std::fs::remove_dir_all(&dir);
-    // duvet's own check failing is red even when the matrix below looks whole.
-    ran.map_err(|e| format!("duvet: {e}"))?;
-    let text = text.map_err(|e| format!("duvet wrote no JSON report: {e}"))?;
+    let check = ran.err().map(|e| format!("duvet: {e}"));
+    let text = text.map_err(|e| {
+        check
+            .clone()
+            .unwrap_or_else(|| format!("duvet wrote no JSON report: {e}"))
+    })?;
     let report: Value =
         serde_json::from_str(&text).map_err(|e| format!("duvet's JSON report: {e}"))?;
-    citations(&report)
+    Ok((citations(&report)?, check))
 }
 
 /// The citations of duvet's JSON report (`--json`): the annotations without
