@@ -25,6 +25,12 @@
 //! `fieldguide campaign guyonneau2022 [--runs N]` runs that paper's test
 //! plan.
 //!
+//! `fieldguide evidence` writes `<out>/evidence/{index.html, evidence.json}`:
+//! the requirement matrix, the proofs' records, every built-in scenario and
+//! the sweeps against their bounds, the last benchmarks and the provenance;
+//! it exits with 1 when a section is incomplete (README.md, "Evidence for a
+//! safety assessor").
+//!
 //! An unusable scenario stops the program with a message naming the file and
 //! the field, and exit code 2; so do an unknown scenario and a malformed or
 //! empty seed range (`--seeds 5..=4`).
@@ -43,7 +49,7 @@ use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds};
 use fieldguide_sim::vineyard::file::VineyardFile;
 use fieldguide_sim::vineyard::{self, VineyardRun};
-use fieldguide_sim::{output, runner, SimError};
+use fieldguide_sim::{evidence, output, runner, SimError};
 
 #[derive(Debug, Parser)]
 #[command(
@@ -91,6 +97,37 @@ enum Command {
         #[arg(long, value_name = "FIRST..=LAST")]
         seeds: Seeds,
     },
+    /// Write the evidence report for a safety assessor to
+    /// `<out>/evidence/{index.html, evidence.json}`: the requirement matrix
+    /// (from duvet's JSON report), the proofs' records (written by `cargo
+    /// test -p fieldguide-proofs` into $FIELDGUIDE_EVIDENCE_DIR, default
+    /// target/evidence), every built-in scenario and the sweeps against their
+    /// bounds, the last criterion run, and the commit, toolchain and
+    /// dependencies with licences. Exits with 1, the report marked
+    /// incomplete in red, when a requirement lacks an implementation or a
+    /// test, duvet is missing, a proof record is missing, failed or from
+    /// another commit, a run breaks a bound, there are no benchmark results
+    /// (unless --no-benchmarks), or the tree has uncommitted changes.
+    Evidence {
+        /// The project's root (spec/, .duvet/, proofs/tests/).
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+        /// The seeds of each sweep (hedge-following, furrow-pursuing).
+        #[arg(long, value_name = "FIRST..=LAST", default_value = "1..=10")]
+        sweep_seeds: Seeds,
+        /// Skip the scenarios and the sweeps (shown as skipped).
+        #[arg(long)]
+        no_closed_loop: bool,
+        /// Benchmarks deliberately skipped (shown as skipped, not red).
+        #[arg(long)]
+        no_benchmarks: bool,
+        /// The duvet program.
+        #[arg(long, default_value = "duvet")]
+        duvet: PathBuf,
+        /// Criterion's folder [default: <root>/target/criterion].
+        #[arg(long)]
+        criterion: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -107,6 +144,30 @@ fn main() -> ExitCode {
         },
         Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
         Some(Command::Sweep { scenario, seeds }) => run_sweep(&scenario, seeds, &cli.out),
+        Some(Command::Evidence {
+            root,
+            sweep_seeds,
+            no_closed_loop,
+            no_benchmarks,
+            duvet,
+            criterion,
+        }) => {
+            let mut options = evidence::Options::new(&root, &cli.out);
+            options.sweep_seeds = (!no_closed_loop).then_some(sweep_seeds);
+            options.skip_benchmarks = no_benchmarks;
+            options.duvet = duvet;
+            if let Some(dir) = criterion {
+                options.criterion = dir;
+            }
+            return match run_evidence(&options) {
+                Ok(true) => ExitCode::SUCCESS,
+                Ok(false) => ExitCode::from(1),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
         None => run_all(&cli.out),
     };
     match result {
@@ -116,6 +177,54 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Writes the evidence report; `true` when it is complete (every section
+/// passed, none skipped but those deliberately skipped).
+fn run_evidence(options: &evidence::Options) -> Result<bool, SimError> {
+    let started = std::time::Instant::now();
+    let report = evidence::Report::gather(options)?;
+    let dir = report.write(&options.out.join("evidence"))?;
+    let sections = [
+        (
+            "provenance",
+            report.provenance.status,
+            &report.provenance.problems,
+        ),
+        (
+            "requirements",
+            report.requirements.status,
+            &report.requirements.problems,
+        ),
+        ("proofs", report.proofs.status, &report.proofs.problems),
+        (
+            "closed loop",
+            report.closed_loop.status,
+            &report.closed_loop.problems,
+        ),
+        (
+            "benchmarks",
+            report.benchmarks.status,
+            &report.benchmarks.problems,
+        ),
+    ];
+    for (name, status, problems) in sections {
+        println!("{name:14} {}", status.label());
+        for p in problems {
+            println!("    {p}");
+        }
+    }
+    println!(
+        "{} requirements, {} proofs, {} runs, {} sweeps, {} benchmarks in {:.1} s; wrote {}",
+        report.requirements.requirements.len(),
+        report.proofs.proofs.len(),
+        report.closed_loop.runs.len(),
+        report.closed_loop.sweeps.len(),
+        report.benchmarks.benchmarks.len(),
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    Ok(report.status != evidence::Status::Fail)
 }
 
 /// Runs a crop drive, a vine-row run or a scenario of the general runner.
