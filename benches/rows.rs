@@ -26,7 +26,7 @@ use core::hint::black_box;
 use core::time::Duration;
 use std::time::Instant;
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, Criterion};
 use fieldguide::perception::rows::points::{
     merge_runs, scan_points, scan_points_with, Points, Rays,
 };
@@ -184,5 +184,39 @@ fn rows(c: &mut Criterion) {
     group.finish();
 }
 
+/// The drive's ticks once, in order, from the detector that follows the
+/// rows; the mean time per tick. Alone in its function for a profiler:
+/// `valgrind --tool=callgrind --toggle-collect='*drive_once*'` counts the
+/// instructions of these ticks alone.
+#[inline(never)]
+fn drive_once(start: &Rows, scans: &[(RawScan, Pose2<Odom>)]) -> Duration {
+    let mut detector = start.clone();
+    let t = Instant::now();
+    for (raw, odometry) in scans {
+        black_box(detector.observe(black_box(&raw.scan()), odometry).unwrap());
+    }
+    t.elapsed() / scans.len() as u32
+}
+
 criterion_group!(benches, rows);
-criterion_main!(benches);
+
+/// `ROWS_DRIVE=<crop>/<variant>` (e.g. `4/RGOP`) runs that drive once and
+/// prints its mean tick, without criterion: a deterministic workload for an
+/// instruction count on a busy machine.
+fn main() {
+    if let Ok(which) = std::env::var("ROWS_DRIVE") {
+        let (n, name) = which.split_once('/').expect("ROWS_DRIVE=<crop>/<variant>");
+        let n: usize = n.parse().expect("a crop number");
+        let variant = Variant::from_name(name).expect("a variant's name");
+        let (start, scans, points) = drive(variant, n);
+        let tick = drive_once(&start, &scans);
+        println!(
+            "crop{n}/{}: {} ticks, {points:.1} points, {tick:?} per tick",
+            variant.name(),
+            scans.len()
+        );
+        return;
+    }
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}
