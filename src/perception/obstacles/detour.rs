@@ -4,8 +4,8 @@
 //!
 //! A circle is passed beside it, a segment round one of its ends; the two
 //! Dubins legs start → waypoint → goal (GoToGoal, section 3.1) must keep the
-//! footprint clear of every obstacle by the safety margin, which
-//! [`clear_along`] checks with steps no longer than the clearance allows.
+//! footprint clear of every obstacle by the safety margin, as a check
+//! stepping no farther than the clearance allows shows (EM-OBST-CLEAR).
 
 use heapless::Vec;
 
