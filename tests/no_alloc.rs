@@ -427,3 +427,50 @@ fn vine_detection_and_four_wheel_steering_laws_do_not_allocate() {
     );
     assert!(commands.iter().filter(|c| c.is_some()).count() > 40);
 }
+
+//= spec/library.md#lib-no-alloc-no-allocation
+//= type=test
+//# The core MUST be `no_std` and MUST NOT allocate on the heap: buffers have a
+//# fixed capacity, and a full buffer is a returned value, not a panic.
+#[test]
+fn mission_supervisor_does_not_allocate() {
+    use fieldguide::perception::obstacles::Hazard;
+    use fieldguide::supervisor::mission::{
+        Command, Mission, MissionConfig, MissionInput, Row, Task,
+    };
+    let p = |x: f64, y: f64, h: f64| Pose2::<World>::new(x, y, h).unwrap();
+    let road = Task::approximation(&[p(4.0, 0.0, 0.0), p(8.0, 0.0, 0.0)]).unwrap();
+    let row = Row {
+        start: p(12.0, 0.0, 0.0),
+        length: Meters::new(5.0).unwrap(),
+    };
+    let tasks = [road, Task::treatment(&[row]).unwrap()];
+    let mut mission = Mission::new(MissionConfig::carob().unwrap(), &tasks).unwrap();
+    let step = Pose2::<Robot>::new(0.05, 0.0, 0.0).unwrap();
+    let mut truth = p(0.0, 0.0, 0.0);
+    let mut follows = 0;
+    // Fixes, odometry, every hazard, lines and Dubins detours planned.
+    let count = allocations_in(|| {
+        for k in 0_u32..300 {
+            let hazard = match k % 50 {
+                10 => Hazard::Critical,
+                20 => Hazard::Warning {
+                    detour: Some(p(truth.position.x() + 1.0, truth.position.y(), 0.0)),
+                },
+                _ => Hazard::Clear,
+            };
+            let out = mission.tick(&MissionInput {
+                gnss: (k % 7 != 0).then_some(truth),
+                odometry: step,
+                hazard,
+                in_field: false,
+            });
+            if matches!(out.command, Command::Follow(_)) {
+                follows += 1;
+            }
+            truth = truth.body_to_frame::<Robot>().apply_pose(step).unwrap();
+        }
+    });
+    assert_eq!(count, 0, "the mission supervisor allocated {count} times");
+    assert!(follows > 200, "{follows}");
+}

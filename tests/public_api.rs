@@ -83,14 +83,16 @@ use fieldguide::perception::furrow::selection::{
 };
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams, RowLines, Rows};
 use fieldguide::perception::obstacles::{
-    assess, cluster, detour, AreaLength, ClusterConfig, Footprint, Obstacle, ObstacleConfig,
-    Obstacles,
+    assess, cluster, detour, AreaLength, ClusterConfig, Footprint, Hazard, Obstacle,
+    ObstacleConfig, Obstacles,
 };
 use fieldguide::perception::rows::filter::{
     seen_from, side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig,
     RowFilter,
 };
-use fieldguide::perception::rows::points::{merge_runs, scan_points, Points, RowPoint};
+use fieldguide::perception::rows::points::{
+    merge_runs, scan_points, scan_points_with, Points, Rays, RowPoint,
+};
 use fieldguide::perception::rows::ruby::{Ruby, RubyConfig, RubyParams, Variant};
 use fieldguide::perception::rows::spacing::{
     closest_pair, row_distance, SpacingConfig, SpacingEstimator,
@@ -1491,6 +1493,12 @@ proptest! {
         let gathered = check!("perception::rows::points::scan_points", scan_points(&scan, &mount, &mut points));
         names_a_requirement("scan_points", &gathered);
         all_finite("scan_points' points", &points);
+        // The same points through a table of the rays, shorter than the scan.
+        let mut rays: Rays<16> = check!("perception::rows::points::Rays::new", Rays::new());
+        let mut tabled: Points<64> = Points::new();
+        let again = check!("perception::rows::points::scan_points_with", scan_points_with(&scan, &mount, &mut rays, &mut tabled));
+        prop_assert_eq!(&again, &gathered);
+        prop_assert_eq!(&tabled, &points);
         check!("perception::rows::points::merge_runs", { merge_runs(&mut points, merge); points.clone() });
         let mut drawn: Points<64> = xy
             .iter()
@@ -1627,6 +1635,83 @@ proptest! {
         check!("supervisor::crop_navigation::in_travel_frame", in_travel_frame(&sides, &[a, b], backward));
         let c = Command::Differential { left: MetersPerSecond::new(sl).unwrap(), right: MetersPerSecond::new(sr).unwrap() };
         check!("supervisor::crop_navigation::to_body", to_body(&c, backward));
+    }
+}
+
+// ---------------------------------------------------------------- mission supervisor
+
+fn hazard() -> BoxedStrategy<Hazard> {
+    prop_oneof![
+        Just(Hazard::Clear),
+        Just(Hazard::Critical),
+        prop::option::of(pose::<World>()).prop_map(|detour| Hazard::Warning { detour }),
+    ]
+    .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn mission_supervisor(
+        period in seconds(), stall in seconds(), leg in seconds(), ticks16 in (0..20_u16, 0..20_u16),
+        lengths in (meters(), meters(), meters()), waypoints in prop::collection::vec(pose::<World>(), 0..4),
+        row_start in pose::<World>(), gnss_poses in prop::collection::vec((prop::option::of(pose::<World>()), pose::<Robot>(), hazard(), any::<bool>()), 1..40),
+        index in 0..4_u8,
+    ) {
+        use fieldguide::supervisor::mission as mi;
+        check!("supervisor::mission::config::MachineConfig::from_ticks", mi::MachineConfig::from_ticks(ticks16.0, ticks16.1));
+        check!("supervisor::mission::config::MachineConfig::new", mi::MachineConfig::new(period, stall, leg));
+        let carob = check!("supervisor::mission::config::MissionConfig::carob", mi::MissionConfig::carob()).unwrap();
+        let machine = mi::MachineConfig::new(period, stall, leg).unwrap_or(carob.machine);
+        check!("supervisor::mission::config::MachineConfig::stall_ticks", machine.stall_ticks());
+        check!("supervisor::mission::config::MachineConfig::leg_ticks", machine.leg_ticks());
+        #[cfg(feature = "fault-injection")]
+        {
+            let faulty = check!("supervisor::mission::config::MachineConfig::with_fault", machine.with_fault(mi::Fault::ReplanInField));
+            check!("supervisor::mission::config::MachineConfig::fault", faulty.fault());
+        }
+        let speeds = (carob.cruise_speed, carob.turn_speed);
+        let config = check!("supervisor::mission::config::MissionConfig::new", mi::MissionConfig::new(machine, lengths.0, lengths.1, lengths.2, carob.radius, speeds)).unwrap_or(carob);
+        let road = check!("supervisor::mission::tasks::Task::approximation", mi::Task::approximation(&waypoints));
+        let row = mi::Row { start: row_start, length: lengths.0 };
+        let field = check!("supervisor::mission::tasks::Task::treatment", mi::Task::treatment(&[row, row]));
+        let tasks: Vec<mi::Task> = [road, field].into_iter().filter_map(Result::ok).collect();
+        for task in &tasks {
+            check!("supervisor::mission::tasks::Task::kind", task.kind());
+            check!("supervisor::mission::tasks::Task::legs", task.legs());
+        }
+        let shape = check!("supervisor::mission::tasks::Shape::of", mi::Shape::of(&tasks));
+        check!("supervisor::mission::tasks::Shape::from_legs", mi::Shape::from_legs(&[(mi::TaskKind::Treatment, index)]));
+        check!("supervisor::mission::tasks::Shape::len", shape.len());
+        check!("supervisor::mission::tasks::Shape::is_empty", shape.is_empty());
+        check!("supervisor::mission::tasks::Shape::task", shape.task(index));
+        let mut localiser = check!("supervisor::mission::localisation::Localiser::new", mi::Localiser::new(lengths.2));
+        let mut mission = check!("supervisor::mission::supervisor::Mission::new", mi::Mission::new(config, &tasks)).unwrap();
+        let mut state = check!("supervisor::mission::machine::MissionState::initial", mi::MissionState::initial(&shape));
+        for (gnss, odometry, hazard, in_field) in gnss_poses {
+            let fix = check!("supervisor::mission::localisation::Localiser::update", localiser.update(gnss, &odometry));
+            check!("supervisor::mission::localisation::Fix::pose", fix.pose());
+            check!("supervisor::mission::localisation::Fix::status", fix.status());
+            let out = check!("supervisor::mission::supervisor::Mission::tick", mission.tick(&mi::MissionInput { gnss, odometry, hazard, in_field }));
+            prop_assert!(out.speed.get() >= 0.0);
+            check!("supervisor::mission::Command::tool_on", out.command.tool_on());
+            if let Some(plan) = out.plan {
+                check!("supervisor::mission::supervisor::Plan::goal", plan.goal());
+                check!("supervisor::mission::supervisor::Plan::length", plan.length());
+                prop_assert!(check!("supervisor::mission::supervisor::Plan::is_forward", plan.is_forward()));
+                check!("supervisor::mission::supervisor::Plan::to_reference_path", plan.to_reference_path::<64>(lengths.1));
+            }
+            let events = mi::Events { in_field, localisation: fix.status(), ..mi::Events::NOMINAL };
+            let (next, _) = check!("supervisor::mission::machine::step", mi::step(&machine, &shape, &state, &events));
+            state = next;
+        }
+        let s = check!("supervisor::mission::supervisor::Mission::state", mission.state());
+        check!("supervisor::mission::machine::MissionState::phase", s.phase());
+        check!("supervisor::mission::machine::MissionState::leg", s.leg());
+        check!("supervisor::mission::machine::MissionState::detour", s.detour());
+        check!("supervisor::mission::machine::MissionState::leg_ticks", s.leg_ticks());
+        check!("supervisor::mission::machine::MissionState::stall_ticks", s.stall_ticks());
     }
 }
 

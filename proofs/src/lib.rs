@@ -10,6 +10,14 @@
 //!   of its delays, a [`switching::Monitor`] that keeps the history counters
 //!   the properties need, and the stateright [`switching::SwitchingModel`]
 //!   whose transitions call the real `step`.
+//! - [`mission`]: the mission machine of Emmi 2024, sections 3.1-3.2
+//!   (`spec/emmi2024.md`, EM-MISSION-M1 to M5): a [`mission::Monitor`] of the
+//!   properties and the stateright [`mission::MissionModel`] whose transitions
+//!   call the real `step`.
+//! - [`evidence`]: the record of what each proof explored, for
+//!   `fieldguide evidence`.
 #![forbid(unsafe_code)]
 
+pub mod evidence;
+pub mod mission;
 pub mod switching;
