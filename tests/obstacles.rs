@@ -686,9 +686,10 @@ proptest! {
     //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
     //= type=test
     //# The waypoint of a segment MUST lie beyond one of its ends, along the
-    //# segment, at width/2 + margin + k · step (plus the same extra offsets)
-    //# from that end, with the planned path's heading where it passes nearest
-    //# to the segment's midpoint.
+    //# segment, or beside one of its ends, to the left or the right of the
+    //# planned path's heading, at width/2 + margin + k · step (plus the same
+    //# extra offsets) from that end, with the planned path's heading where it
+    //# passes nearest to the segment's midpoint.
     #[test]
     fn a_wall_across_the_path_is_rounded_at_an_end_and_moves_rigidly(
         x in 3.0..4.5_f64, left in 0.2..1.5_f64, right in 0.2..1.5_f64,
@@ -697,12 +698,18 @@ proptest! {
         let wall = segment((x, -right), (x, left));
         let base = run(&[wall], &world(0.0, 0.0, 0.0), &world(30.0, 0.0, 0.0), false);
         let w = waypoint_of(&base);
-        // Beyond the end it goes round, along the wall, at the offsets.
+        // On the wall's line (along it, or across the path from an end:
+        // the same line here), at the offsets from one end, and past the
+        // end it goes round by at least the first offset.
         let k = 1.0 + 0.75_f64.hypot(0.88);
         let off = 0.88 + 0.3 + k * 0.02;
-        let beyond = if w.position.y() > 0.0 { w.position.y() - left } else { -right - w.position.y() };
         prop_assert!((w.position.x() - x).abs() < 1e-9);
-        prop_assert!([0.0, 0.5, 1.0, 2.0].iter().any(|e| (beyond - off - e * 1.18).abs() < 1e-6), "beyond {beyond}");
+        let from_an_end = [left, -right].iter().any(|end| {
+            [0.0, 0.5, 1.0, 2.0].iter().any(|e| ((w.position.y() - end).abs() - off - e * 1.18).abs() < 1e-6)
+        });
+        prop_assert!(from_an_end, "{w:?}");
+        let beyond = if w.position.y() > 0.0 { w.position.y() - left } else { -right - w.position.y() };
+        prop_assert!(beyond >= off - 1e-9, "beyond {beyond}");
         prop_assert!(legs_clearance(&world(0.0, 0.0, 0.0), &w, &world(30.0, 0.0, 0.0), &[wall]) >= 0.3 - 1e-9);
         // The shorter end when the wall is clearly lopsided.
         if (left - right).abs() > 0.3 {
@@ -1146,4 +1153,84 @@ fn a_detour_may_leave_far_obstacles_for_later() {
     )
     .unwrap();
     assert_eq!(far, DetourPlan::NoClearSide);
+}
+
+/// A long object alongside the path (a parked trailer) reaching into the
+/// robot's corridor: no waypoint along it helps, one beside an end does.
+//= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
+//= type=test
+//# The waypoint of a segment MUST lie beyond one of its ends, along the
+//# segment, or beside one of its ends, to the left or the right of the
+//# planned path's heading, at width/2 + margin + k · step (plus the same
+//# extra offsets) from that end, with the planned path's heading where it
+//# passes nearest to the segment's midpoint.
+#[test]
+fn a_long_object_alongside_is_passed_beside_an_end() {
+    let (pose, goal) = (world(0.0, 0.0, 0.0), world(30.0, 0.0, 0.0));
+    for y in [0.6, 0.8, 1.0] {
+        for sign in [1.0, -1.0] {
+            let trailer = segment((3.5, sign * y), (9.0, sign * y));
+            let a = run(&[trailer], &pose, &goal, false);
+            let w = waypoint_of(&a);
+            // Beside an end, on the side away from the trailer, heading along the path.
+            let k = 1.0 + 0.75_f64.hypot(0.88);
+            let off = 0.88 + 0.3 + k * 0.02;
+            assert!(
+                [3.5, 9.0].iter().any(|x| (w.position.x() - x).abs() < 1e-9),
+                "{w:?}"
+            );
+            let beside = sign * (sign * y - w.position.y());
+            assert!(
+                [0.0, 0.5, 1.0, 2.0]
+                    .iter()
+                    .any(|e| (beside - off - e * 1.18).abs() < 1e-6),
+                "y {y}, sign {sign}: {w:?}"
+            );
+            assert!(w.heading.get().abs() < 1e-9);
+            assert!(legs_clearance(&pose, &w, &goal, &[trailer]) >= 0.3 - 1e-9);
+        }
+    }
+}
+
+/// Walls seen through 1 cm of range noise, 100 seeds: one segment each, its
+/// ends near the wall's line and its ends.
+//= spec/emmi2024.md#em-obst-shape-circles-and-segments
+//= type=test
+//# Any other cluster MUST be split at its point farthest from the chord
+//# joining its first and last points until no point of a part is farther
+//# than the split tolerance from the part's chord; each such part MUST
+//# become the segment of its chord.
+#[test]
+fn walls_through_range_noise() {
+    use rand_core::SeedableRng;
+    let (mut worst_line, mut worst_end) = (0.0_f64, 0.0_f64);
+    for seed in 0..100_u64 {
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+        let d = 2.0 + 4.0 * (seed % 11) as f64 / 10.0;
+        let tilt = -0.5 + (seed % 9) as f64 / 8.0;
+        let (ux, uy) = (tilt.sin(), tilt.cos());
+        let (a, b) = ((d - 2.0 * ux, -2.0 * uy), (d + 2.0 * ux, 2.0 * uy));
+        let mut ranges = ray_cast(&[segment(a, b)]);
+        for v in &mut ranges {
+            if v.is_finite() {
+                *v += 0.01 * gaussian(&mut rng);
+            }
+        }
+        let obs = cluster::<8>(&scan(&ranges), &identity(), &ClusterConfig::emmi2024());
+        assert_eq!(obs.as_slice().len(), 1, "seed {seed}: {:?}", obs.as_slice());
+        let Obstacle::Segment { start, end } = obs.as_slice()[0] else {
+            panic!("seed {seed}: {:?}", obs.as_slice());
+        };
+        let on_line = |p: Point2<Robot>| ((p.x() - a.0) * uy - (p.y() - a.1) * ux).abs();
+        worst_line = worst_line.max(on_line(start)).max(on_line(end));
+        for e in [a, b] {
+            let near = [start, end]
+                .iter()
+                .map(|p| p.distance_to(pt(e.0, e.1)).unwrap().get())
+                .fold(f64::INFINITY, f64::min);
+            worst_end = worst_end.max(near);
+        }
+    }
+    println!("walls through 1 cm noise, 100 seeds: ends within {worst_line:.4} m of the line, {worst_end:.4} m of the true ends");
+    assert!(worst_line < 0.04 && worst_end < 0.08);
 }

@@ -4,8 +4,8 @@
 //!
 //! A circle is passed beside it, a segment round one of its ends; the two
 //! Dubins legs start → waypoint → goal (GoToGoal, section 3.1) must keep the
-//! footprint clear of every obstacle by the safety margin, which
-//! [`clear_along`] checks with steps no longer than the clearance allows.
+//! footprint clear of every obstacle by the safety margin, as a check
+//! stepping no farther than the clearance allows shows (EM-OBST-CLEAR).
 
 use heapless::Vec;
 
@@ -178,9 +178,10 @@ fn heading_beside(nominal: &DubinsPath, from: Xy, point: Xy, r: f64) -> Option<f
 //# where the path passes nearest to the centre, with that heading.
 //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
 //# The waypoint of a segment MUST lie beyond one of its ends, along the
-//# segment, at width/2 + margin + k · step (plus the same extra offsets)
-//# from that end, with the planned path's heading where it passes nearest
-//# to the segment's midpoint.
+//# segment, or beside one of its ends, to the left or the right of the
+//# planned path's heading, at width/2 + margin + k · step (plus the same
+//# extra offsets) from that end, with the planned path's heading where it
+//# passes nearest to the segment's midpoint.
 //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
 //# Among the candidate waypoints whose two legs are clear, the one of least
 //# total length start → waypoint → goal MUST be chosen.
@@ -216,29 +217,67 @@ pub fn detour(
     let unit = half + margin;
     let from = (pose.position.x(), pose.position.y());
     let r = radius.get().get();
-    // (reference point, [(anchor, outward direction)] , extra to the offset)
-    let (reference, anchors, own) = match scene.world(target) {
-        Shape::Circle(c, rho) => (c, [(c, None), (c, None)], rho),
-        Shape::Segment(a, b) => {
-            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-            let len = libm::hypot(dx, dy);
-            let mid = (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1));
-            if len > 0.0 {
-                let u = (dx / len, dy / len);
-                (mid, [(b, Some(u)), (a, Some((-u.0, -u.1)))], 0.0)
-            } else {
-                (mid, [(a, None), (a, None)], 0.0)
-            }
-        }
+    let shape = scene.world(target);
+    let reference = match shape {
+        Shape::Circle(c, _) => c,
+        Shape::Segment(a, b) => (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1)),
     };
     let Some(heading) = heading_beside(&nominal, from, reference, r) else {
         return Ok(DetourPlan::NoClearSide);
     };
     let left = (-libm::sin(heading), libm::cos(heading));
-    let mut candidates: Vec<(f64, usize, Pose2<World>, DubinsPath, DubinsPath), 8> = Vec::new();
-    for (side, (anchor, outward)) in anchors.into_iter().enumerate() {
-        let sign = if side == 0 { 1.0 } else { -1.0 };
-        let dir = outward.unwrap_or((sign * left.0, sign * left.1));
+    let right = (-left.0, -left.1);
+    // Each anchor and the direction its waypoints lie in; the obstacle's
+    // own extent beyond the anchor.
+    let (anchors, count, own): ([(Xy, Xy); 6], usize, f64) = match shape {
+        Shape::Circle(c, rho) => (
+            [
+                (c, left),
+                (c, right),
+                (c, left),
+                (c, left),
+                (c, left),
+                (c, left),
+            ],
+            2,
+            rho,
+        ),
+        Shape::Segment(a, b) => {
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len = libm::hypot(dx, dy);
+            if len > 0.0 {
+                let u = (dx / len, dy / len);
+                let back = (-u.0, -u.1);
+                (
+                    [
+                        (b, u),
+                        (a, back),
+                        (b, left),
+                        (b, right),
+                        (a, left),
+                        (a, right),
+                    ],
+                    6,
+                    0.0,
+                )
+            } else {
+                (
+                    [
+                        (a, left),
+                        (a, right),
+                        (a, left),
+                        (a, left),
+                        (a, left),
+                        (a, left),
+                    ],
+                    2,
+                    0.0,
+                )
+            }
+        }
+    };
+    let mut candidates: Vec<(f64, usize, Pose2<World>, DubinsPath, DubinsPath), 24> = Vec::new();
+    for (anchor, dir) in anchors.into_iter().take(count) {
         for extra in EXTRA {
             let offset = own + base + extra * unit;
             let Ok(waypoint) = Pose2::new(
