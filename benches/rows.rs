@@ -7,6 +7,11 @@
 //! order of a 30 m drive along 40 m rows, each timed alone. `cargo bench
 //! --bench rows` prints, before the timings, the mean number of points after
 //! Z* per crop and variant.
+//!
+//! `crop<n>/RGOP/find` times the line finder alone on the drive's Z*, in
+//! order, and `crop<n>/RGOP/reference` the straightforward reference of the
+//! tests (`tests/rows_reference`, the same outputs bit for bit) on the same
+//! points: the ratio of the two, measured in one run, is the optimisation's.
 #![allow(
     missing_docs,
     clippy::unwrap_used,
@@ -22,16 +27,21 @@ use core::time::Duration;
 use std::time::Instant;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fieldguide::perception::rows::points::{merge_runs, scan_points, Points};
-use fieldguide::perception::rows::ruby::{RubyParams, Variant};
+use fieldguide::perception::rows::points::{
+    merge_runs, scan_points, scan_points_with, Points, Rays,
+};
+use fieldguide::perception::rows::ruby::{Ruby, RubyConfig, RubyParams, Variant};
 use fieldguide::perception::rows::{RowsConfig, RowsDetector, RowsParams};
 use fieldguide::perception::Detector;
 use fieldguide::{Odom, Pose2};
 
 #[path = "../tests/crop_scans/mod.rs"]
 mod crop_scans;
+#[path = "../tests/rows_reference/mod.rs"]
+mod rows_reference;
 
 use crop_scans::{crop, Lidar, Mount, Pose, RawScan};
+use rows_reference::Reference;
 
 /// Scans at rest (the row distance), then scans along the drive.
 const STILL: usize = 40;
@@ -120,18 +130,50 @@ fn rows(c: &mut Criterion) {
             });
         }
     }
+    // The line finder alone, and the reference, on each crop's Z*.
+    let mount = Mount::front(0.3).transform();
+    let params = RubyParams::authors(Variant::Rgop);
+    for n in 1..=4 {
+        let (_, scans, _) = drive(Variant::Rgop, n);
+        let z_star: Vec<Points<512>> = scans
+            .iter()
+            .map(|(raw, _)| {
+                let mut points = Points::<512>::new();
+                scan_points(&raw.scan(), &mount, &mut points).unwrap();
+                merge_runs(&mut points, params.merge_distance);
+                points
+            })
+            .collect();
+        let config = RubyConfig::new(params).unwrap();
+        group.bench_function(format!("crop{n}/RGOP/find"), |b| {
+            let mut finder = Ruby::<512>::new(config);
+            let mut k = 0;
+            b.iter(|| {
+                k = (k + 1) % z_star.len();
+                black_box(finder.find(black_box(&z_star[k])))
+            });
+        });
+        group.bench_function(format!("crop{n}/RGOP/reference"), |b| {
+            let mut finder = Reference::new(params);
+            let mut k = 0;
+            b.iter(|| {
+                k = (k + 1) % z_star.len();
+                black_box(finder.find(black_box(&z_star[k])))
+            });
+        });
+    }
     // The share of a tick spent making Z* (the rays to points and the
-    // one-point merge), for the line finder's own cost.
+    // one-point merge, the rays' sines and cosines kept as the detector
+    // keeps them), for the line finder's own cost.
     let (_, scans, _) = drive(Variant::Rgop, 4);
-    let mount = Mount::front(0.3);
-    let mount = mount.transform();
     let mut k = 0;
     group.bench_function("crop4/points_and_z_star", |b| {
         let mut points = Points::<512>::new();
+        let mut rays = Rays::<512>::new();
         b.iter(|| {
             k = (k + 1) % scans.len();
             let scan = scans[k].0.scan();
-            scan_points(black_box(&scan), &mount, &mut points).unwrap();
+            scan_points_with(black_box(&scan), &mount, &mut rays, &mut points).unwrap();
             merge_runs(
                 &mut points,
                 RubyParams::authors(Variant::Rgop).merge_distance,

@@ -82,12 +82,17 @@ use fieldguide::perception::furrow::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing,
 };
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams, RowLines, Rows};
-use fieldguide::perception::obstacles::Hazard;
+use fieldguide::perception::obstacles::{
+    assess, cluster, detour, AreaLength, ClusterConfig, Footprint, Hazard, Obstacle,
+    ObstacleConfig, Obstacles,
+};
 use fieldguide::perception::rows::filter::{
     seen_from, side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig,
     RowFilter,
 };
-use fieldguide::perception::rows::points::{merge_runs, scan_points, Points, RowPoint};
+use fieldguide::perception::rows::points::{
+    merge_runs, scan_points, scan_points_with, Points, Rays, RowPoint,
+};
 use fieldguide::perception::rows::ruby::{Ruby, RubyConfig, RubyParams, Variant};
 use fieldguide::perception::rows::spacing::{
     closest_pair, row_distance, SpacingConfig, SpacingEstimator,
@@ -1488,6 +1493,12 @@ proptest! {
         let gathered = check!("perception::rows::points::scan_points", scan_points(&scan, &mount, &mut points));
         names_a_requirement("scan_points", &gathered);
         all_finite("scan_points' points", &points);
+        // The same points through a table of the rays, shorter than the scan.
+        let mut rays: Rays<16> = check!("perception::rows::points::Rays::new", Rays::new());
+        let mut tabled: Points<64> = Points::new();
+        let again = check!("perception::rows::points::scan_points_with", scan_points_with(&scan, &mount, &mut rays, &mut tabled));
+        prop_assert_eq!(&again, &gathered);
+        prop_assert_eq!(&tabled, &points);
         check!("perception::rows::points::merge_runs", { merge_runs(&mut points, merge); points.clone() });
         let mut drawn: Points<64> = xy
             .iter()
@@ -2107,6 +2118,80 @@ proptest! {
         check!("planning::manager::PlannerThreshold::get", t.get());
         check!("planning::manager::direction_change", direction_change(&a, &b));
         check!("planning::manager::choose_planner", choose_planner(&a, &b, t));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn obstacles(
+        parts in scan_parts(360), limits in limits(), mount in (near(2.0), near(2.0), near(4.0)),
+        lengths in prop::collection::vec(meters(), 8), gains in (fin(), fin()), n in 0_usize..6,
+        shapes in prop::collection::vec((point::<Robot>(), point::<Robot>(), meters(), any::<bool>()), 0..6),
+        a in pose::<World>(), b in pose::<World>(), v in raw(), in_field in any::<bool>(),
+    ) {
+        let (start, increment, ranges) = parts;
+        let scan = Scan { start, increment, ranges: &ranges, limits };
+        let mount = Transform2::<Sensor, Robot>::new(mount.0, mount.1, mount.2).unwrap();
+        let made = check!("perception::obstacles::cluster::ClusterConfig::new", ClusterConfig::new(lengths[0], n, lengths[1], lengths[2]));
+        names_a_requirement("ClusterConfig::new", &made);
+        let cc = made.unwrap_or(check!("perception::obstacles::cluster::ClusterConfig::emmi2024", ClusterConfig::emmi2024()));
+        let mut found = check!("perception::obstacles::cluster::cluster", cluster::<4>(&scan, &mount, &cc));
+        check!("perception::obstacles::cluster::Obstacles::as_slice", found.as_slice());
+        check!("perception::obstacles::cluster::Obstacles::nearest_dropped", found.nearest_dropped());
+        check!("perception::obstacles::cluster::Obstacles::spurious", found.spurious());
+        let mut list = check!("perception::obstacles::cluster::Obstacles::new", Obstacles::<4>::new());
+        for (p, q, r, round) in shapes {
+            let o = if round { Obstacle::Circle { centre: p, radius: r } } else { Obstacle::Segment { start: p, end: q } };
+            check!("perception::obstacles::cluster::Obstacles::insert", list.insert(o));
+            check!("perception::obstacles::cluster::Obstacles::insert", found.insert(o));
+        }
+        let fp = check!("perception::obstacles::areas::Footprint::new", Footprint::new(lengths[3], lengths[4], lengths[5]));
+        names_a_requirement("Footprint::new", &fp);
+        let seconds = |g: f64| Seconds::new(g).unwrap();
+        let critical = check!("perception::obstacles::areas::AreaLength::new", AreaLength::new(lengths[6], seconds(gains.0)));
+        names_a_requirement("AreaLength::new", &critical);
+        let warning = AreaLength::new(lengths[7], seconds(gains.1));
+        let radius = TurningRadius::new(lengths[2]).unwrap_or(TurningRadius::new(m(1.0)).unwrap());
+        let fallback = check!("perception::obstacles::areas::ObstacleConfig::emmi2024", ObstacleConfig::emmi2024(radius));
+        let config = match (fp, critical, warning) {
+            (Ok(fp), Ok(c), Ok(w)) => {
+                let made = check!("perception::obstacles::areas::ObstacleConfig::new", ObstacleConfig::new(fp, lengths[0], c, w, radius, lengths[1]));
+                names_a_requirement("ObstacleConfig::new", &made);
+                made.unwrap_or(fallback)
+            }
+            _ => fallback,
+        };
+        check!("perception::obstacles::areas::ObstacleConfig::footprint", config.footprint());
+        check!("perception::obstacles::areas::ObstacleConfig::margin", config.margin());
+        check!("perception::obstacles::areas::ObstacleConfig::radius", config.radius());
+        let f = config.footprint();
+        check!("perception::obstacles::areas::Footprint::front", f.front());
+        check!("perception::obstacles::areas::Footprint::rear", f.rear());
+        check!("perception::obstacles::areas::Footprint::width", f.width());
+        let speed = MetersPerSecond::new(v).unwrap_or(MetersPerSecond::new(0.5).unwrap());
+        let areas = check!("perception::obstacles::areas::ObstacleConfig::areas", config.areas(speed));
+        names_a_requirement("areas", &areas);
+        if let Ok(areas) = areas {
+            check!("perception::obstacles::areas::SafetyAreas::critical_end", areas.critical_end());
+            check!("perception::obstacles::areas::SafetyAreas::warning_end", areas.warning_end());
+            for o in list.as_slice() {
+                check!("perception::obstacles::areas::SafetyAreas::in_critical", areas.in_critical(o));
+                check!("perception::obstacles::areas::SafetyAreas::in_warning", areas.in_warning(o));
+            }
+        }
+        for o in list.as_slice() {
+            let plan = check!("perception::obstacles::detour::detour", detour(o, list.as_slice(), &a, &b, lengths[3], &config));
+            names_a_requirement("detour", &plan);
+        }
+        for l in [&list, &found] {
+            let verdict = check!("perception::obstacles::assess", assess(l, &a, &b, speed, in_field, &config));
+            names_a_requirement("assess", &verdict);
+            if let Ok(verdict) = verdict {
+                check!("perception::obstacles::Assessment::stops", verdict.stops());
+            }
+        }
     }
 }
 

@@ -14,7 +14,10 @@
 //!   (`spec/emmi2024.md`, EM-MISSION-M1 to M5): a [`mission::Monitor`] of the
 //!   properties and the stateright [`mission::MissionModel`] whose transitions
 //!   call the real `step`.
+//! - [`evidence`]: the record of what each proof explored, for
+//!   `fieldguide evidence`.
 #![forbid(unsafe_code)]
 
+pub mod evidence;
 pub mod mission;
 pub mod switching;

@@ -10,12 +10,15 @@
 //! floating point does not finish on.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bolero::check;
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::supervisor::switching::{
     line_relative_to_path, line_relative_to_path_ahead, PathAhead, PlanTolerance,
 };
 use fieldguide::{Curvature, Meters, Point2, Radians, TrackingError, World};
+use fieldguide_proofs::evidence::{self, Kind};
 
 /// One case: two tracking errors, a two-segment path, where the robot
 /// projects on it, the look-ahead and the tolerances.
@@ -32,8 +35,11 @@ fn error(y: f64, angular_deviation: f64) -> Option<TrackingError> {
 
 #[test]
 fn plan_geometry_is_total_and_the_look_ahead_only_adds_a_condition() {
+    let record = evidence::start("plan geometry, random f64 cases", Kind::Harness);
+    let count = AtomicU64::new(0);
     check!().with_type::<Case>().for_each(
         |&([yl, al, yp, ap], corners, s, d, [max_offset, max_heading])| {
+            count.fetch_add(1, Ordering::Relaxed);
             let (Some(line), Some(path)) = (error(yl, al), error(yp, ap)) else {
                 return;
             };
@@ -87,4 +93,9 @@ fn plan_geometry_is_total_and_the_look_ahead_only_adds_a_condition() {
             }
         },
     );
+    record.finish(&evidence::harness(
+        &["SW-PLAN-AHEAD", "LIB-FINITE"],
+        count.into_inner(),
+        None,
+    ));
 }

@@ -9,9 +9,12 @@
 //! distance or after an earlier Stop, and never ends.
 #![allow(clippy::unwrap_used, clippy::panic, clippy::float_cmp)]
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bolero::{check, generator::TypeGenerator};
 use fieldguide::control::speed_profile::{Braking, SpeedCommand, SpeedProfile, SpeedState};
 use fieldguide::{Meters, MetersPerSecond};
+use fieldguide_proofs::evidence::{self, Kind};
 
 /// Ticks per sequence.
 const DEPTH: usize = 8;
@@ -101,11 +104,19 @@ fn every_move_sequence_keeps_the_speed_profile_safe() {
     let proportional = profile(Braking::Proportional(
         fieldguide::Seconds::new(3.0).unwrap(),
     ));
+    let record = evidence::start("speed profile, every move sequence", Kind::Harness);
+    let count = AtomicU64::new(0);
     check!()
         .with_type::<[Move; DEPTH]>()
         .exhaustive()
         .for_each(|moves| {
+            count.fetch_add(1, Ordering::Relaxed);
             run(&fixed, moves);
             run(&proportional, moves);
         });
+    record.finish(&evidence::harness(
+        &["EM-SPEED-REACH", "EM-SPEED-BRAKE"],
+        count.into_inner(),
+        u64::try_from(DEPTH).ok(),
+    ));
 }

@@ -15,9 +15,12 @@
 //! is ignored), so that 4^12 = 16 777 216 sequences stay within seconds.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bolero::{check, generator::TypeGenerator};
 use fieldguide::supervisor::switching::{Fault, Input, Report, SwitchingConfig};
 use fieldguide::Verdict;
+use fieldguide_proofs::evidence::{self, Kind};
 use fieldguide_proofs::switching::{check_run, config_from_millis, Spec, EDGE_MS, FURROW_MS};
 
 /// Ticks per sequence.
@@ -27,6 +30,34 @@ const PERIOD_MS: u32 = 100;
 /// Stop and plan delays, 3 ticks at 10 Hz.
 const STOP_MS: u32 = 300;
 const PLAN_MS: u32 = 300;
+/// What every harness checks after every tick.
+const PROPERTIES: [&str; 8] = [
+    "SW-S1",
+    "SW-S2",
+    "SW-S3",
+    "SW-S4",
+    "SW-L1",
+    "SW-L2",
+    "SW-P1",
+    "SW-COMMAND-VALID",
+];
+
+/// Runs `body` on every sequence of `T` and records the harness `run`.
+fn exhaustive<T>(run: evidence::Run, body: impl Fn(&T) + std::panic::RefUnwindSafe)
+where
+    T: TypeGenerator + core::fmt::Debug,
+{
+    let count = AtomicU64::new(0);
+    check!().with_type::<T>().exhaustive().for_each(|sequence| {
+        count.fetch_add(1, Ordering::Relaxed);
+        body(sequence);
+    });
+    run.finish(&evidence::harness(
+        &PROPERTIES,
+        count.into_inner(),
+        u64::try_from(DEPTH).ok(),
+    ));
+}
 
 fn parts<const K: usize>(
     behaviours: [(u32, u32); K],
@@ -100,10 +131,10 @@ fn edge_verdicts(config: SwitchingConfig<1>, spec: &Spec<1>, sequence: &[AnyVerd
 #[cfg_attr(kani, kani::proof, kani::unwind(13))]
 fn every_verdict_sequence_of_edge_following() {
     let (config, spec) = parts([EDGE_MS], None);
-    check!()
-        .with_type::<[AnyVerdict; DEPTH]>()
-        .exhaustive()
-        .for_each(|sequence| edge_verdicts(config, &spec, sequence));
+    exhaustive::<[AnyVerdict; DEPTH]>(
+        evidence::start("edge following, every verdict sequence", Kind::Harness),
+        |sequence| edge_verdicts(config, &spec, sequence),
+    );
 }
 
 /// A tick of edge following with the localisation varying: an estimate is
@@ -154,12 +185,15 @@ impl LocalisedTick {
 #[cfg_attr(kani, kani::proof, kani::unwind(13))]
 fn every_sequence_with_localisation_lost_and_regained() {
     let (config, spec) = parts([EDGE_MS], None);
-    check!()
-        .with_type::<[LocalisedTick; DEPTH]>()
-        .exhaustive()
-        .for_each(|sequence| {
+    exhaustive::<[LocalisedTick; DEPTH]>(
+        evidence::start(
+            "localisation lost and regained, every sequence",
+            Kind::Harness,
+        ),
+        |sequence| {
             assert_properties(config, &spec, sequence.iter().map(|t| t.input()));
-        });
+        },
+    );
 }
 
 /// A tick of edge following (index 0, higher priority) and furrow pursuing
@@ -205,12 +239,12 @@ impl PairTick {
 #[cfg_attr(kani, kani::proof, kani::unwind(13))]
 fn every_sequence_of_edge_and_furrow_together() {
     let (config, spec) = parts([EDGE_MS, FURROW_MS], None);
-    check!()
-        .with_type::<[PairTick; DEPTH]>()
-        .exhaustive()
-        .for_each(|sequence| {
+    exhaustive::<[PairTick; DEPTH]>(
+        evidence::start("edge and furrow together, every sequence", Kind::Harness),
+        |sequence| {
             assert_properties(config, &spec, sequence.iter().map(|t| t.input()));
-        });
+        },
+    );
 }
 
 /// A tick of edge following with plan consistency configured.
@@ -251,18 +285,19 @@ impl PlanTick {
 #[cfg_attr(kani, kani::proof, kani::unwind(13))]
 fn every_sequence_with_plan_consistency() {
     let (config, spec) = parts([EDGE_MS], Some(PLAN_MS));
-    check!()
-        .with_type::<[PlanTick; DEPTH]>()
-        .exhaustive()
-        .for_each(|sequence| {
+    exhaustive::<[PlanTick; DEPTH]>(
+        evidence::start("plan consistency, every sequence", Kind::Harness),
+        |sequence| {
             assert_properties(config, &spec, sequence.iter().map(|t| t.input()));
-        });
+        },
+    );
 }
 
 /// The first harness, run on a machine that enters one tick early, fails:
 /// bolero reports the sequence (three Enter verdicts instead of four).
 #[test]
 fn the_verdict_harness_reports_a_machine_entering_one_tick_early() {
+    let run = evidence::start("mutant EnterOneTickEarly, bolero", Kind::Mutant);
     let (config, spec) = parts([EDGE_MS], None);
     let mutant = config.with_fault(Fault::EnterOneTickEarly);
     let outcome = std::panic::catch_unwind(|| {
@@ -277,4 +312,9 @@ fn the_verdict_harness_reports_a_machine_entering_one_tick_early() {
     let violation = check_run(mutant, &spec, [AnyVerdict::Enter.input(); 3]).unwrap_err();
     assert_eq!(violation.tick, 2);
     assert_eq!(spec.enter, [4]);
+    run.finish(&evidence::Explored {
+        properties: vec!["SW-S2".to_owned()],
+        mutant: Some("Fault::EnterOneTickEarly".to_owned()),
+        ..evidence::Explored::default()
+    });
 }

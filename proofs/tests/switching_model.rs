@@ -9,6 +9,7 @@ use std::collections::BTreeSet;
 use std::time::Instant;
 
 use fieldguide::supervisor::switching::{CommandSource, Fault, Mode, Switching, SwitchingConfig};
+use fieldguide_proofs::evidence::{self, Explored, Kind};
 use fieldguide_proofs::switching::{
     check_run, config_from_millis, Monitor, Property, Spec, SwitchingModel, Sym, Tick, Violation,
     EDGE_MS, FURROW_MS,
@@ -18,22 +19,33 @@ use stateright::{Checker, HasDiscoveries, Model};
 /// 100 Hz.
 const PERIOD_MS: u32 = 10;
 
-/// Explores every reachable state, asserts every property, and returns the
-/// number of distinct states.
-fn explore<const K: usize>(name: &str, config: SwitchingConfig<K>, spec: Spec<K>) -> usize {
+/// Explores every reachable state, asserts every property, records what was
+/// explored in `run`, and returns the number of distinct states.
+fn explore<const K: usize>(run: evidence::Run, config: SwitchingConfig<K>, spec: Spec<K>) -> usize {
     let start = Instant::now();
-    let checker = SwitchingModel::new(config, spec)
-        .checker()
-        .spawn_bfs()
-        .join();
+    let model = SwitchingModel::new(config, spec);
+    let properties = model
+        .properties()
+        .iter()
+        .map(|p| p.name.to_owned())
+        .collect();
+    let checker = model.checker().spawn_bfs().join();
     checker.assert_properties();
     let states = checker.unique_state_count();
     println!(
-        "{name}: {states} states, {} transitions, depth {}, {:.1?}",
+        "{}: {states} states, {} transitions, depth {}, {:.1?}",
+        run.name(),
         checker.state_count(),
         checker.max_depth(),
         start.elapsed()
     );
+    run.finish(&Explored {
+        properties,
+        states: u64::try_from(states).ok(),
+        transitions: u64::try_from(checker.state_count()).ok(),
+        depth: u64::try_from(checker.max_depth()).ok(),
+        ..Explored::default()
+    });
     states
 }
 
@@ -112,7 +124,11 @@ fn the_core_converts_the_tables_to_the_specified_ticks() {
 #[test]
 fn edge_following_alone_table_1() {
     let (config, spec) = model_parts([EDGE_MS], 200, None);
-    let states = explore("edge (Table 1), stop 0.2 s", config, spec);
+    let states = explore(
+        evidence::start("edge (Table 1), stop 0.2 s", Kind::Model),
+        config,
+        spec,
+    );
     // Entry runs 0..=40 alone already give 41 states in path tracking.
     assert!(states > 1_000, "{states}");
 }
@@ -133,13 +149,21 @@ fn edge_following_alone_table_1() {
 #[test]
 fn furrow_pursuing_alone_table_2_with_plan_consistency() {
     let (config, spec) = model_parts([FURROW_MS], 300, Some(200));
-    explore("furrow (Table 2), stop 0.3 s, plan 0.2 s", config, spec);
+    explore(
+        evidence::start("furrow (Table 2), stop 0.3 s, plan 0.2 s", Kind::Model),
+        config,
+        spec,
+    );
 }
 
 #[test]
 fn edge_following_alone_with_plan_consistency() {
     let (config, spec) = model_parts([EDGE_MS], 200, Some(200));
-    explore("edge (Table 1), stop 0.2 s, plan 0.2 s", config, spec);
+    explore(
+        evidence::start("edge (Table 1), stop 0.2 s, plan 0.2 s", Kind::Model),
+        config,
+        spec,
+    );
 }
 
 //= spec/pierre2022.md#sw-enter-entering-a-specialised-mode
@@ -164,14 +188,31 @@ fn edge_following_alone_with_plan_consistency() {
 #[test]
 fn edge_and_furrow_tables_1_and_2() {
     let (config, spec) = model_parts([EDGE_MS, FURROW_MS], 200, None);
-    let states = explore("edge + furrow, stop 0.2 s", config, spec);
+    let states = explore(
+        evidence::start("edge + furrow, stop 0.2 s", Kind::Model),
+        config,
+        spec,
+    );
     assert!(states > 100_000, "{states}");
 }
 
 #[test]
 fn edge_and_furrow_with_plan_consistency() {
     let (config, spec) = model_parts([EDGE_MS, FURROW_MS], 100, Some(100));
-    explore("edge + furrow, stop 0.1 s, plan 0.1 s", config, spec);
+    explore(
+        evidence::start("edge + furrow, stop 0.1 s, plan 0.1 s", Kind::Model),
+        config,
+        spec,
+    );
+}
+
+/// The record of a mutant that `property` caught.
+fn mutant_caught(property: &str, fault: &str) -> Explored {
+    Explored {
+        properties: vec![property.to_owned()],
+        mutant: Some(fault.to_owned()),
+        ..Explored::default()
+    }
 }
 
 /// The counterexample the checker reports for `property`, if any, replayed
@@ -231,6 +272,7 @@ const fn edge(sym: Sym, localisation_valid: bool) -> Tick<1> {
 //# higher-priority behaviour has entry evidence.
 #[test]
 fn a_machine_entering_one_tick_early_is_reported() {
+    let run = evidence::start("mutant EnterOneTickEarly, stateright", Kind::Mutant);
     let (config, spec) = model_parts([EDGE_MS], 200, None);
     let mutant = config.with_fault(Fault::EnterOneTickEarly);
     let name = "SW-S2 entry needs its delay of evidence";
@@ -249,10 +291,15 @@ fn a_machine_entering_one_tick_early_is_reported() {
     // The honest machine has no counterexample, and enters at the 40th tick.
     assert!(counterexample(config, spec, name, Property::S2EntryNeedsEvidence).is_none());
     assert!(replay(config, &spec, [edge(Sym::Enter, true); 40]).is_ok());
+    run.finish(&mutant_caught(name, "Fault::EnterOneTickEarly"));
 }
 
 #[test]
 fn a_machine_configured_one_tick_short_is_reported() {
+    let run = evidence::start(
+        "mutant configured 0.39 s for 0.4 s, stateright",
+        Kind::Mutant,
+    );
     // The machine is built for 0.39 s while Table 1 says 0.4 s.
     let config = config_from_millis(PERIOD_MS, [(390, 260)], 200, None).unwrap();
     let spec = Spec::from_millis(PERIOD_MS, [EDGE_MS], 200, None);
@@ -260,10 +307,15 @@ fn a_machine_configured_one_tick_short_is_reported() {
     assert!(counterexample(config, spec, name, Property::S2EntryNeedsEvidence).is_some());
     let violation = replay(config, &spec, [edge(Sym::Enter, true); 39]).unwrap_err();
     assert_eq!(violation.property, Property::S2EntryNeedsEvidence);
+    run.finish(&mutant_caught(
+        name,
+        "configured 0.39 s instead of Table 1's 0.4 s",
+    ));
 }
 
 #[test]
 fn a_machine_steering_with_an_invalid_estimate_is_reported() {
+    let run = evidence::start("mutant SteerWithInvalidEstimate, stateright", Kind::Mutant);
     let (config, spec) = model_parts([EDGE_MS], 200, None);
     let mutant = config.with_fault(Fault::SteerWithInvalidEstimate);
     let name = "SW-S3 commands only from valid estimates";
@@ -275,10 +327,12 @@ fn a_machine_steering_with_an_invalid_estimate_is_reported() {
     let violation = replay(mutant, &spec, ticks).unwrap_err();
     assert_eq!(violation.tick, 40);
     assert_eq!(violation.property, Property::S3CommandsValid);
+    run.finish(&mutant_caught(name, "Fault::SteerWithInvalidEstimate"));
 }
 
 #[test]
 fn a_machine_that_never_stops_is_reported() {
+    let run = evidence::start("mutant NeverStop, stateright", Kind::Mutant);
     let (config, spec) = model_parts([EDGE_MS, FURROW_MS], 200, None);
     let mutant = config.with_fault(Fault::NeverStop);
     let name = "SW-S4 stop exactly after the stop delay";
@@ -292,6 +346,7 @@ fn a_machine_that_never_stops_is_reported() {
     assert_eq!(violation.tick, 19);
     assert_eq!(violation.property, Property::S4StopExactly);
     assert!(replay(config, &spec, [lost; 60]).is_ok());
+    run.finish(&mutant_caught(name, "Fault::NeverStop"));
 }
 
 #[test]
@@ -332,9 +387,17 @@ fn the_take_over_instead_of_a_stop_is_needed() {
 fn three_behaviours_keep_every_property() {
     let behaviours = [(40, 30), (50, 20), (30, 40)];
     let (config, spec) = model_parts(behaviours, 50, None);
-    let plain = explore("three behaviours, stop 0.05 s", config, spec);
+    let plain = explore(
+        evidence::start("three behaviours, stop 0.05 s", Kind::Model),
+        config,
+        spec,
+    );
     let (config, spec) = model_parts(behaviours, 50, Some(20));
-    let planned = explore("three behaviours with plan check", config, spec);
+    let planned = explore(
+        evidence::start("three behaviours with plan check", Kind::Model),
+        config,
+        spec,
+    );
     // Each behaviour's entry run alone gives a few states: the three
     // together give many more than any one.
     assert!(plain > 1_000, "{plain}");

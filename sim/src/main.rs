@@ -15,7 +15,8 @@
 //! metrics per seed as it goes, then a "worst" row (the largest value of
 //! each metric over the seeds, with the seed it came from, on the line
 //! below) and the seeds whose run failed, and writes the rows to
-//! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot.
+//! `DIR/<scenario>/sweep.csv`; it writes no per-seed trace or plot. A
+//! vine-row run's sweep has the vine-row figures for columns.
 //!
 //! A crop drive of Guyonneau 2022 (`[crop_drive]`, `guyonneau-crop*`), a
 //! guided mission of Emmi 2024 (`[guiding]`, `welaser-*`) and a vine-row run
@@ -23,6 +24,12 @@
 //! print their own table (`sim/scenarios/README.md`);
 //! `fieldguide campaign guyonneau2022 [--runs N]` runs that paper's test
 //! plan.
+//!
+//! `fieldguide evidence` writes `<out>/evidence/{index.html, evidence.json}`:
+//! the requirement matrix, the proofs' records, every built-in scenario and
+//! the sweeps against their bounds, the last benchmarks and the provenance;
+//! it exits with 1 when a section is incomplete (README.md, "Evidence for a
+//! safety assessor").
 //!
 //! An unusable scenario stops the program with a message naming the file and
 //! the field, and exit code 2; so do an unknown scenario and a malformed or
@@ -39,10 +46,10 @@ use fieldguide_sim::crop_drive::{self, campaign, CropRun};
 use fieldguide_sim::guiding::{self, file::GuidingFile, GuidingRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
-use fieldguide_sim::sweep::{self, Cell, Seeds, COLUMNS};
+use fieldguide_sim::sweep::{self, Cell, Seeds};
 use fieldguide_sim::vineyard::file::VineyardFile;
 use fieldguide_sim::vineyard::{self, VineyardRun};
-use fieldguide_sim::{output, runner, SimError};
+use fieldguide_sim::{evidence, output, runner, SimError};
 
 #[derive(Debug, Parser)]
 #[command(
@@ -90,6 +97,37 @@ enum Command {
         #[arg(long, value_name = "FIRST..=LAST")]
         seeds: Seeds,
     },
+    /// Write the evidence report for a safety assessor to
+    /// `<out>/evidence/{index.html, evidence.json}`: the requirement matrix
+    /// (from duvet's JSON report), the proofs' records (written by `cargo
+    /// test -p fieldguide-proofs` into $FIELDGUIDE_EVIDENCE_DIR, default
+    /// target/evidence), every built-in scenario and the sweeps against their
+    /// bounds, the last criterion run, and the commit, toolchain and
+    /// dependencies with licences. Exits with 1, the report marked
+    /// incomplete in red, when a requirement lacks an implementation or a
+    /// test, duvet is missing, a proof record is missing, failed or from
+    /// another commit, a run breaks a bound, there are no benchmark results
+    /// (unless --no-benchmarks), or the tree has uncommitted changes.
+    Evidence {
+        /// The project's root (spec/, .duvet/, proofs/tests/).
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+        /// The seeds of each sweep (hedge-following, furrow-pursuing).
+        #[arg(long, value_name = "FIRST..=LAST", default_value = "1..=10")]
+        sweep_seeds: Seeds,
+        /// Skip the scenarios and the sweeps (shown as skipped).
+        #[arg(long)]
+        no_closed_loop: bool,
+        /// Benchmarks deliberately skipped (shown as skipped, not red).
+        #[arg(long)]
+        no_benchmarks: bool,
+        /// The duvet program.
+        #[arg(long, default_value = "duvet")]
+        duvet: PathBuf,
+        /// Criterion's folder [default: <root>/target/criterion].
+        #[arg(long)]
+        criterion: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -106,6 +144,30 @@ fn main() -> ExitCode {
         },
         Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
         Some(Command::Sweep { scenario, seeds }) => run_sweep(&scenario, seeds, &cli.out),
+        Some(Command::Evidence {
+            root,
+            sweep_seeds,
+            no_closed_loop,
+            no_benchmarks,
+            duvet,
+            criterion,
+        }) => {
+            let mut options = evidence::Options::new(&root, &cli.out);
+            options.sweep_seeds = (!no_closed_loop).then_some(sweep_seeds);
+            options.skip_benchmarks = no_benchmarks;
+            options.duvet = duvet;
+            if let Some(dir) = criterion {
+                options.criterion = dir;
+            }
+            return match run_evidence(&options) {
+                Ok(true) => ExitCode::SUCCESS,
+                Ok(false) => ExitCode::from(1),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
         None => run_all(&cli.out),
     };
     match result {
@@ -115,6 +177,54 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Writes the evidence report; `true` when it is complete (every section
+/// passed, none skipped but those deliberately skipped).
+fn run_evidence(options: &evidence::Options) -> Result<bool, SimError> {
+    let started = std::time::Instant::now();
+    let report = evidence::Report::gather(options)?;
+    let dir = report.write(&options.out.join("evidence"))?;
+    let sections = [
+        (
+            "provenance",
+            report.provenance.status,
+            &report.provenance.problems,
+        ),
+        (
+            "requirements",
+            report.requirements.status,
+            &report.requirements.problems,
+        ),
+        ("proofs", report.proofs.status, &report.proofs.problems),
+        (
+            "closed loop",
+            report.closed_loop.status,
+            &report.closed_loop.problems,
+        ),
+        (
+            "benchmarks",
+            report.benchmarks.status,
+            &report.benchmarks.problems,
+        ),
+    ];
+    for (name, status, problems) in sections {
+        println!("{name:14} {}", status.label());
+        for p in problems {
+            println!("    {p}");
+        }
+    }
+    println!(
+        "{} requirements, {} proofs, {} runs, {} sweeps, {} benchmarks in {:.1} s; wrote {}",
+        report.requirements.requirements.len(),
+        report.proofs.proofs.len(),
+        report.closed_loop.runs.len(),
+        report.closed_loop.sweeps.len(),
+        report.benchmarks.benchmarks.len(),
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    Ok(report.status != evidence::Status::Fail)
 }
 
 /// Runs a crop drive, a vine-row run or a scenario of the general runner.
@@ -342,7 +452,7 @@ fn print_vineyards(rows: &[VineRow]) {
          |θ|         rad, the heading relative to the row, same stretch\n  \
          max |δR|    rad, the largest rear steering angle of the run\n  \
          touched     trunks and posts a wheel met past the entry (3 m) / in all\n  \
-         success     the end of the row reached touching no vine past the entry"
+         success     the end of the row reached touching no vine from the start"
     );
     for r in rows.iter().filter(|r| !r.outcome.success()) {
         println!("  {}: {:?}", r.name, r.outcome.end);
@@ -455,87 +565,126 @@ fn run_campaign(plan: &str, runs: u32, out: &Path) -> Result<(), SimError> {
 }
 
 /// Runs `scenario` for each seed, printing a row per seed, then the worst
-/// row and the failures; writes `sweep.csv`.
+/// row and the failures; writes `sweep.csv`. A vine-row run sweeps through
+/// `sweep::vine_sweep`, any other scenario through `sweep::sweep`.
 fn run_sweep(scenario: &str, seeds: Seeds, out: &Path) -> Result<(), SimError> {
+    if let Some(run) = vineyard_named(scenario)? {
+        let mut table = SweepTable::<sweep::VineSummary>::new(seeds);
+        let result = sweep::vine_sweep(&run, seeds, |s| table.row(s));
+        return table.finish(out, &result);
+    }
     let source = Source::resolve(scenario)?;
-    let widths: Vec<usize> = COLUMNS.iter().map(|c| c.name.len().max(8)).collect();
-    let line = |first: &str, cells: &mut dyn Iterator<Item = String>| {
+    let mut table = SweepTable::<Summary>::new(seeds);
+    let result = sweep::sweep(&source, seeds, |s| table.row(s))?;
+    table.finish(out, &result)
+}
+
+/// The table a sweep prints as its rows come.
+struct SweepTable<R> {
+    widths: Vec<usize>,
+    total: usize,
+    done: usize,
+    progress: bool,
+    seeds: Seeds,
+    rows: std::marker::PhantomData<R>,
+}
+
+impl<R: sweep::Row> SweepTable<R> {
+    /// Prints the heading.
+    fn new(seeds: Seeds) -> Self {
+        let table = Self {
+            widths: R::COLUMNS.iter().map(|c| c.name.len().max(8)).collect(),
+            total: seeds.iter().count(),
+            done: 0,
+            progress: std::io::stderr().is_terminal(),
+            seeds,
+            rows: std::marker::PhantomData,
+        };
+        println!(
+            "{}",
+            table.line("seed", &mut R::COLUMNS.iter().map(|c| c.name.to_owned()))
+        );
+        table
+    }
+
+    fn line(&self, first: &str, cells: &mut dyn Iterator<Item = String>) -> String {
         let mut text = format!("{first:>10}");
-        for (cell, width) in cells.zip(&widths) {
+        for (cell, width) in cells.zip(&self.widths) {
             text.push_str(&format!(" {cell:>width$}"));
         }
         text
-    };
-    println!(
-        "{}",
-        line("seed", &mut COLUMNS.iter().map(|c| c.name.to_owned()))
-    );
-    let total = seeds.iter().count();
-    let mut done = 0;
-    let progress = std::io::stderr().is_terminal();
-    let result = sweep::sweep(&source, seeds, |s| {
-        done += 1;
-        if progress {
-            eprint!("\r{done}/{total} seeds\r");
+    }
+
+    /// Prints one seed's row.
+    fn row(&mut self, s: &R) {
+        self.done += 1;
+        if self.progress {
+            eprint!("\r{}/{} seeds\r", self.done, self.total);
         }
-        let row = line(
-            &s.seed.to_string(),
-            &mut COLUMNS.iter().map(|c| show((c.cell)(s))),
+        let row = self.line(
+            &s.seed().to_string(),
+            &mut R::COLUMNS.iter().map(|c| show((c.cell)(s))),
         );
         println!("{row}");
-        if let Some(why) = &s.aborted {
-            eprintln!("seed {}: run stopped early: {why}", s.seed);
+        if let Some(why) = s.aborted() {
+            eprintln!("seed {}: run stopped early: {why}", s.seed());
         }
-    })?;
-    let worst: Vec<Option<(u64, Cell)>> = COLUMNS
-        .iter()
-        .map(|c| sweep::worst(&result.rows, c))
-        .collect();
-    println!(
-        "{}",
-        line(
-            "worst",
-            &mut worst
-                .iter()
-                .map(|w| w.map_or_else(|| "-".to_owned(), |(_, c)| show(c)))
-        )
-    );
-    println!(
-        "{}",
-        line(
-            "at seed",
-            &mut worst.iter().map(|w| match w {
-                // No seed is to blame for a column where every run did well.
-                None | Some((_, Cell::Flag(true) | Cell::Count(0))) => "-".to_owned(),
-                Some((seed, _)) => seed.to_string(),
-            })
-        )
-    );
-    let failed = sweep::failed_seeds(&result.rows);
-    let failures = if failed.is_empty() {
-        "none".to_owned()
-    } else {
-        failed
+    }
+
+    /// Prints the worst row, the seeds it came from and the failures;
+    /// writes `sweep.csv`.
+    fn finish(&self, out: &Path, result: &sweep::Sweep<R>) -> Result<(), SimError> {
+        let worst: Vec<Option<(u64, Cell)>> = R::COLUMNS
             .iter()
-            .map(u64::to_string)
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    println!(
-        "{}: {} seeds ({seeds}), failed: {failures}",
-        result.scenario,
-        result.rows.len()
-    );
-    let file = output::write_sweep(out, &result)?;
-    println!("{}: wrote {}", result.scenario, file.display());
-    Ok(())
+            .map(|c| sweep::worst(&result.rows, c))
+            .collect();
+        println!(
+            "{}",
+            self.line(
+                "worst",
+                &mut worst
+                    .iter()
+                    .map(|w| w.map_or_else(|| "-".to_owned(), |(_, c)| show(c)))
+            )
+        );
+        println!(
+            "{}",
+            self.line(
+                "at seed",
+                &mut worst.iter().map(|w| match w {
+                    // No seed is to blame for a column where every run did well.
+                    None | Some((_, Cell::Flag(true) | Cell::Count(0))) => "-".to_owned(),
+                    Some((seed, _)) => seed.to_string(),
+                })
+            )
+        );
+        let failed = sweep::failed_seeds(&result.rows);
+        let failures = if failed.is_empty() {
+            "none".to_owned()
+        } else {
+            failed
+                .iter()
+                .map(u64::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        println!(
+            "{}: {} seeds ({}), failed: {failures}",
+            result.scenario,
+            result.rows.len(),
+            self.seeds
+        );
+        let file = output::write_sweep(out, result)?;
+        println!("{}: wrote {}", result.scenario, file.display());
+        Ok(())
+    }
 }
 
 /// A cell of the sweep table as printed.
 fn show(cell: Cell) -> String {
     match cell {
-        Cell::Metres(None) => "-".to_owned(),
-        Cell::Metres(Some(v)) => format!("{v:.4}"),
+        Cell::Metres(None) | Cell::Radians(None) => "-".to_owned(),
+        Cell::Metres(Some(v)) | Cell::Radians(Some(v)) => format!("{v:.4}"),
         Cell::Plain(v) => format!("{v:.2}"),
         Cell::Count(n) => n.to_string(),
         Cell::Flag(true) => "yes".to_owned(),

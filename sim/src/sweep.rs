@@ -9,6 +9,10 @@
 //! `OUT/<scenario>/sweep.csv` ([`sweep_csv`], one line per seed); it writes no
 //! per-seed trace or plot. A claim about a scenario is a claim about its
 //! worst seed, not about one lucky run.
+//!
+//! A vine-row run (`[vineyard]`, `vineyard-*`) sweeps the same way through
+//! [`vine_sweep`]: its rows are [`VineSummary`]s, its columns
+//! [`VINE_COLUMNS`] (the figures of `vineyard::summary_json`).
 
 use std::fmt;
 use std::ops::RangeInclusive;
@@ -18,6 +22,32 @@ use crate::error::SimError;
 use crate::metrics::{summarize, ErrorStats, Summary};
 use crate::runner;
 use crate::scenario::Source;
+use crate::vineyard::{drive, Settled, VineEnd, VineOutcome, VineyardRun, WHEELBASE_M};
+
+/// A row of a sweep: one seed's figures.
+pub trait Row: Sized + 'static {
+    /// The columns after `seed`, in order.
+    const COLUMNS: &'static [Column<Self>];
+    /// The seed of the run.
+    fn seed(&self) -> u64;
+    /// Whether the run met its scenario's checks.
+    fn success(&self) -> bool;
+    /// Why the run stopped early, if it did.
+    fn aborted(&self) -> Option<&str>;
+}
+
+impl Row for Summary {
+    const COLUMNS: &'static [Column<Self>] = &COLUMNS;
+    fn seed(&self) -> u64 {
+        self.seed
+    }
+    fn success(&self) -> bool {
+        self.success
+    }
+    fn aborted(&self) -> Option<&str> {
+        self.aborted.as_deref()
+    }
+}
 
 /// A non-empty inclusive range of seeds, written `FIRST..=LAST` (`1..=20`;
 /// `7..=7` is the one seed 7).
@@ -105,11 +135,11 @@ impl std::error::Error for SeedsError {}
 
 /// The outcome of a sweep.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Sweep {
+pub struct Sweep<R = Summary> {
     /// The scenario's name (the folder the sweep is written to).
     pub scenario: String,
     /// One summary per seed, in increasing seed order.
-    pub rows: Vec<Summary>,
+    pub rows: Vec<R>,
 }
 
 /// Runs `source` once per seed of `seeds` (the closed loop of
@@ -157,6 +187,8 @@ pub enum Cell {
     /// A figure with no better or worse side (the distance driven): it has
     /// no worst.
     Plain(f64),
+    /// An angle or angular error in radians, as [`Cell::Metres`].
+    Radians(Option<f64>),
     /// A count.
     Count(usize),
     /// A yes/no outcome, `true` being good.
@@ -165,11 +197,11 @@ pub enum Cell {
 
 /// A column of the sweep table and of `sweep.csv`.
 #[derive(Debug, Clone, Copy)]
-pub struct Column {
+pub struct Column<R = Summary> {
     /// Its name: the CSV header and the table's heading.
     pub name: &'static str,
     /// Its cell in the row of a summary.
-    pub cell: fn(&Summary) -> Cell,
+    pub cell: fn(&R) -> Cell,
 }
 
 fn mean(e: Option<ErrorStats>) -> Cell {
@@ -246,9 +278,9 @@ pub const COLUMNS: [Column; 14] = [
 
 /// The header line of `sweep.csv`.
 #[must_use]
-pub fn csv_header() -> String {
+pub fn csv_header<R: Row>() -> String {
     std::iter::once("seed")
-        .chain(COLUMNS.iter().map(|c| c.name))
+        .chain(R::COLUMNS.iter().map(|c| c.name))
         .chain(std::iter::once("aborted"))
         .collect::<Vec<_>>()
         .join(",")
@@ -258,14 +290,13 @@ pub fn csv_header() -> String {
 /// (numbers in their shortest exact form, an empty cell for none, `1`/`0`
 /// for flags), and why the run stopped early (empty if it did not).
 #[must_use]
-pub fn csv_row(s: &Summary) -> String {
+pub fn csv_row<R: Row>(s: &R) -> String {
     let aborted = s
-        .aborted
-        .as_deref()
+        .aborted()
         .map_or_else(String::new, |why| why.replace([',', '\n'], ";"));
-    std::iter::once(s.seed.to_string())
-        .chain(COLUMNS.iter().map(|c| match (c.cell)(s) {
-            Cell::Metres(v) => v.map_or_else(String::new, |v| v.to_string()),
+    std::iter::once(s.seed().to_string())
+        .chain(R::COLUMNS.iter().map(|c| match (c.cell)(s) {
+            Cell::Metres(v) | Cell::Radians(v) => v.map_or_else(String::new, |v| v.to_string()),
             Cell::Plain(v) => v.to_string(),
             Cell::Count(n) => n.to_string(),
             Cell::Flag(b) => u8::from(b).to_string(),
@@ -277,8 +308,8 @@ pub fn csv_row(s: &Summary) -> String {
 
 /// `sweep.csv`: the header, then one line per row.
 #[must_use]
-pub fn sweep_csv(rows: &[Summary]) -> String {
-    let mut out = csv_header();
+pub fn sweep_csv<R: Row>(rows: &[R]) -> String {
+    let mut out = csv_header::<R>();
     out.push('\n');
     for r in rows {
         out.push_str(&csv_row(r));
@@ -292,20 +323,21 @@ pub fn sweep_csv(rows: &[Summary]) -> String {
 /// `false` flag; `None` when no row has a figure in that column or the
 /// column has no worse side ([`Cell::Plain`]).
 #[must_use]
-pub fn worst(rows: &[Summary], column: &Column) -> Option<(u64, Cell)> {
+pub fn worst<R: Row>(rows: &[R], column: &Column<R>) -> Option<(u64, Cell)> {
     let mut found: Option<(u64, Cell)> = None;
     for r in rows {
         let cell = (column.cell)(r);
         let worse = match (found.map(|(_, c)| c), cell) {
-            (_, Cell::Metres(None) | Cell::Plain(_)) => false,
+            (_, Cell::Metres(None) | Cell::Radians(None) | Cell::Plain(_)) => false,
             (None, _) => true,
-            (Some(Cell::Metres(Some(a))), Cell::Metres(Some(b))) => b > a,
+            (Some(Cell::Metres(Some(a))), Cell::Metres(Some(b)))
+            | (Some(Cell::Radians(Some(a))), Cell::Radians(Some(b))) => b > a,
             (Some(Cell::Count(a)), Cell::Count(b)) => b > a,
             (Some(Cell::Flag(a)), Cell::Flag(b)) => a && !b,
             _ => false,
         };
         if worse {
-            found = Some((r.seed, cell));
+            found = Some((r.seed(), cell));
         }
     }
     found
@@ -313,8 +345,143 @@ pub fn worst(rows: &[Summary], column: &Column) -> Option<(u64, Cell)> {
 
 /// The seeds whose run was not a success.
 #[must_use]
-pub fn failed_seeds(rows: &[Summary]) -> Vec<u64> {
-    rows.iter().filter(|r| !r.success).map(|r| r.seed).collect()
+pub fn failed_seeds<R: Row>(rows: &[R]) -> Vec<u64> {
+    rows.iter()
+        .filter(|r| !r.success())
+        .map(Row::seed)
+        .collect()
+}
+
+/// One seed's figures of a vine-row run (`vineyard::summary_json`'s):
+/// errors against the true row once R is `settle_m` into it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VineSummary {
+    /// The seed.
+    pub seed: u64,
+    /// The end of the row reached, no trunk or post touched from the start.
+    pub success: bool,
+    /// The end of the row reached.
+    pub reached_end: bool,
+    /// Trunks and posts a wheel met, from the start.
+    pub touched: usize,
+    /// Those of them past the row's entry.
+    pub touched_past_entry: usize,
+    /// The lateral (m) and angular (rad) errors after stabilisation.
+    pub settled: Option<Settled>,
+    /// The largest |rear steering angle|, rad.
+    pub rear_max_abs_rad: f64,
+    /// How far the front axle was into the row when the robot first
+    /// followed the vines, m.
+    pub locked_front_at_m: Option<f64>,
+    /// Why the run stopped early.
+    pub aborted: Option<String>,
+}
+
+impl VineSummary {
+    /// The figures of `outcome`, the outcome of `run`.
+    #[must_use]
+    pub fn of(run: &VineyardRun, outcome: &VineOutcome) -> Self {
+        Self {
+            seed: run.seed,
+            success: outcome.success(),
+            reached_end: outcome.end == VineEnd::Done,
+            touched: outcome.touched,
+            touched_past_entry: outcome.touched_in_row,
+            settled: outcome.settled(run.settle_m),
+            rear_max_abs_rad: outcome.rear_max_abs(),
+            locked_front_at_m: outcome
+                .ticks
+                .iter()
+                .find(|t| t.following == Some(true))
+                .map(|t| t.truth.position.x() + WHEELBASE_M),
+            aborted: match &outcome.end {
+                VineEnd::Done => None,
+                VineEnd::Aborted(why) => Some(why.clone()),
+            },
+        }
+    }
+}
+
+impl Row for VineSummary {
+    const COLUMNS: &'static [Column<Self>] = &VINE_COLUMNS;
+    fn seed(&self) -> u64 {
+        self.seed
+    }
+    fn success(&self) -> bool {
+        self.success
+    }
+    fn aborted(&self) -> Option<&str> {
+        self.aborted.as_deref()
+    }
+}
+
+/// The columns of a vine-row sweep after `seed`, in order.
+pub const VINE_COLUMNS: [Column<VineSummary>; 10] = [
+    Column {
+        name: "success",
+        cell: |s| Cell::Flag(s.success),
+    },
+    Column {
+        name: "reached_end",
+        cell: |s| Cell::Flag(s.reached_end),
+    },
+    Column {
+        name: "vines_touched",
+        cell: |s| Cell::Count(s.touched),
+    },
+    Column {
+        name: "touched_past_entry",
+        cell: |s| Cell::Count(s.touched_past_entry),
+    },
+    Column {
+        name: "mean_abs_y_m",
+        cell: |s| Cell::Metres(s.settled.map(|e| e.lateral_mean_abs)),
+    },
+    Column {
+        name: "max_abs_y_m",
+        cell: |s| Cell::Metres(s.settled.map(|e| e.lateral_max_abs)),
+    },
+    Column {
+        name: "mean_abs_angular_rad",
+        cell: |s| Cell::Radians(s.settled.map(|e| e.angular_mean_abs)),
+    },
+    Column {
+        name: "max_abs_angular_rad",
+        cell: |s| Cell::Radians(s.settled.map(|e| e.angular_max_abs)),
+    },
+    Column {
+        name: "max_abs_rear_rad",
+        cell: |s| Cell::Radians(Some(s.rear_max_abs_rad)),
+    },
+    Column {
+        name: "locked_front_at_m",
+        cell: |s| Cell::Metres(s.locked_front_at_m),
+    },
+];
+
+/// Runs the vine-row run `run` once per seed of `seeds` (each seed
+/// replacing the run's own), the seeds shared out over every core, and
+/// calls `each` with every row in seed order as soon as it and every
+/// earlier seed's are measured.
+pub fn vine_sweep(
+    run: &VineyardRun,
+    seeds: Seeds,
+    mut each: impl FnMut(&VineSummary),
+) -> Sweep<VineSummary> {
+    let all: Vec<u64> = seeds.iter().collect();
+    let rows = crate::parallel::map_in_order(
+        &all,
+        |&seed| {
+            let mut one = run.clone();
+            one.seed = seed;
+            VineSummary::of(&one, &drive(&one))
+        },
+        |_, row| each(row),
+    );
+    Sweep {
+        scenario: run.name.clone(),
+        rows,
+    }
 }
 
 #[cfg(test)]

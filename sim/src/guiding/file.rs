@@ -9,8 +9,9 @@ use serde::Deserialize;
 
 use fieldguide::model::skid_steer::SkidSteer;
 use fieldguide::planning::dubins::TurningRadius;
-use fieldguide::{Meters, MetersPerSecond};
+use fieldguide::{Meters, MetersPerSecond, Pose2};
 
+use super::farm::{Farm, PlacedField, Road};
 use super::field::{FieldSpec, Layout};
 use super::{ControlSpec, GuidingRun, RobotSpec};
 use crate::error::ScenarioError;
@@ -25,6 +26,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     (
         "welaser-turns",
         include_str!("../../scenarios/welaser-turns.toml"),
+    ),
+    (
+        "welaser-farm",
+        include_str!("../../scenarios/welaser-farm.toml"),
     ),
 ];
 
@@ -49,6 +54,45 @@ pub struct GuidingFile {
     /// Changes to the GNSS (`[gnss]`, optional).
     #[serde(default)]
     pub gnss: GnssSection,
+    /// A farm of such fields joined by roads (`[farm]`, optional).
+    pub farm: Option<FarmSection>,
+}
+
+/// `[farm]`: the yard, the fields (each the layout of `[guiding]` and
+/// `[field]`, placed) and the roads between them.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FarmSection {
+    /// The yard: x, y (m) and heading (degrees) where the robot starts.
+    pub yard: [f64; 3],
+    /// GoToGoal's turning radius at the roads' bends, m.
+    pub corner_radius_m: f64,
+    /// The roads' width, m.
+    pub road_width_m: f64,
+    /// The fields in the order they are treated (`[[farm.field]]`).
+    pub field: Vec<PlacedFieldSection>,
+    /// The roads (`[[farm.road]]`): to each field, then back to the yard.
+    pub road: Vec<RoadSection>,
+}
+
+/// `[[farm.field]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlacedFieldSection {
+    /// The field's corner, m.
+    pub corner: [f64; 2],
+    /// The direction of its rows, degrees.
+    pub heading_deg: f64,
+    /// How many passes the robot treats.
+    pub passes: u32,
+}
+
+/// `[[farm.road]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoadSection {
+    /// The waypoints between the road's start and its end, m.
+    pub waypoints: Vec<[f64; 2]>,
 }
 
 /// `[guiding]`.
@@ -262,6 +306,7 @@ impl GuidingFile {
             duration_s: 3600.0,
             fault: None,
             stay_inside: g.stay_inside,
+            farm: None,
             gnss_outage_s: None,
         };
         check.replace(
@@ -302,6 +347,9 @@ impl GuidingFile {
         if run.field.passes().len() < 2 {
             return Err(check.error("field.width_m", "the field holds fewer than two passes"));
         }
+        if let Some(farm) = &self.farm {
+            run.farm = Some(farm.farm(&check, &run, &vehicle)?);
+        }
         Ok(run)
     }
 }
@@ -315,4 +363,90 @@ pub fn builtin(name: &str) -> Option<Result<GuidingRun, ScenarioError>> {
         let origin = format!("built-in scenario `{n}`");
         GuidingFile::parse(text, &origin)?.run(&origin)
     })
+}
+
+impl FarmSection {
+    /// The validated farm of fields like `run.field`.
+    //= spec/emmi2024.md#em-sim-farm-roads-joining-fields
+    //# A farm whose roads do not match its fields, bend too tightly for their
+    //# stretches, leave or meet a field more than 45° off its passes, or run
+    //# across a field's crop rows MUST be refused, naming the road.
+    fn farm(
+        &self,
+        check: &Checker,
+        run: &GuidingRun,
+        vehicle: &SkidSteer,
+    ) -> Result<Farm, ScenarioError> {
+        let [x, y, heading_deg] = self.yard;
+        let yard = Pose2::new(x, y, heading_deg.to_radians())
+            .map_err(|e| check.refused("farm.yard", "yard", &e))?;
+        let radius = Meters::new(self.corner_radius_m)
+            .map_err(|e| check.refused("farm.corner_radius_m", "radius", &e))?;
+        TurningRadius::for_vehicle(radius, vehicle)
+            .map_err(|e| check.refused("farm.corner_radius_m", "turning radius", &e))?;
+        let mut road_width_m = 4.0;
+        check.replace(
+            &mut road_width_m,
+            Some(self.road_width_m),
+            "farm.road_width_m",
+            1.0,
+            50.0,
+        )?;
+        if self.field.is_empty() || self.field.len() > 20 {
+            return Err(check.error("farm.field", "one to twenty fields"));
+        }
+        let passes = run.field.passes().len();
+        let mut fields = Vec::new();
+        for (k, f) in self.field.iter().enumerate() {
+            let at = format!("farm.field[{k}].passes");
+            let p = usize::try_from(f.passes).unwrap_or(0);
+            if p == 0 || p > passes {
+                return Err(check.error(
+                    &at,
+                    &format!("must be 1 to {passes}, the passes the field holds"),
+                ));
+            }
+            if !(f.corner.iter().all(|v| v.is_finite()) && f.heading_deg.is_finite()) {
+                return Err(check.error(
+                    &format!("farm.field[{k}]"),
+                    "corner and heading must be finite",
+                ));
+            }
+            fields.push(PlacedField {
+                corner: (f.corner[0], f.corner[1]),
+                heading_rad: f.heading_deg.to_radians(),
+                field: run.field.clone(),
+                passes: p,
+            });
+        }
+        if self.road.len() != fields.len() + 1 {
+            return Err(check.error(
+                "farm.road",
+                "one road to each field and one back to the yard (one more than the fields)",
+            ));
+        }
+        let roads = self
+            .road
+            .iter()
+            .map(|r| Road {
+                waypoints: r.waypoints.iter().map(|w| (w[0], w[1])).collect(),
+            })
+            .collect();
+        let farm = Farm {
+            yard,
+            fields,
+            roads,
+            corner_radius_m: self.corner_radius_m,
+            road_width_m,
+        };
+        farm.route()
+            .map_err(|e| check.refused("farm.road", "route", &e))?;
+        if let Some((road, field)) = farm.road_across_rows() {
+            return Err(check.error(
+                &format!("farm.road[{road}]"),
+                &format!("crosses the crop rows of field {field}"),
+            ));
+        }
+        Ok(farm)
+    }
 }

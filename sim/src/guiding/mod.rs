@@ -15,6 +15,7 @@
 //! every crop plant under a track.
 
 pub mod boundary;
+pub mod farm;
 pub mod field;
 pub mod file;
 pub mod plot;
@@ -46,7 +47,8 @@ use crate::rng::SimRng;
 use crate::world::crops::PlantIndex;
 use crate::world::terrain::Terrain;
 use crate::world::{Plant as Stem, PlantKind};
-use field::{FieldSpec, Goal};
+use farm::{Farm, RouteGoal, Task};
+use field::FieldSpec;
 
 /// The control period: one tick per GNSS fix at 10 Hz (section 5.1), s.
 pub const PERIOD_S: f64 = 0.1;
@@ -176,6 +178,75 @@ pub struct GuidingRun {
     /// Every U-turn's footprint stays inside the field's outline
     /// ([`boundary::shortest_inside`]).
     pub stay_inside: bool,
+    /// A farm of fields joined by roads, driven from its yard; `None`: the
+    /// one field `field`, from the start of its first pass.
+    pub farm: Option<Farm>,
+}
+
+impl GuidingRun {
+    /// The mission's goals, each with its task (the one field's goals are
+    /// all `Task::Field(0)`).
+    ///
+    /// # Errors
+    /// As [`Farm::route`].
+    pub fn route(&self) -> Result<Vec<RouteGoal>, Precondition> {
+        match &self.farm {
+            Some(farm) => farm.route(),
+            None => Ok(self
+                .field
+                .goals()
+                .into_iter()
+                .map(|goal| RouteGoal {
+                    goal,
+                    task: Task::Field(0),
+                })
+                .collect()),
+        }
+    }
+
+    /// Every crop plant of the mission's field or farm.
+    pub fn plants(&self, rng: &mut SimRng) -> Vec<Stem> {
+        match &self.farm {
+            Some(farm) => farm.plants(rng),
+            None => self.field.plants(rng),
+        }
+    }
+
+    /// The fields of the mission, placed in the world (the one field at
+    /// the origin, its rows along x).
+    #[must_use]
+    pub fn placed_fields(&self) -> Vec<farm::PlacedField> {
+        match &self.farm {
+            Some(farm) => farm.fields.clone(),
+            None => vec![farm::PlacedField {
+                corner: (0.0, 0.0),
+                heading_rad: 0.0,
+                field: self.field.clone(),
+                passes: self.field.passes().len(),
+            }],
+        }
+    }
+
+    /// The robot's start, and the start of the first LineFollowing line.
+    fn starts(&self) -> Result<(Pose2<World>, Pose2<World>), Precondition> {
+        match &self.farm {
+            Some(farm) => Ok((farm.yard, farm.yard)),
+            None => Ok((
+                self.field.start(self.start_offset_m)?,
+                self.field.first_line_start()?,
+            )),
+        }
+    }
+
+    /// The outline GoToGoal's turns stay inside during `task`, if any (on
+    /// a road, none).
+    #[must_use]
+    pub fn outline(&self, task: Task) -> Option<boundary::Boundary> {
+        let Task::Field(k) = task else {
+            return None;
+        };
+        self.placed_fields().get(k).map(farm::PlacedField::outline)
+    }
 }
 
 /// What a manoeuvre followed.
@@ -264,8 +335,8 @@ pub struct Outcome {
     pub plants: Vec<Stem>,
     /// Indices of the crop plants a track ran over.
     pub crushed: Vec<usize>,
-    /// The mission's goals.
-    pub goals: Vec<Goal>,
+    /// The mission's goals, each with its task.
+    pub goals: Vec<RouteGoal>,
 }
 
 /// Mean and largest absolute value and count of a set of per-manoeuvre figures.
@@ -403,10 +474,10 @@ fn plan(
     vehicle: &SkidSteer,
     fix: &Pose2<World>,
     from: &Pose2<World>,
-    goals: &[Goal],
+    goals: &[RouteGoal],
     g: usize,
 ) -> Result<Active, Precondition> {
-    let goal = goals
+    let RouteGoal { goal, task } = goals
         .get(g)
         .ok_or_else(|| Precondition::new("EM-PLANNER", "no such goal"))?;
     let planner = choose_planner(fix, &goal.pose, PlannerThreshold::DEFAULT);
@@ -414,12 +485,11 @@ fn plan(
     let (path, segments, profile, radius) = match planner {
         Planner::GoToGoal => {
             let radius = TurningRadius::for_vehicle(Meters::new(goal.radius_m)?, vehicle)?;
-            let turn = if run.stay_inside {
-                let f = &run.field;
-                let outline = boundary::Boundary::rectangle(0.0, 0.0, f.length_m, f.width_m);
-                boundary::shortest_inside(fix, &goal.pose, radius, &outline, &run.robot)?
-            } else {
-                shortest(fix, &goal.pose, radius)?
+            let turn = match run.outline(*task).filter(|_| run.stay_inside) {
+                Some(outline) => {
+                    boundary::shortest_inside(fix, &goal.pose, radius, &outline, &run.robot)?
+                }
+                None => shortest(fix, &goal.pose, radius)?,
             };
             let path: ReferencePath<PATH_CAPACITY> =
                 turn.to_reference_path(Meters::new(PATH_SPACING_M)?)?;
@@ -528,8 +598,8 @@ fn mark_crushed(
 #[must_use]
 pub fn drive(run: &GuidingRun) -> Outcome {
     let mut rng = SimRng::from_seed(run.seed);
-    let plants = run.field.plants(&mut rng);
-    let goals = run.field.goals();
+    let plants = run.plants(&mut rng);
+    let goals = run.route();
     let mut outcome = Outcome {
         end: End::Done,
         ticks: Vec::new(),
@@ -538,10 +608,16 @@ pub fn drive(run: &GuidingRun) -> Outcome {
         paths: Vec::new(),
         plants: plants.clone(),
         crushed: Vec::new(),
-        goals: goals.clone(),
+        goals: Vec::new(),
     };
-    if let Err(e) = drive_in(run, &plants, &goals, &mut rng, &mut outcome) {
-        outcome.end = End::Refused(e.to_string());
+    match goals {
+        Ok(goals) => {
+            outcome.goals.clone_from(&goals);
+            if let Err(e) = drive_in(run, &plants, &goals, &mut rng, &mut outcome) {
+                outcome.end = End::Refused(e.to_string());
+            }
+        }
+        Err(e) => outcome.end = End::Refused(e.to_string()),
     }
     outcome
 }
@@ -550,7 +626,7 @@ pub fn drive(run: &GuidingRun) -> Outcome {
 fn drive_in(
     run: &GuidingRun,
     plants: &[Stem],
-    goals: &[Goal],
+    goals: &[RouteGoal],
     rng: &mut SimRng,
     out: &mut Outcome,
 ) -> Result<(), Precondition> {
@@ -571,9 +647,8 @@ fn drive_in(
     let index = PlantIndex::new(plants.to_vec(), 0.5);
     let mut crushed = vec![false; plants.len()];
     let mut near = Vec::new();
-    let start = run.field.start(run.start_offset_m)?;
+    let (start, mut from) = run.starts()?;
     let mut state = VehicleState::at(start, &terrain);
-    let mut from = run.field.first_line_start()?;
     let mut next_goal = 0_usize;
     let mut active: Option<Active> = None;
     let mut rest_until = 0.0_f64;
@@ -622,7 +697,7 @@ fn drive_in(
         //# longitudinal axis, from the true pose once the robot has rested at the goal.
         if let Some((gi, planner)) = pending {
             if t + 1e-9 >= rest_until {
-                if let Some(goal) = goals.get(gi) {
+                if let Some(RouteGoal { goal, .. }) = goals.get(gi) {
                     let (dx, dy) = (
                         goal.pose.position.x() - truth.position.x(),
                         goal.pose.position.y() - truth.position.y(),
@@ -835,6 +910,90 @@ pub fn end_label(end: &End) -> String {
     }
 }
 
+/// One task of a mission as driven: its goals, time and distance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TaskRecord {
+    /// The road or field.
+    pub task: Task,
+    /// Its goals reached.
+    pub goals_reached: usize,
+    /// From planning its first goal to planning the next task's, s.
+    pub duration_s: f64,
+    /// The true distance travelled, m.
+    pub distance_m: f64,
+}
+
+impl Outcome {
+    /// The task each tick belongs to: that of the goal being driven to, or
+    /// of the last one while resting.
+    #[must_use]
+    pub fn tick_tasks(&self) -> Vec<Option<Task>> {
+        let mut last = None;
+        self.ticks
+            .iter()
+            .map(|t| {
+                if let Some(g) = t.goal.and_then(|g| self.goals.get(g)) {
+                    last = Some(g.task);
+                }
+                last
+            })
+            .collect()
+    }
+
+    /// Each task in the order driven.
+    #[must_use]
+    pub fn tasks(&self) -> Vec<TaskRecord> {
+        let mut out: Vec<TaskRecord> = Vec::new();
+        let tasks = self.tick_tasks();
+        for (w, task) in self.ticks.windows(2).zip(&tasks) {
+            let Some(task) = *task else { continue };
+            let step = (w[1].truth.position.x() - w[0].truth.position.x())
+                .hypot(w[1].truth.position.y() - w[0].truth.position.y());
+            match out.last_mut() {
+                Some(r) if r.task == task => {
+                    r.duration_s += w[1].t_s - w[0].t_s;
+                    r.distance_m += step;
+                }
+                _ => out.push(TaskRecord {
+                    task,
+                    goals_reached: 0,
+                    duration_s: w[1].t_s - w[0].t_s,
+                    distance_m: step,
+                }),
+            }
+        }
+        let mut reached = self.reaches.len();
+        let mut g = 0;
+        for r in &mut out {
+            while reached > 0 && self.goals.get(g).is_some_and(|x| x.task == r.task) {
+                r.goals_reached += 1;
+                reached -= 1;
+                g += 1;
+            }
+        }
+        out
+    }
+
+    /// Per tick on a road, the true distance of O to the road's centreline,
+    /// m (empty without a farm).
+    #[must_use]
+    pub fn road_offsets(&self, run: &GuidingRun) -> Vec<f64> {
+        let Some(lines) = run.farm.as_ref().and_then(|f| f.road_polylines().ok()) else {
+            return Vec::new();
+        };
+        self.ticks
+            .iter()
+            .zip(self.tick_tasks())
+            .filter_map(|(t, task)| match task {
+                Some(Task::Road(k)) => lines.get(k).map(|line| {
+                    Farm::distance_to_road(line, (t.truth.position.x(), t.truth.position.y()))
+                }),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
 /// A mission's figures as JSON.
 #[must_use]
 pub fn summary_json(run: &GuidingRun, outcome: &Outcome) -> serde_json::Value {
@@ -852,6 +1011,20 @@ pub fn summary_json(run: &GuidingRun, outcome: &Outcome) -> serde_json::Value {
         "angular_error_line_rad": outcome.angular_line().json(),
         "angular_error_spiral_rad": outcome.angular_spiral().json(),
         "duration_s": outcome.ticks.last().map_or(0.0, |t| t.t_s),
+        "road_offset_m": Kpi::of(&outcome.road_offsets(run)).json(),
+        "tasks": outcome.tasks().iter().map(|r| {
+            let (kind, index) = match r.task {
+                Task::Road(k) => ("approximation", k),
+                Task::Field(k) => ("treatment", k),
+            };
+            serde_json::json!({
+                "kind": kind,
+                "index": index,
+                "goals_reached": r.goals_reached,
+                "duration_s": r.duration_s,
+                "distance_m": r.distance_m,
+            })
+        }).collect::<Vec<_>>(),
     })
 }
 

@@ -10,18 +10,25 @@ const PLANNED: &str = "#7f7f7f";
 const TRACKS: &str = "#ff7f0e";
 const CROP: &str = "#2ca02c";
 const CRUSHED: &str = "#d62728";
+const ROAD: &str = "#e3ddd0";
 
 /// The mission of `run` over its field, as an SVG document.
 #[must_use]
 pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
-    let f = &run.field;
+    let fields = run.placed_fields();
     let path: Vec<(f64, f64)> = outcome
         .ticks
         .iter()
         .map(|t| (t.truth.position.x(), t.truth.position.y()))
         .collect();
-    let (mut x0, mut x1, mut y0, mut y1): (f64, f64, f64, f64) = (0.0, f.length_m, 0.0, f.width_m);
-    for &(x, y) in &path {
+    let corners: Vec<(f64, f64)> = fields.iter().flat_map(|f| f.outline().vertices).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in corners.iter().chain(&path) {
         (x0, x1, y0, y1) = (
             x0.min(x - 1.0),
             x1.max(x + 1.0),
@@ -34,8 +41,16 @@ pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
     svg.clip_to(&axes);
     svg.frame(
         &axes,
-        "x (m), along the rows",
-        "y (m), across",
+        if run.farm.is_some() {
+            "x (m), east"
+        } else {
+            "x (m), along the rows"
+        },
+        if run.farm.is_some() {
+            "y (m), north"
+        } else {
+            "y (m), across"
+        },
         &format!(
             "{}, seed {}: {}, {} of {} goals, {} crop plants run over",
             run.name,
@@ -46,25 +61,39 @@ pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
             outcome.crushed.len()
         ),
     );
-    // The field's outline and the headlands' inner edges.
+    // The roads, as wide as they are.
+    if let Some(farm) = &run.farm {
+        let metre = axes.px(1.0, 0.0).0 - axes.px(0.0, 0.0).0;
+        for line in farm.road_polylines().unwrap_or_default() {
+            svg.polyline(
+                &axes,
+                &line,
+                Stroke {
+                    colour: ROAD,
+                    width: farm.road_width_m * metre,
+                    dash: None,
+                },
+            );
+        }
+    }
+    // Each field's outline and its headlands' inner edges.
     let outline = |colour| Stroke {
         colour,
         width: 1.0,
         dash: Some("4 3"),
     };
-    svg.polyline(
-        &axes,
-        &[
-            (0.0, 0.0),
-            (f.length_m, 0.0),
-            (f.length_m, f.width_m),
-            (0.0, f.width_m),
-            (0.0, 0.0),
-        ],
-        outline("#000000"),
-    );
-    for x in [f.headland_m, f.length_m - f.headland_m] {
-        svg.polyline(&axes, &[(x, 0.0), (x, f.width_m)], outline(PLANNED));
+    for placed in &fields {
+        let mut edge = placed.outline().vertices;
+        edge.extend(edge.first().copied());
+        svg.polyline(&axes, &edge, outline("#000000"));
+        let f = &placed.field;
+        for x in [f.headland_m, f.length_m - f.headland_m] {
+            svg.polyline(
+                &axes,
+                &[placed.to_world((x, 0.0)), placed.to_world((x, f.width_m))],
+                outline(PLANNED),
+            );
+        }
     }
     let crop: Vec<(f64, f64)> = outcome
         .plants
@@ -126,7 +155,7 @@ pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
     let goals: Vec<(f64, f64)> = outcome
         .goals
         .iter()
-        .map(|g| (g.pose.position.x(), g.pose.position.y()))
+        .map(|g| (g.goal.pose.position.x(), g.goal.pose.position.y()))
         .collect();
     svg.dots(&axes, &goals, 3.0, "#000000");
     let line = |colour| Stroke {
@@ -144,7 +173,7 @@ pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
             (line(CRUSHED), true, "crop plants run over"),
             (line("#000000"), true, "goals"),
         ],
-        &path,
+        &[path.as_slice(), crop.as_slice()].concat(),
     );
     svg.finish()
 }

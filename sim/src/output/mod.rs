@@ -74,7 +74,10 @@ pub fn write_run(
 
 /// Writes `sweep.csv` (one line per seed, [`crate::sweep::sweep_csv`]) into
 /// `out_root/<scenario>/`, creating it; returns the file.
-pub fn write_sweep(out_root: &Path, sweep: &Sweep) -> Result<PathBuf, SimError> {
+pub fn write_sweep<R: crate::sweep::Row>(
+    out_root: &Path,
+    sweep: &Sweep<R>,
+) -> Result<PathBuf, SimError> {
     let dir = out_root.join(&sweep.scenario);
     std::fs::create_dir_all(&dir).map_err(|source| SimError::Write {
         file: dir.clone(),

@@ -7,7 +7,8 @@
 //! right. A vine is a trunk (a thin cylinder) and its canopy: overlapping
 //! cylinders every [`SEGMENT_M`] along the row, as wide as the season's
 //! canopy, each present with the season's density, so that winter wood has
-//! gaps. Posts stand in the row every `post_gap`; whole vines may be missing.
+//! gaps. Posts stand in the row every `post_gap`; whole vines may be missing,
+//! and so may the first vines of every row.
 
 use rand::Rng;
 
@@ -64,6 +65,9 @@ pub struct VineyardSpec {
     pub density: f64,
     /// Probability that a whole vine is missing.
     pub missing: f64,
+    /// The first vines of every row, all missing (young replants at the
+    /// entry: the row starts with posts and bare wire).
+    pub missing_at_entry: usize,
     /// Distance between posts along a row, m.
     pub post_gap: f64,
     /// Post top above the ground, m.
@@ -96,6 +100,7 @@ impl VineyardSpec {
             canopy_height: 1.0,
             density,
             missing: 0.03,
+            missing_at_entry: 0,
             post_gap: 6.0,
             post_height: 1.3,
             slope: [0.01, 0.03],
@@ -142,7 +147,7 @@ impl VineyardSpec {
             let y = self.row_y(row);
             for v in 0..=vines {
                 let x = v as f64 * self.vine_gap;
-                if rng.random::<f64>() < self.missing {
+                if v < self.missing_at_entry || rng.random::<f64>() < self.missing {
                     continue;
                 }
                 solid.extend(stand(x, y, TRUNK_RADIUS_M, self.canopy_height));

@@ -97,6 +97,8 @@ pub struct FieldSection {
     pub density: Option<f64>,
     /// Probability that a vine is missing.
     pub missing: Option<f64>,
+    /// The first vines of every row, all missing.
+    pub missing_at_entry: Option<u32>,
     /// Distance between posts, m.
     pub post_gap_m: Option<f64>,
     /// Along-row slope dz/dx.
@@ -223,6 +225,9 @@ impl VineyardFile {
         )?;
         check.replace(&mut c.density, f.density, "field.density", 0.0, 1.0)?;
         check.replace(&mut c.missing, f.missing, "field.missing", 0.0, 1.0)?;
+        if let Some(n) = f.missing_at_entry {
+            c.missing_at_entry = check.count("field.missing_at_entry", n, 0, 10)?;
+        }
         check.replace(
             &mut c.post_gap,
             f.post_gap_m,

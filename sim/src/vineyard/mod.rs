@@ -6,8 +6,13 @@
 //! One tick at 20 Hz: the LiDAR ray-casts the vineyard ([`field`]) from the
 //! true pose over the sloping, bumpy ground; the detector reads the scan and
 //! the wheel odometry (with drift); the law's angles drive the plant, which
-//! slides with the terrain's sideslip. Before the first row line the robot
-//! drives straight. Errors are measured against the true row centre line
+//! slides with the terrain's sideslip. The robot enters the row as a real
+//! one would (the paper's conclusion: the row's surveyed ends and GNSS for
+//! the transition, the LiDAR inside the row): the core's switching machine
+//! (Pierre 2022, section 3) starts in path tracking on the surveyed row
+//! line, the same law fed by the GNSS pose, and enters vine following once
+//! the detector's verdict has been Enter, its line consistent with the
+//! surveyed one, for [`ENTER_DELAY_S`]. Errors are measured against the true row centre line
 //! (y = 0, along x), never the robot's estimate: the lateral deviation of R
 //! and the heading. A vine is touched when a wheel's contact patch meets a
 //! trunk or a post. [`turns`] runs the same robot and vineyard through the
@@ -29,7 +34,13 @@ use fieldguide::model::bicycle::{Sideslip, SteeringLimit, Wheelbase};
 use fieldguide::model::four_ws::FourWheelSteering;
 use fieldguide::model::Command;
 use fieldguide::perception::vine::{VineConfig, VineDetector, VineParams};
-use fieldguide::{Meters, MetersPerSecond, Odom, Pose2, Radians, TrackingError, World};
+use fieldguide::supervisor::switching::{
+    BehaviourConfig, CommandSource, Input, PathAhead, PlanTolerance, Report, Switching,
+    SwitchingConfig,
+};
+use fieldguide::{
+    Curvature, Meters, MetersPerSecond, Odom, Pose2, Radians, Seconds, TrackingError, World,
+};
 
 use crate::error::SimError;
 use crate::lidar::inclined::InclinedLidar;
@@ -56,12 +67,18 @@ pub const RAYS: usize = 128;
 /// The detector's set-point capacity.
 pub const POINTS: usize = 128;
 
-/// The row's entry, m: from the paper's start (the right wheel facing the
-/// row, 0.7 m off) the wheel cannot leave the row's line before the first
-/// vines are in the LiDAR's view, about 0.3 m before the front wheel
-/// reaches them, so the vines of the entry may be touched; beyond it none
-/// may.
+/// The row's entry, m: the vines and posts before it are counted apart
+/// ([`VineOutcome::touched_in_row`] leaves them out).
 pub const ENTRY_M: f64 = 3.0;
+/// How long the detector's verdict must be Enter, its line consistent with
+/// the surveyed row, before the robot follows the vines, s.
+pub const ENTER_DELAY_S: f64 = 1.0;
+/// How long an Exit or Absent verdict lasts before the robot goes back to
+/// path tracking on the surveyed row, s.
+pub const EXIT_DELAY_S: f64 = 0.5;
+/// The vine line's largest offset (m) and heading difference (rad) to the
+/// surveyed row line for them to agree.
+pub const PLAN_TOLERANCE: (f64, f64) = (0.5, 0.3);
 
 /// The control law of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -138,6 +155,8 @@ pub struct VineyardRun {
     pub settle_m: f64,
     /// The run ends when R is this far before the row's end, m.
     pub stop_before_end_m: f64,
+    /// The GNSS pose's noise σ: position (m), heading (rad).
+    pub gnss_noise: (f64, f64),
     /// A fault, for the tests that show the checks bite.
     pub fault: Option<Fault>,
     /// Whether the run follows row 0, turns in the headland and follows
@@ -153,7 +172,8 @@ impl VineyardRun {
     /// on both axles (a cross slope), given to the law; odometry 0.5 % long
     /// drifting 0.002 rad/m; a 1.5° LiDAR with 1 cm of noise and model
     /// margins of 3 rays; the front axle 1.5 m before the row, R 0.7 m left
-    /// of it; errors after 10 m; the run ends 3 m before the row's end.
+    /// of it; an RTK GNSS pose within 2 cm and 0.01 rad (σ) for the entry;
+    /// errors after 10 m; the run ends 3 m before the row's end.
     #[must_use]
     pub fn paper(season: Season, strategy: Strategy, seed: u64) -> Self {
         Self {
@@ -180,6 +200,7 @@ impl VineyardRun {
             start: (1.5, 0.7),
             settle_m: 10.0,
             stop_before_end_m: 3.0,
+            gnss_noise: (0.02, 0.01),
             fault: None,
             turns: false,
         }
@@ -337,10 +358,10 @@ impl VineOutcome {
             .fold(0.0, f64::max)
     }
 
-    /// Whether R reached the end of the row touching no vine past the entry.
+    /// Whether R reached the end of the row touching no vine from the start.
     #[must_use]
     pub fn success(&self) -> bool {
-        self.end == VineEnd::Done && self.touched_in_row == 0
+        self.end == VineEnd::Done && self.touched == 0
     }
 }
 
@@ -448,6 +469,12 @@ fn drive_in(
     let mut state = VehicleState::at(start, &terrain);
     let mut odometry = FourWsOdometry::new(run.odometry).map_err(s)?;
     let speed = MetersPerSecond::new(run.speed_mps).map_err(s)?;
+    let mut switching = entry_switching().map_err(s)?;
+    let tolerance = PlanTolerance::new(
+        Meters::new(PLAN_TOLERANCE.0).map_err(s)?,
+        Radians::new(PLAN_TOLERANCE.1).map_err(s)?,
+    )
+    .map_err(s)?;
     let mut touched = vec![false; solid.len()];
     let mut ticks = Vec::new();
     let mut detected = 0;
@@ -467,9 +494,36 @@ fn drive_in(
         } else {
             Sideslip::ZERO
         };
-        let command = match d.error {
+        //= spec/iberraken2022.md#fws-entry-entering-the-row-on-the-surveyed-row-line
+        //# From its start until the vine detector locks, the robot MUST track the
+        //# surveyed centre line of the row from its GNSS pose, with the law it follows
+        //# the vines with.
+        //= spec/iberraken2022.md#fws-entry-entering-the-row-on-the-surveyed-row-line
+        //# It MUST follow the vines once the detector's verdict has been
+        //# Enter, with a row line within 0.5 m and 0.3 rad of the surveyed one, for 1 s,
+        //# and from 3 m into the row on.
+        let gnss = surveyed_row_error(run, &state.pose, rng).map_err(s)?;
+        let plan_consistent = d
+            .error
+            .is_some_and(|e| tolerance.is_consistent(&e, &gnss, &PathAhead::HERE));
+        let mode = switching.step(&Input {
+            behaviours: [Report {
+                verdict: d.verdict,
+                plan_consistent,
+            }],
+            localisation_valid: true,
+        });
+        let following = mode.source == CommandSource::Behaviour(0);
+        let error = match mode.source {
+            CommandSource::Behaviour(_) => d.error,
+            CommandSource::PathTracking => Some(gnss),
+            CommandSource::None => None,
+        };
+        if following {
+            detected += 1;
+        }
+        let command = match error {
             Some(e) => {
-                detected += 1;
                 let e = match run.fault {
                     Some(Fault::FlippedLateralGain) => TrackingError {
                         y: Meters::new(-e.y.get()).map_err(s)?,
@@ -495,7 +549,7 @@ fn drive_in(
                 }
             }
             None => Command::FourWheelSteering {
-                speed,
+                speed: MetersPerSecond::new(0.0).map_err(s)?,
                 front: Radians::ZERO,
                 rear: Radians::ZERO,
             },
@@ -508,7 +562,7 @@ fn drive_in(
             lateral_m: truth.position.y() - run.field.row_y(0),
             angular_rad: truth.heading.get(),
             along_m: truth.position.x(),
-            following: None,
+            following: Some(following),
             steering: (state.steering, state.rear_steering),
             estimate: d.error.map(|e| (e.y.get(), e.angular_deviation.get())),
         });
@@ -523,6 +577,40 @@ fn drive_in(
         odometry.update(&before, &state, slip.rear.get(), rng);
     }
     Ok(VineOutcome::of(ticks, end, &touched, solid, seen, detected))
+}
+
+/// The switching machine of a row's entry: vine following, the one
+/// behaviour, entered after [`ENTER_DELAY_S`] of Enter verdicts consistent
+/// with the surveyed row, left after [`EXIT_DELAY_S`] of Exit or Absent ones
+/// or 0.5 s of disagreement; a stop after 1 s without a command.
+fn entry_switching() -> Result<Switching<1>, fieldguide::Precondition> {
+    let behaviour =
+        BehaviourConfig::new(Seconds::new(ENTER_DELAY_S)?, Seconds::new(EXIT_DELAY_S)?)?;
+    let config = SwitchingConfig::new(
+        Seconds::new(PERIOD_S)?,
+        [behaviour],
+        Seconds::new(1.0)?,
+        Some(Seconds::new(0.5)?),
+    )?;
+    Ok(Switching::new(config))
+}
+
+/// The robot's error to the surveyed centre line of row 0 (along +x), from
+/// a GNSS pose: the true pose with the run's [`VineyardRun::gnss_noise`].
+fn surveyed_row_error(
+    run: &VineyardRun,
+    pose: &Pose2<World>,
+    rng: &mut SimRng,
+) -> Result<TrackingError, fieldguide::Precondition> {
+    let (sigma_p, sigma_h) = run.gnss_noise;
+    let y = pose.position.y() - run.field.row_y(0) + rng.gaussian(sigma_p);
+    let heading = wrap(pose.heading.get() + rng.gaussian(sigma_h));
+    Ok(TrackingError {
+        y: Meters::new(y)?,
+        angular_deviation: Radians::new(heading)?,
+        curvature: Curvature::new(0.0)?,
+        curvature_ahead: Curvature::new(0.0)?,
+    })
 }
 
 /// The odometry of a four-wheel-steering robot: the distance the wheels
@@ -610,7 +698,7 @@ pub fn wheels(pose: &Pose2<World>) -> [(f64, f64); 4] {
 /// Marks the trunks and posts a wheel's contact patch (a rectangle
 /// [`TYRE_M`] aligned with the body) meets.
 //= spec/iberraken2022.md#fws-closed-loop-vine-row-held-against-the-true-row
-//# No wheel MUST touch a trunk or a post past the row's entry.
+//# From the paper's start, no wheel MUST touch a trunk or a post.
 pub(crate) fn mark_touched(pose: &Pose2<World>, solid: &[Stem], touched: &mut [bool]) {
     let (s, c) = pose.heading.get().sin_cos();
     for (w, wy) in wheels(pose) {

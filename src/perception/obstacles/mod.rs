@@ -7,8 +7,18 @@
 //! [`Hazard`] per tick, which the mission supervisor
 //! ([`crate::supervisor`]) consumes.
 
+pub mod areas;
+pub mod cluster;
+pub mod detour;
+
+pub use areas::{AreaLength, Footprint, ObstacleConfig, SafetyAreas};
+pub use cluster::{cluster, ClusterConfig, Obstacles};
+pub use detour::{detour, DetourPlan};
+
+use crate::error::Precondition;
 use crate::geometry::frame::{Point2, Pose2, Robot, World};
-use crate::geometry::units::Meters;
+use crate::geometry::units::{Meters, MetersPerSecond};
+use crate::planning::dubins::shortest;
 
 /// One obstacle in the robot frame (x forward, y left, metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,4 +54,140 @@ pub enum Hazard {
     },
     /// An obstacle in the critical area: stop for as long as it is there.
     Critical,
+}
+
+/// Why the safety areas said what they said (EM-OBST-HAZARD): the named
+/// reason of a stop, or of going on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Reason {
+    /// No obstacle in either area.
+    NoObstacle,
+    /// Obstacles in the warning area, none on the planned path.
+    OffPath,
+    /// An obstacle in the critical area: stop.
+    CriticalArea,
+    /// More obstacles than the list holds, one left out possibly within the
+    /// areas: stop.
+    Unseen,
+    /// An obstacle on the path in the warning area inside a crop field: stop
+    /// rather than re-plan over the plants.
+    InCropField,
+    /// An obstacle on the path in the warning area: re-plan through the
+    /// detour waypoint.
+    Detour,
+    /// An obstacle on the path, and one covers the goal: stop.
+    GoalBlocked,
+    /// An obstacle on the path, and no side is clear: stop.
+    NoClearSide,
+}
+
+/// The hazard of one tick and its reason (EM-OBST-HAZARD).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Assessment {
+    /// What the mission supervisor acts on.
+    pub hazard: Hazard,
+    /// Why.
+    pub reason: Reason,
+}
+
+impl Assessment {
+    const fn new(hazard: Hazard, reason: Reason) -> Self {
+        Self { hazard, reason }
+    }
+
+    /// Whether the robot must stop this tick: a critical hazard, or a
+    /// warning without a detour.
+    #[must_use]
+    pub const fn stops(&self) -> bool {
+        matches!(
+            self.hazard,
+            Hazard::Critical | Hazard::Warning { detour: None }
+        )
+    }
+}
+
+/// The hazard of the `obstacles` (robot frame at `pose`) for a robot at
+/// `pose` going to `goal` at nominal `speed`, `in_field` saying whether it
+/// is inside a crop field (Emmi 2024, section 3.2): the most severe obstacle
+/// decides.
+///
+/// # Errors
+/// `EM-OBST-AREAS` for a speed outside [0, 100] m/s; the errors of the
+/// Dubins planner for `pose` or `goal` beyond 1e7 m (`EM-DUBINS-RANGE`).
+//= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
+//# An obstacle in the critical area MUST give `Critical`, whatever the other
+//# obstacles.
+//= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
+//# Otherwise, an obstacle in the warning area on which the footprint moving
+//# along the planned path up to the warning area's far edge is not clear
+//# (EM-OBST-CLEAR) MUST give `Warning`; without such an obstacle the hazard
+//# MUST be `Clear`.
+//= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
+//# The detour of a `Warning` MUST be the waypoint of EM-OBST-DETOUR round the
+//# obstacle of the path nearest to the robot, or `None` with the reason when
+//# there is none.
+//= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
+//# The horizon of the second leg MUST be the warning area's far edge.
+pub fn assess<const N: usize>(
+    obstacles: &Obstacles<N>,
+    pose: &Pose2<World>,
+    goal: &Pose2<World>,
+    speed: MetersPerSecond,
+    in_field: bool,
+    config: &ObstacleConfig,
+) -> Result<Assessment, Precondition> {
+    let areas = config.areas(speed)?;
+    //= spec/emmi2024.md#em-obst-unseen-obstacles-left-out
+    //# When the list of obstacles dropped one whose distance from the robot
+    //# is not beyond the farthest point of the areas, the hazard MUST be
+    //# `Critical`.
+    if obstacles.dropped_any()
+        && !obstacles
+            .nearest_dropped()
+            .is_some_and(|d| d.get() > areas.reach())
+    {
+        return Ok(Assessment::new(Hazard::Critical, Reason::Unseen));
+    }
+    let all = obstacles.as_slice();
+    if all.iter().any(|o| areas.in_critical(o)) {
+        return Ok(Assessment::new(Hazard::Critical, Reason::CriticalArea));
+    }
+    let mut warned = all.iter().filter(|o| areas.in_warning(o)).peekable();
+    if warned.peek().is_none() {
+        return Ok(Assessment::new(Hazard::Clear, Reason::NoObstacle));
+    }
+    let nominal = shortest(pose, goal, config.radius())?;
+    let upto = areas.warning_end().get();
+    let target = warned
+        .filter(|o| detour::on_path(o, pose, &nominal, upto, config))
+        .map(|o| (cluster::distance(o), o))
+        .fold(None, |best: Option<(f64, &Obstacle)>, (d, o)| match best {
+            Some((bd, _)) if !areas::above(bd, d) => best,
+            _ => Some((d, o)),
+        });
+    let Some((_, target)) = target else {
+        return Ok(Assessment::new(Hazard::Clear, Reason::OffPath));
+    };
+    //= spec/emmi2024.md#em-obst-field-no-re-planning-in-a-crop-field
+    //# Inside a crop field, a `Warning` MUST carry no detour, with the reason
+    //# `InCropField`, so that the robot stops instead of crossing the crop.
+    if in_field {
+        return Ok(Assessment::new(
+            Hazard::Warning { detour: None },
+            Reason::InCropField,
+        ));
+    }
+    Ok(
+        match detour(target, all, pose, goal, areas.warning_end(), config)? {
+            DetourPlan::Waypoint(w) => {
+                Assessment::new(Hazard::Warning { detour: Some(w) }, Reason::Detour)
+            }
+            DetourPlan::GoalBlocked => {
+                Assessment::new(Hazard::Warning { detour: None }, Reason::GoalBlocked)
+            }
+            DetourPlan::NoClearSide => {
+                Assessment::new(Hazard::Warning { detour: None }, Reason::NoClearSide)
+            }
+        },
+    )
 }

@@ -26,7 +26,7 @@ pub mod spacing;
 use heapless::Vec;
 
 use self::filter::{seen_from, tracking_error, FilterConfig, Outcome, RowFilter};
-use self::points::{merge_runs, scan_points, Gathered, Points};
+use self::points::{merge_runs, scan_points_with, Gathered, Points, Rays};
 use self::ruby::{Found, Ruby, RubyConfig, RubyParams, Variant, MAX_MODELS};
 use self::spacing::{SpacingConfig, SpacingEstimator};
 use crate::error::Precondition;
@@ -181,6 +181,8 @@ pub struct RowsDetector<const POINTS: usize = 512> {
     ruby: Ruby<POINTS>,
     points: Points<POINTS>,
     one: Points<POINTS>,
+    /// Each LiDAR's rays' sines and cosines.
+    rays: [Rays<POINTS>; MAX_LIDARS],
     phase: Phase,
     /// The odometry pose of the last tick.
     last: Option<Pose2<Odom>>,
@@ -194,6 +196,7 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
             ruby: Ruby::new(config.ruby),
             points: Points::new(),
             one: Points::new(),
+            rays: [const { Rays::new() }; MAX_LIDARS],
             phase: Phase::Measuring(SpacingEstimator::new(config.params.spacing), None, 0),
             config,
             last: None,
@@ -274,8 +277,12 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
             dropped: 0,
         };
         self.points.clear();
-        for (scan, mount) in scans.iter().zip(p.mounts.iter().flatten()) {
-            let g = scan_points(scan, mount, &mut self.one)?;
+        for ((scan, mount), rays) in scans
+            .iter()
+            .zip(p.mounts.iter().flatten())
+            .zip(self.rays.iter_mut())
+        {
+            let g = scan_points_with(scan, mount, rays, &mut self.one)?;
             if p.ruby.variant.one_point() {
                 merge_runs(&mut self.one, p.ruby.merge_distance);
             }

@@ -38,6 +38,82 @@ pub struct Gathered {
 /// a valid return beyond `out`'s capacity is counted in
 /// [`Gathered::dropped`], never lost silently. Errors with `LIB-FINITE` only
 /// when a transformed point overflows.
+pub fn scan_points<const N: usize>(
+    scan: &Scan<'_>,
+    mount: &Transform2<Sensor, Robot>,
+    out: &mut Points<N>,
+) -> Result<Gathered, Precondition> {
+    gather(scan, mount, out, |_, phi| libm::sincos(phi))
+}
+
+/// [`scan_points`] with the rays' sines and cosines taken from `rays`, which
+/// keeps them from scan to scan while the scan's start, increment and ray
+/// count stay the same (a LiDAR's rays do not move): the same points, bit
+/// for bit, without a sine and a cosine per ray. Rays beyond `R` are
+/// computed as [`scan_points`] computes them.
+///
+/// # Errors
+/// As [`scan_points`].
+pub fn scan_points_with<const N: usize, const R: usize>(
+    scan: &Scan<'_>,
+    mount: &Transform2<Sensor, Robot>,
+    rays: &mut Rays<R>,
+    out: &mut Points<N>,
+) -> Result<Gathered, Precondition> {
+    rays.prepare(scan);
+    gather(scan, mount, out, |k, phi| {
+        rays.directions
+            .get(k)
+            .copied()
+            .unwrap_or_else(|| libm::sincos(phi))
+    })
+}
+
+/// The (sin φ, cos φ) of the first `R` rays of a scan's geometry, φ = start
+/// + k · increment as [`scan_points`] computes it.
+#[derive(Debug, Clone)]
+pub struct Rays<const R: usize> {
+    /// The geometry the table holds: start and increment (their bits) and
+    /// the number of rays; `None` before the first scan.
+    key: Option<(u64, u64, usize)>,
+    directions: heapless::Vec<(f64, f64), R>,
+}
+
+impl<const R: usize> Rays<R> {
+    /// An empty table (filled by the first scan).
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            key: None,
+            directions: heapless::Vec::new(),
+        }
+    }
+
+    /// Fills the table for `scan`'s geometry unless it holds it already.
+    fn prepare(&mut self, scan: &Scan<'_>) {
+        let (start, step) = (scan.start.get(), scan.increment.get());
+        let key = Some((start.to_bits(), step.to_bits(), scan.ranges.len()));
+        if self.key == key {
+            return;
+        }
+        self.key = key;
+        self.directions.clear();
+        let mut k = 0.0_f64;
+        for _ in scan.ranges.iter().take(R) {
+            let _ = self.directions.push(libm::sincos(start + k * step));
+            k += 1.0;
+        }
+    }
+}
+
+impl<const R: usize> Default for Rays<R> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The points of [`scan_points`], ray `k`'s (sin φ, cos φ) from
+/// `direction(k, φ)`.
 //= spec/guyonneau2022.md#rows-points-scan-points-in-the-robot-frame
 //# Every ray whose range the scan's limits accept MUST become the point
 //# (r cos φ, r sin φ) of the sensor frame, φ = start + k · increment, moved into
@@ -45,19 +121,20 @@ pub struct Gathered {
 //= spec/guyonneau2022.md#rows-points-scan-points-in-the-robot-frame
 //# A valid return that does not fit in the point buffer MUST be counted as
 //# dropped in the result.
-pub fn scan_points<const N: usize>(
+fn gather<const N: usize>(
     scan: &Scan<'_>,
     mount: &Transform2<Sensor, Robot>,
     out: &mut Points<N>,
+    mut direction: impl FnMut(usize, f64) -> (f64, f64),
 ) -> Result<Gathered, Precondition> {
     out.clear();
     let mut dropped = 0_usize;
     let (start, step) = (scan.start.get(), scan.increment.get());
     // k as a float, exact for any slice length.
     let mut k = 0.0_f64;
-    for &range in scan.ranges {
+    for (index, &range) in scan.ranges.iter().enumerate() {
         if scan.limits.accepts(range) {
-            let (sin, cos) = libm::sincos(start + k * step);
+            let (sin, cos) = direction(index, start + k * step);
             let p = Point2::<Sensor>::new(range * cos, range * sin)?;
             let point = RowPoint {
                 position: mount.apply(p)?,

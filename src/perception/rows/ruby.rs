@@ -303,17 +303,20 @@ impl Line {
     //# least squares: a least-squares start (FIT-LINE), then the configured
     //# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
     //# point's residual in y to the line before.
-    fn fit<I>(points: I, rounds: u8) -> Option<Self>
-    where
-        I: Iterator<Item = Point2<Robot>> + Clone,
-    {
-        let mut line = fit_line(points.clone()).ok()?;
+    ///
+    /// Each round's weights are computed once into `weights` (as long as
+    /// `points` at least; the rounds stop where it is shorter).
+    fn fit(points: &[Point2<Robot>], rounds: u8, weights: &mut [f64]) -> Option<Self> {
+        let mut line = fit_line(points.iter()).ok()?;
         for _ in 0..rounds {
-            let weighted = points.clone().map(|p| {
+            let Some(weights) = weights.get_mut(..points.len()) else {
+                break;
+            };
+            for (w, p) in weights.iter_mut().zip(points) {
                 let r = libm::fabs(p.y() - line.a * p.x() - line.b);
-                (p, 1.0 / r.max(LAD_FLOOR))
-            });
-            match fit_line_weighted(weighted) {
+                *w = 1.0 / r.max(LAD_FLOOR);
+            }
+            match fit_line_weighted(points.iter().zip(weights.iter().copied())) {
                 Ok(next) => line = next,
                 Err(_) => break,
             }
@@ -369,17 +372,34 @@ fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
     })
 }
 
-/// No model: a point's slot while it is an outlier.
-const NO_SLOT: u8 = u8::MAX;
+/// Slot `k` as the rank 2^k, an `f64` ordered as the slots are (exact for
+/// k ≤ 64; 2^64 stands for no model), so that the re-attachment's inner
+/// loop runs on one type and vectorises.
+#[inline]
+fn rank(k: usize) -> f64 {
+    let k = u64::try_from(k).map_or(64, |k| k.min(64));
+    f64::from_bits(k.saturating_add(1023) << 52)
+}
+
+/// The slot of a rank made by [`rank`] (its binary exponent): `MAX_MODELS`
+/// for no model.
+#[inline]
+fn slot_of(rank: f64) -> usize {
+    usize::try_from((rank.to_bits() >> 52).saturating_sub(1023))
+        .map_or(MAX_MODELS, |k| k.min(MAX_MODELS))
+}
+
+/// The rank of no model.
+const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
 /// The points' coordinates in columns and each point's closest model so
-/// far, for the re-attachment's inner loops.
+/// far (its distance and [`rank`]), for the re-attachment's inner loops.
 #[derive(Debug, Clone)]
 struct Columns<const N: usize> {
     xs: [f64; N],
     ys: [f64; N],
     best: [f64; N],
-    slot: [u8; N],
+    rank: [f64; N],
 }
 
 /// A set of models and which points belong to each.
@@ -475,6 +495,13 @@ impl<const N: usize> ModelSet<N> {
     }
 }
 
+/// Room for one model's fit: its points and their weights.
+#[derive(Debug, Clone)]
+struct Scratch<const N: usize> {
+    points: [Point2<Robot>; N],
+    weights: [f64; N],
+}
+
 /// Ruby's line finder with its seeded generator and the set it carries from
 /// scan to scan; `N` points at most per scan.
 #[derive(Debug, Clone)]
@@ -490,8 +517,8 @@ pub struct Ruby<const N: usize> {
     kept: usize,
     /// w_pq of each pair of consecutive points (eq. 5).
     weights: [f64; N],
-    /// One model's points, gathered for its fit.
-    scratch: [Point2<Robot>; N],
+    /// One model's points, gathered for its fit, and their weights.
+    scratch: Scratch<N>,
     /// The points in columns, for the re-attachment.
     columns: Columns<N>,
 }
@@ -520,12 +547,15 @@ impl<const N: usize> Ruby<N> {
             sets: [empty.clone(), empty],
             kept: 0,
             weights: [0.0; N],
-            scratch: [Point2::origin(); N],
+            scratch: Scratch {
+                points: [Point2::origin(); N],
+                weights: [0.0; N],
+            },
             columns: Columns {
                 xs: [0.0; N],
                 ys: [0.0; N],
                 best: [0.0; N],
-                slot: [NO_SLOT; N],
+                rank: [NO_RANK; N],
             },
         }
     }
@@ -811,7 +841,7 @@ fn search_side<const N: usize>(
         let seeds = seed.map(|i| points.get(i).map(|q| q.position));
         if let [Some(a), Some(b), Some(c)] = seeds {
             if let (Some(line), Some(l)) =
-                (Line::fit([a, b, c].into_iter(), 0), set.lines.get_mut(slot))
+                (Line::fit(&[a, b, c], 0, &mut []), set.lines.get_mut(slot))
             {
                 *l = line;
                 set.alive |= bit(slot);
@@ -850,7 +880,7 @@ fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
 fn merge<const N: usize>(
     set: &mut ModelSet<N>,
     points: &[RowPoint],
-    scratch: &mut [Point2<Robot>; N],
+    scratch: &mut Scratch<N>,
     p: &RubyParams,
 ) {
     let n = points.len();
@@ -888,8 +918,8 @@ fn merge<const N: usize>(
                 set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                let members = set.members(points, j, scratch).iter().copied();
-                if let Some(line) = Line::fit(members, p.fit_rounds) {
+                let members = set.members(points, j, &mut scratch.points);
+                if let Some(line) = Line::fit(members, p.fit_rounds, &mut scratch.weights) {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
                         if *l != line {
@@ -1079,54 +1109,80 @@ fn reattach<const N: usize>(
         // models that did not move: only the moved ones can take it. The
         // closest is the least (distance, slot), as a scan of every model
         // in slot order finds it.
-        let closer = |d: f64, k: u8, best: f64, slot: u8| {
-            d <= limit && (d < best || (d <= best && k < slot))
-        };
-        for (((&x, &y), &old), (best, slot)) in xy
-            .clone()
+        let xs = cols.xs.get(..n).unwrap_or(&[]);
+        let ys = cols.ys.get(..n).unwrap_or(&[]);
+        let best = cols.best.get_mut(..n).unwrap_or(&mut []);
+        let ranks = cols.rank.get_mut(..n).unwrap_or(&mut []);
+        for (((&x, &y), &old), (best, r)) in xs
+            .iter()
+            .zip(ys)
             .zip(set.masks.iter())
-            .zip(cols.best.iter_mut().zip(cols.slot.iter_mut()))
+            .zip(best.iter_mut().zip(ranks.iter_mut()))
         {
-            (*best, *slot) = (f64::INFINITY, NO_SLOT);
+            let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
             if old & moved != 0 {
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
-                    if closer(d, k, *best, *slot) {
-                        (*best, *slot) = (d, k);
+                    let k = usize::from(k);
+                    if d <= limit && (d < d_best || (d <= d_best && k < k_best)) {
+                        (d_best, k_best) = (d, k);
                     }
                 }
             } else if old != 0 {
                 let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
-                *best = set.line(k).distance_xy(x, y);
-                *slot = u8::try_from(k).unwrap_or(NO_SLOT);
+                (d_best, k_best) = (set.line(k).distance_xy(x, y), k);
+            }
+            // With no model yet, the limit stands for the distance to beat:
+            // a moved model takes the point when within it (RUBY-REATTACH),
+            // and no test of the limit is left in the loop below.
+            (*best, *r) = if k_best < MAX_MODELS {
+                (d_best, rank(k_best))
+            } else {
+                (limit, NO_RANK)
+            };
+        }
+        // Each moved model over every point: one loop per model on f64
+        // columns alone, without branches (a select per point), which the
+        // compiler vectorises. A point's distance to beat is never above
+        // the limit: the closest within it wins, ties to the lower slot.
+        // Two models per pass over the points, in slot order, halve the
+        // loads and stores of the columns.
+        let closer = |d: f64, k: f64, best: f64, r: f64| (d < best) | ((d <= best) & (k < r));
+        let mut pairs = changed.chunks_exact(2);
+        for pair in pairs.by_ref() {
+            let [(_, k1, l1), (_, k2, l2)] = pair else {
+                continue;
+            };
+            let (k1, k2) = (rank(usize::from(*k1)), rank(usize::from(*k2)));
+            for ((&x, &y), (best, r)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
+            {
+                let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
+                let (mut b, mut q) = (*best, *r);
+                let take = closer(d1, k1, b, q);
+                b = if take { d1 } else { b };
+                q = if take { k1 } else { q };
+                let take = closer(d2, k2, b, q);
+                *best = if take { d2 } else { b };
+                *r = if take { k2 } else { q };
             }
         }
-        // Each moved model over every point: one tight loop per model,
-        // without branches (a select per point).
-        for &(_, k, line) in &changed {
-            for ((&x, &y), (best, slot)) in xy
-                .clone()
-                .zip(cols.best.iter_mut().zip(cols.slot.iter_mut()))
+        for &(_, k, line) in pairs.remainder() {
+            let k = rank(usize::from(k));
+            for ((&x, &y), (best, r)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let d = line.distance_xy(x, y);
-                let take = (d <= limit) & ((d < *best) | ((d <= *best) & (k < *slot)));
+                let take = closer(d, k, *best, *r);
                 *best = if take { d } else { *best };
-                *slot = if take { k } else { *slot };
+                *r = if take { k } else { *r };
             }
         }
-        for (m, (&best, &slot)) in set
-            .masks
-            .iter_mut()
-            .zip(cols.best.iter().zip(cols.slot.iter()))
-            .take(n)
-        {
-            *m = if slot == NO_SLOT {
-                0
-            } else {
-                bit(usize::from(slot))
-            };
-            if slot != NO_SLOT {
-                stats.add(usize::from(slot), best);
+        for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
+            let k = slot_of(r);
+            *m = bit(k);
+            if k < MAX_MODELS {
+                stats.add(k, best);
             }
         }
     }
