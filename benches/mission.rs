@@ -53,6 +53,7 @@ fn bench(c: &mut Criterion) {
         odometry: Pose2::<Robot>::new(0.05, 0.0, 0.0).unwrap(),
         hazard: Hazard::Clear,
         in_field: false,
+        remaining: None,
     };
     // En route: the first leg is planned in the first tick, not measured.
     let mut started = mission();

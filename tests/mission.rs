@@ -47,6 +47,11 @@ impl Driver {
         }
     }
 
+    /// The remaining distance along the plan followed, as a pipeline reports it.
+    fn remaining(&self) -> Option<Meters> {
+        self.plan.map(|p| m(p.length().get() - self.s))
+    }
+
     /// Moves along the plan of `out` for one tick; returns the odometry
     /// increment in the robot frame of the previous pose.
     fn drive(&mut self, out: &MissionOutput) -> Pose2<Robot> {
@@ -95,6 +100,7 @@ fn input(
         odometry,
         hazard,
         in_field: field,
+        remaining: None,
     }
 }
 
@@ -160,7 +166,10 @@ fn run(mission: &mut Mission, driver: &mut Driver, ticks: usize) -> Vec<MissionO
     for _ in 0..ticks {
         let (task, _) = mission.state().leg();
         let field = task == 1;
-        let out = mission.tick(&input(Some(driver.pose), odometry, Hazard::Clear, field));
+        let out = mission.tick(&MissionInput {
+            remaining: driver.remaining(),
+            ..input(Some(driver.pose), odometry, Hazard::Clear, field)
+        });
         odometry = driver.drive(&out);
         outputs.push(out);
         if out.phase != Phase::Running {
@@ -539,7 +548,10 @@ fn a_warning_detours_on_roads_and_stops_in_fields() {
         } else {
             Hazard::Clear
         };
-        let out = mission.tick(&input(Some(driver.pose), odometry, hazard, false));
+        let out = mission.tick(&MissionInput {
+            remaining: driver.remaining(),
+            ..input(Some(driver.pose), odometry, hazard, false)
+        });
         if let Command::Follow(leg) = out.command {
             let plan = out.plan.unwrap();
             if leg.detour {
@@ -610,21 +622,51 @@ fn malfunctions_abort_with_their_reason() {
     assert_eq!(tick, 5999);
     assert_eq!(o.command, Command::Stop(StopReason::LegTimeout));
 
-    // A robot that drifts 0.3 m beside the line: passes its end, GoalMissed.
+    // A robot 0.1 m beside the line reaches its goal when the pipeline says
+    // the end is passed; 0.3 m beside, it misses it (tolerance 0.25 m).
+    for (offset, arrival) in [
+        (0.1, Phase::Done),
+        (0.3, Phase::Aborted(StopReason::GoalMissed)),
+    ] {
+        let (mut mission, _) = straight_road();
+        let mut x = 0.0;
+        let mut last = None;
+        for _ in 0..700 {
+            let o = mission.tick(&MissionInput {
+                remaining: Some(m(30.0 - x)),
+                ..input(Some(pose(x, offset, 0.0)), still(), Hazard::Clear, false)
+            });
+            last = Some((x, o));
+            if o.phase != Phase::Running {
+                break;
+            }
+            x += 0.05;
+        }
+        let (x, o) = last.unwrap();
+        assert_eq!(o.phase, arrival);
+        assert!((29.94..30.0).contains(&x), "{x}");
+    }
+    // Without the pipeline's distance, 0.3 m beside: missed once driven past
+    // the length by twice the tolerance.
     let (mut mission, _) = straight_road();
-    let mut truth = pose(0.0, 0.3, 0.0);
+    let mut x = 0.0;
     let mut last = None;
     for _ in 0..700 {
-        let o = mission.tick(&input(Some(truth), still(), Hazard::Clear, false));
-        truth = pose(truth.position.x() + 0.05, 0.3, 0.0);
-        last = Some(o);
+        let o = mission.tick(&input(
+            Some(pose(x, 0.3, 0.0)),
+            still(),
+            Hazard::Clear,
+            false,
+        ));
+        last = Some((x, o));
         if o.phase != Phase::Running {
             break;
         }
+        x += 0.05;
     }
-    let o = last.unwrap();
+    let (x, o) = last.unwrap();
     assert_eq!(o.phase, Phase::Aborted(StopReason::GoalMissed));
-    assert!(truth.position.x() > 30.0 && truth.position.x() < 30.3);
+    assert!(x > 30.5 && x < 30.6, "{x}");
 }
 
 //= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg

@@ -464,6 +464,7 @@ fn mission_supervisor_does_not_allocate() {
                 odometry: step,
                 hazard,
                 in_field: false,
+                remaining: None,
             });
             if matches!(out.command, Command::Follow(_)) {
                 follows += 1;

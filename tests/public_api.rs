@@ -1656,7 +1656,7 @@ proptest! {
     fn mission_supervisor(
         period in seconds(), stall in seconds(), leg in seconds(), ticks16 in (0..20_u16, 0..20_u16),
         lengths in (meters(), meters(), meters()), waypoints in prop::collection::vec(pose::<World>(), 0..4),
-        row_start in pose::<World>(), gnss_poses in prop::collection::vec((prop::option::of(pose::<World>()), pose::<Robot>(), hazard(), any::<bool>()), 1..40),
+        row_start in pose::<World>(), gnss_poses in prop::collection::vec((prop::option::of(pose::<World>()), pose::<Robot>(), hazard(), any::<bool>(), prop::option::of(meters())), 1..40),
         index in 0..4_u8,
     ) {
         use fieldguide::supervisor::mission as mi;
@@ -1689,11 +1689,11 @@ proptest! {
         let mut localiser = check!("supervisor::mission::localisation::Localiser::new", mi::Localiser::new(lengths.2));
         let mut mission = check!("supervisor::mission::supervisor::Mission::new", mi::Mission::new(config, &tasks)).unwrap();
         let mut state = check!("supervisor::mission::machine::MissionState::initial", mi::MissionState::initial(&shape));
-        for (gnss, odometry, hazard, in_field) in gnss_poses {
+        for (gnss, odometry, hazard, in_field, remaining) in gnss_poses {
             let fix = check!("supervisor::mission::localisation::Localiser::update", localiser.update(gnss, &odometry));
             check!("supervisor::mission::localisation::Fix::pose", fix.pose());
             check!("supervisor::mission::localisation::Fix::status", fix.status());
-            let out = check!("supervisor::mission::supervisor::Mission::tick", mission.tick(&mi::MissionInput { gnss, odometry, hazard, in_field }));
+            let out = check!("supervisor::mission::supervisor::Mission::tick", mission.tick(&mi::MissionInput { gnss, odometry, hazard, in_field, remaining }));
             prop_assert!(out.speed.get() >= 0.0);
             check!("supervisor::mission::Command::tool_on", out.command.tool_on());
             if let Some(plan) = out.plan {

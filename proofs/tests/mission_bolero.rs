@@ -139,6 +139,8 @@ struct Tick {
     hazard: u8,
     /// Whether the robot is in the field.
     in_field: bool,
+    /// Whether the pipeline says the leg's end is passed.
+    end: bool,
 }
 
 fn pose(x: f64, y: f64, h: f64) -> Pose2<World> {
@@ -206,6 +208,7 @@ fn the_supervisor_never_reverses_and_stops_when_it_must() {
                 odometry,
                 hazard,
                 in_field: tick.in_field,
+                remaining: tick.end.then_some(Meters::ZERO),
             };
             let out = mission.tick(&input);
             assert!(out.speed.get() >= 0.0);

@@ -27,6 +27,7 @@
 //!     odometry: Pose2::<Robot>::new(0.0, 0.0, 0.0)?,
 //!     hazard: Hazard::Clear,
 //!     in_field: false,
+//!     remaining: None,
 //! };
 //! let out = mission.tick(&input);
 //! assert!(matches!(out.command, Command::Follow(_)));

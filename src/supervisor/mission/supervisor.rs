@@ -126,6 +126,9 @@ pub struct MissionInput {
     pub hazard: Hazard,
     /// Whether the robot is inside the current task's field.
     pub in_field: bool,
+    /// The pipeline's remaining distance along the plan it followed in the
+    /// previous tick (negative past the goal), when it has one.
+    pub remaining: Option<Meters>,
 }
 
 /// The supervisor's answer in one tick.
@@ -213,12 +216,22 @@ impl Mission {
                     plan.goal().position.y() - p.position.y(),
                 );
                 let tolerance = self.config.tolerance.get();
-                if to_goal <= tolerance {
-                    Arrival::Reached
-                } else if self.driven > plan.length().get() + 2.0 * tolerance {
-                    Arrival::Missed
-                } else {
-                    Arrival::EnRoute
+                let close = to_goal <= tolerance;
+                match input.remaining {
+                    // The end is passed along the path: reached or missed.
+                    Some(r) if r.get() <= self.config.reach_distance.get() => {
+                        if close {
+                            Arrival::Reached
+                        } else {
+                            Arrival::Missed
+                        }
+                    }
+                    Some(_) => Arrival::EnRoute,
+                    // Without the pipeline's distance: reached when close,
+                    // missed once driven well past the leg's length.
+                    None if close => Arrival::Reached,
+                    None if self.driven > plan.length().get() + 2.0 * tolerance => Arrival::Missed,
+                    None => Arrival::EnRoute,
                 }
             }
             _ => Arrival::EnRoute,
