@@ -40,6 +40,35 @@ fn drive_all(runs: &[VineyardRun]) -> Vec<VineOutcome> {
     fieldguide_sim::parallel::map_in_order(runs, drive, |_, _| {})
 }
 
+/// The built-in paper runs (both seasons, both strategies, and summer with
+/// two-wheel steering) over [`SEEDS`], driven once for every test here.
+fn paper_sweeps() -> &'static [(VineyardRun, VineOutcome)] {
+    static ALL: std::sync::OnceLock<Vec<(VineyardRun, VineOutcome)>> = std::sync::OnceLock::new();
+    ALL.get_or_init(|| {
+        let mut runs = Vec::new();
+        for (season, strategy) in [
+            (Season::Summer, Strategy::One),
+            (Season::Summer, Strategy::Two),
+            (Season::Winter, Strategy::One),
+            (Season::Winter, Strategy::Two),
+            (Season::Summer, Strategy::TwoWheel),
+        ] {
+            runs.extend(sweep(season, strategy));
+        }
+        let outcomes = drive_all(&runs);
+        runs.into_iter().zip(outcomes).collect()
+    })
+}
+
+/// The runs and outcomes of one paper sweep.
+fn paper_sweep(season: Season, strategy: Strategy) -> (Vec<VineyardRun>, Vec<VineOutcome>) {
+    paper_sweeps()
+        .iter()
+        .filter(|(r, _)| r.field.season == season && r.strategy == strategy)
+        .cloned()
+        .unzip()
+}
+
 fn sweep(season: Season, strategy: Strategy) -> Vec<VineyardRun> {
     SEEDS
         .map(|seed| VineyardRun::paper(season, strategy, seed))
@@ -101,8 +130,7 @@ fn holds(run: &VineyardRun, out: &VineOutcome) -> Result<(f64, f64), String> {
 fn both_strategies_hold_the_row_in_summer_and_winter() {
     for season in [Season::Summer, Season::Winter] {
         for strategy in [Strategy::One, Strategy::Two] {
-            let runs = sweep(season, strategy);
-            let outcomes = drive_all(&runs);
+            let (runs, outcomes) = paper_sweep(season, strategy);
             let (mut lat, mut ang, mut rear): (f64, f64, f64) = (0.0, 0.0, 0.0);
             for (run, out) in runs.iter().zip(&outcomes) {
                 let (l, a) = holds(run, out).unwrap();
@@ -128,9 +156,8 @@ fn both_strategies_hold_the_row_in_summer_and_winter() {
 //# field and seed.
 #[test]
 fn two_wheel_steering_turns_the_robot_more_than_strategy_1() {
-    let two = sweep(Season::Summer, Strategy::TwoWheel);
-    let four = sweep(Season::Summer, Strategy::One);
-    let (o2, o4) = (drive_all(&two), drive_all(&four));
+    let (two, o2) = paper_sweep(Season::Summer, Strategy::TwoWheel);
+    let (_, o4) = paper_sweep(Season::Summer, Strategy::One);
     for ((run, a), b) in two.iter().zip(&o2).zip(&o4) {
         assert_eq!(a.rear_max_abs(), 0.0, "the rear axle is held");
         let (s2, s4) = (
@@ -170,19 +197,9 @@ fn the_entry_is_path_tracked_until_the_detector_locks_inside_the_row() {
     // paper's start needs: the robot crosses the row's line on the surveyed
     // line, path tracking, and locks on the vines with its front axle past
     // the first vine. Every built-in paper run, seeds 1-10.
-    let mut runs = Vec::new();
-    for (season, strategy) in [
-        (Season::Summer, Strategy::One),
-        (Season::Summer, Strategy::Two),
-        (Season::Winter, Strategy::One),
-        (Season::Winter, Strategy::Two),
-        (Season::Summer, Strategy::TwoWheel),
-    ] {
-        runs.extend(sweep(season, strategy));
-    }
     let mut lock_x: (f64, f64) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut lock_y: f64 = 0.0;
-    for (run, out) in runs.iter().zip(drive_all(&runs)) {
+    for (run, out) in paper_sweeps() {
         let who = format!("{} seed {}", run.name, run.seed);
         assert_eq!(out.ticks[0].following, Some(false), "{who}");
         let lock = out
@@ -191,16 +208,11 @@ fn the_entry_is_path_tracked_until_the_detector_locks_inside_the_row() {
             .find(|t| t.following == Some(true))
             .unwrap_or_else(|| panic!("{who}: never on the vines"));
         let front = lock.truth.position.x() + WHEELBASE_M;
-        // Path tracking brought R from 0.7 m off to the row before the lock.
-        let before: Vec<_> = out
-            .ticks
-            .iter()
-            .take_while(|t| t.following == Some(false))
-            .collect();
+        // Path tracking brought R from 0.7 m off towards the row before the lock.
+        let moved = out.ticks[0].lateral_m - lock.lateral_m;
         assert!(
-            before[0].lateral_m - lock.lateral_m > 0.3,
-            "{who}: path tracking moved R sideways by {:.3} m",
-            before[0].lateral_m - lock.lateral_m
+            moved > 0.3,
+            "{who}: path tracking moved R sideways by {moved:.3} m"
         );
         assert!(front > 0.0, "{who}: locked at front x = {front:.2} m");
         assert_eq!(out.touched, 0, "{who}");

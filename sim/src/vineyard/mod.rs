@@ -12,8 +12,8 @@
 //! (Pierre 2022, section 3) starts in path tracking on the surveyed row
 //! line, the same law fed by the GNSS pose, and enters vine following once
 //! the detector's verdict has been Enter, its line consistent with the
-//! surveyed one, for [`ENTER_DELAY_S`]. Errors are measured against the true row centre line
-//! (y = 0, along x), never the robot's estimate: the lateral deviation of R
+//! surveyed one, for [`ENTER_DELAY_S`]. Errors are measured against the
+//! true row centre line (y = 0, along x), never the robot's estimate: the lateral deviation of R
 //! and the heading. A vine is touched when a wheel's contact patch meets a
 //! trunk or a post. [`turns`] runs the same robot and vineyard through the
 //! core's switching pipeline, with a headland turn.
@@ -519,7 +519,7 @@ fn drive_in(
             CommandSource::PathTracking => Some(gnss),
             CommandSource::None => None,
         };
-        if following {
+        if d.error.is_some() {
             detected += 1;
         }
         let command = match error {
