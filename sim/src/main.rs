@@ -123,7 +123,8 @@ enum Command {
         /// The duvet program.
         #[arg(long, default_value = "duvet")]
         duvet: PathBuf,
-        /// Criterion's folder [default: <root>/target/criterion].
+        /// Criterion's folder [default: $CARGO_TARGET_DIR/criterion, or else
+        /// <root>/target/criterion].
         #[arg(long)]
         criterion: Option<PathBuf>,
     },
