@@ -106,7 +106,9 @@ enum Command {
     /// dependencies with licences. Exits with 1, the report marked
     /// incomplete in red, when a requirement lacks an implementation or a
     /// test, duvet is missing, a proof record is missing, failed or from
-    /// another commit, a run breaks a bound, there are no benchmark results
+    /// another commit, a run breaks a bound it is not known to break
+    /// (closed_loop::EXPECTED_TO_BREAK), a sweep's worst figure is beyond its
+    /// bound, there are no benchmark results
     /// (unless --no-benchmarks), or the tree has uncommitted changes.
     Evidence {
         /// The project's root (spec/, .duvet/, proofs/tests/).
@@ -124,7 +126,8 @@ enum Command {
         /// The duvet program.
         #[arg(long, default_value = "duvet")]
         duvet: PathBuf,
-        /// Criterion's folder [default: <root>/target/criterion].
+        /// Criterion's folder [default: $CARGO_TARGET_DIR/criterion, or else
+        /// <root>/target/criterion].
         #[arg(long)]
         criterion: Option<PathBuf>,
     },

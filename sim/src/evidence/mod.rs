@@ -70,7 +70,8 @@ pub struct Options {
     /// The proofs' records (`FIELDGUIDE_EVIDENCE_DIR`, default
     /// `<root>/target/evidence`).
     pub records: PathBuf,
-    /// Criterion's folder (default `<root>/target/criterion`).
+    /// Criterion's folder (default `criterion/` in `$CARGO_TARGET_DIR`, or
+    /// else in `<root>/target`).
     pub criterion: PathBuf,
     /// The duvet program (found on `PATH` by default).
     pub duvet: PathBuf,
@@ -89,7 +90,9 @@ impl Options {
             out: out.to_path_buf(),
             records: std::env::var_os("FIELDGUIDE_EVIDENCE_DIR")
                 .map_or_else(|| root.join("target").join("evidence"), PathBuf::from),
-            criterion: root.join("target").join("criterion"),
+            criterion: std::env::var_os("CARGO_TARGET_DIR")
+                .map_or_else(|| root.join("target"), PathBuf::from)
+                .join("criterion"),
             duvet: PathBuf::from("duvet"),
             sweep_seeds: Seeds::new(1, 10).ok(),
             skip_benchmarks: false,
