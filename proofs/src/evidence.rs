@@ -167,3 +167,13 @@ pub fn harness(properties: &[&str], sequences: u64, depth: Option<u64>) -> Explo
         ..Explored::default()
     }
 }
+
+/// A mutant's record: the `fault` injected was caught breaking `property`.
+#[must_use]
+pub fn mutant_caught(property: &str, fault: &str) -> Explored {
+    Explored {
+        properties: vec![property.to_owned()],
+        mutant: Some(fault.to_owned()),
+        ..Explored::default()
+    }
+}

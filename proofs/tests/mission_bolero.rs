@@ -11,6 +11,8 @@
 //! ticks reach every phase.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bolero::{check, generator::TypeGenerator};
 use fieldguide::perception::obstacles::Hazard;
 use fieldguide::supervisor::mission::{
@@ -18,10 +20,19 @@ use fieldguide::supervisor::mission::{
     MissionConfig, MissionInput, Row, Shape, Task, TaskKind,
 };
 use fieldguide::{Meters, Pose2, Robot, World};
+use fieldguide_proofs::evidence::{self, Kind};
 use fieldguide_proofs::mission::{check_run, Property};
 
 /// Ticks per sequence.
 const DEPTH: usize = 9;
+/// The properties the harnesses check.
+const PROPERTIES: [&str; 5] = [
+    "EM-MISSION-M1",
+    "EM-MISSION-M2",
+    "EM-MISSION-M3",
+    "EM-MISSION-M4",
+    "EM-MISSION-M5",
+];
 const LEGS: [u8; 2] = [2, 2];
 
 fn shape() -> Shape {
@@ -105,20 +116,29 @@ impl Sym {
 #[test]
 #[cfg_attr(kani, kani::proof, kani::unwind(10))]
 fn every_sequence_keeps_m1_to_m5() {
+    let run = evidence::start("mission machine, every 9-tick sequence", Kind::Harness);
     let (config, shape) = (config(), shape());
+    let count = AtomicU64::new(0);
     check!()
         .with_type::<[Sym; DEPTH]>()
         .exhaustive()
         .for_each(|sequence| {
+            count.fetch_add(1, Ordering::Relaxed);
             let result = check_run(&config, &shape, &LEGS, sequence.iter().map(|s| s.events()));
             assert!(result.is_ok(), "{result:?}");
         });
+    run.finish(&evidence::harness(
+        &PROPERTIES,
+        count.into_inner(),
+        u64::try_from(DEPTH).ok(),
+    ));
 }
 
 /// The mutant that re-plans inside a field fails on some sequence of the
 /// same alphabet: the harness would report it.
 #[test]
 fn the_harness_catches_a_machine_that_replans_in_a_field() {
+    let run = evidence::start("mutant ReplanInField, bolero", Kind::Mutant);
     let mutant = config().with_fault(Fault::ReplanInField);
     let failing = [Sym::Nominal, Sym::WarningInField]
         .into_iter()
@@ -126,6 +146,10 @@ fn the_harness_catches_a_machine_that_replans_in_a_field() {
     let violation = check_run(&mutant, &shape(), &LEGS, failing).unwrap_err();
     assert_eq!(violation.property, Property::M2NoReplanInField);
     assert_eq!(violation.tick, 1);
+    run.finish(&evidence::mutant_caught(
+        "EM-MISSION-M2",
+        "Fault::ReplanInField",
+    ));
 }
 
 /// One tick of the whole supervisor, from a small alphabet.
@@ -178,7 +202,13 @@ fn the_supervisor_never_reverses_and_stops_when_it_must() {
     ])
     .unwrap();
     let tasks = [road, field];
+    let run = evidence::start(
+        "mission supervisor, generated tick sequences",
+        Kind::Harness,
+    );
+    let count = AtomicU64::new(0);
     check!().with_type::<Vec<Tick>>().for_each(|ticks| {
+        count.fetch_add(1, Ordering::Relaxed);
         let mut mission = Mission::new(MissionConfig::carob().unwrap(), &tasks).unwrap();
         let mut truth = pose(0.0, 0.0, 0.0);
         let mut latest = (0_u8, 0_u8);
@@ -231,4 +261,14 @@ fn the_supervisor_never_reverses_and_stops_when_it_must() {
             }
         }
     });
+    run.finish(&evidence::harness(
+        &[
+            "EM-MISSION-M5",
+            "EM-MISSION-LEGS",
+            "EM-LOC-STOP",
+            "EM-MISSION-OBSTACLE",
+        ],
+        count.into_inner(),
+        Some(200),
+    ));
 }

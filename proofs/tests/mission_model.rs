@@ -11,6 +11,7 @@ use std::time::Instant;
 use fieldguide::supervisor::mission::{
     Arrival, Command, Events, Fault, HazardLevel, MachineConfig, Shape, StopReason, TaskKind,
 };
+use fieldguide_proofs::evidence::{self, Explored, Kind};
 use fieldguide_proofs::mission::{check_run, MissionModel, Property};
 use stateright::{Checker, HasDiscoveries, Model};
 
@@ -57,8 +58,15 @@ fn model(config: MachineConfig) -> MissionModel {
 //# earlier than any leg commanded before, at a speed that is never negative.
 #[test]
 fn every_reachable_state_keeps_m1_to_m5() {
+    let run = evidence::start("mission (2 + 2 legs, stall 3, leg 5 ticks)", Kind::Model);
     let start = Instant::now();
-    let checker = model(config()).checker().spawn_bfs().join();
+    let model = model(config());
+    let properties = model
+        .properties()
+        .iter()
+        .map(|p| p.name.to_owned())
+        .collect();
+    let checker = model.checker().spawn_bfs().join();
     checker.assert_properties();
     let states = checker.unique_state_count();
     println!(
@@ -68,6 +76,13 @@ fn every_reachable_state_keeps_m1_to_m5() {
         start.elapsed()
     );
     assert!(states > 1_000, "{states}");
+    run.finish(&Explored {
+        properties,
+        states: u64::try_from(states).ok(),
+        transitions: u64::try_from(checker.state_count()).ok(),
+        depth: u64::try_from(checker.max_depth()).ok(),
+        ..Explored::default()
+    });
 }
 
 /// The counterexample the checker reports for `property` on `config`, if
@@ -100,6 +115,7 @@ fn counterexample(
 //# inside a field it MUST NOT re-plan but stop with the reason ObstacleInField.
 #[test]
 fn a_machine_that_replans_inside_a_field_is_reported() {
+    let run = evidence::start("mutant ReplanInField, stateright", Kind::Mutant);
     let name = "EM-MISSION-M2 no re-planning in a field";
     let mutant = config().with_fault(Fault::ReplanInField);
     let path = counterexample(mutant, name, Property::M2NoReplanInField)
@@ -127,14 +143,17 @@ fn a_machine_that_replans_inside_a_field_is_reported() {
         &warned,
     );
     assert_eq!(out.command, Command::Stop(StopReason::ObstacleInField));
+    run.finish(&evidence::mutant_caught(name, "Fault::ReplanInField"));
 }
 
 #[test]
 fn a_machine_that_ignores_a_critical_obstacle_is_reported() {
+    let run = evidence::start("mutant IgnoreCritical, stateright", Kind::Mutant);
     let name = "EM-MISSION-M1 a critical obstacle always stops";
     let mutant = config().with_fault(Fault::IgnoreCritical);
     assert!(counterexample(mutant, name, Property::M1CriticalStops).is_some());
     assert!(counterexample(config(), name, Property::M1CriticalStops).is_none());
+    run.finish(&evidence::mutant_caught(name, "Fault::IgnoreCritical"));
 }
 
 /// The bound of M4 is tight: a leg never reached aborts at the leg time

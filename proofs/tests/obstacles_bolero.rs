@@ -12,6 +12,8 @@
 //! libm's trigonometry.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use bolero::check;
 use fieldguide::perception::obstacles::{
     assess, cluster, ClusterConfig, Hazard, Obstacle, ObstacleConfig, Obstacles, Reason,
@@ -21,6 +23,7 @@ use fieldguide::planning::dubins::TurningRadius;
 use fieldguide::{
     Meters, MetersPerSecond, Point2, Pose2, Radians, Robot, Sensor, Transform2, World,
 };
+use fieldguide_proofs::evidence::{self, Kind};
 
 /// One case: the ranges, the scan's start and increment (any `f64`); three
 /// circles (x, y, r), the pose and the goal (x, y, heading) on a grid of
@@ -62,8 +65,14 @@ fn obstacle_handling_is_total_and_detours_keep_the_margin() {
     let config = ObstacleConfig::emmi2024(TurningRadius::new(Meters::new(1.0).unwrap()).unwrap());
     let limits = RangeLimits::new(Meters::new(0.05).unwrap(), Meters::new(30.0).unwrap()).unwrap();
     let mount = Transform2::<Sensor, Robot>::new(0.3, 0.0, 0.0).unwrap();
+    let run = evidence::start(
+        "obstacles: hostile scans, hazards and detours",
+        Kind::Harness,
+    );
+    let count = AtomicU64::new(0);
     check!().with_type::<Case>().for_each(
         |&(ranges, [start, increment], circles, poses, [v, dv], in_field)| {
+            count.fetch_add(1, Ordering::Relaxed);
             let ranges = ranges.map(|r| fold(r.abs(), 12.0));
             let (Ok(start), Ok(increment)) =
                 (Radians::new(start), Radians::new(fold(increment, 0.2)))
@@ -136,4 +145,15 @@ fn obstacle_handling_is_total_and_detours_keep_the_margin() {
             }
         },
     );
+    run.finish(&evidence::harness(
+        &[
+            "EM-OBST-CLUSTER",
+            "EM-OBST-AREAS",
+            "EM-OBST-HAZARD",
+            "EM-OBST-DETOUR",
+            "EM-OBST-FIELD",
+        ],
+        count.into_inner(),
+        None,
+    ));
 }

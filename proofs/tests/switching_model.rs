@@ -206,15 +206,6 @@ fn edge_and_furrow_with_plan_consistency() {
     );
 }
 
-/// The record of a mutant that `property` caught.
-fn mutant_caught(property: &str, fault: &str) -> Explored {
-    Explored {
-        properties: vec![property.to_owned()],
-        mutant: Some(fault.to_owned()),
-        ..Explored::default()
-    }
-}
-
 /// The counterexample the checker reports for `property`, if any, replayed
 /// through the real machine under the monitor to confirm that it ends in a
 /// state violating `violated`.
@@ -291,7 +282,7 @@ fn a_machine_entering_one_tick_early_is_reported() {
     // The honest machine has no counterexample, and enters at the 40th tick.
     assert!(counterexample(config, spec, name, Property::S2EntryNeedsEvidence).is_none());
     assert!(replay(config, &spec, [edge(Sym::Enter, true); 40]).is_ok());
-    run.finish(&mutant_caught(name, "Fault::EnterOneTickEarly"));
+    run.finish(&evidence::mutant_caught(name, "Fault::EnterOneTickEarly"));
 }
 
 #[test]
@@ -307,7 +298,7 @@ fn a_machine_configured_one_tick_short_is_reported() {
     assert!(counterexample(config, spec, name, Property::S2EntryNeedsEvidence).is_some());
     let violation = replay(config, &spec, [edge(Sym::Enter, true); 39]).unwrap_err();
     assert_eq!(violation.property, Property::S2EntryNeedsEvidence);
-    run.finish(&mutant_caught(
+    run.finish(&evidence::mutant_caught(
         name,
         "configured 0.39 s instead of Table 1's 0.4 s",
     ));
@@ -327,7 +318,10 @@ fn a_machine_steering_with_an_invalid_estimate_is_reported() {
     let violation = replay(mutant, &spec, ticks).unwrap_err();
     assert_eq!(violation.tick, 40);
     assert_eq!(violation.property, Property::S3CommandsValid);
-    run.finish(&mutant_caught(name, "Fault::SteerWithInvalidEstimate"));
+    run.finish(&evidence::mutant_caught(
+        name,
+        "Fault::SteerWithInvalidEstimate",
+    ));
 }
 
 #[test]
@@ -346,7 +340,7 @@ fn a_machine_that_never_stops_is_reported() {
     assert_eq!(violation.tick, 19);
     assert_eq!(violation.property, Property::S4StopExactly);
     assert!(replay(config, &spec, [lost; 60]).is_ok());
-    run.finish(&mutant_caught(name, "Fault::NeverStop"));
+    run.finish(&evidence::mutant_caught(name, "Fault::NeverStop"));
 }
 
 #[test]
