@@ -635,7 +635,7 @@ fn steer(
     let window = Meters::new(0.5)?;
     let f = a
         .path
-        .project_near(&fix, Meters::ZERO, Meters::new(a.s_fix)?, window)?;
+        .project_near(fix, Meters::ZERO, Meters::new(a.s_fix)?, window)?;
     a.s_fix = f.s.get();
     let length = a.path.length().get();
     let (next, speed) = a.profile.step(
@@ -674,12 +674,12 @@ fn steer(
                     a.previous_y = None;
                     let law = if run.fault == Some(Fault::FlippedSpiralGain) {
                         // α_d reflected about α: e changes sign.
-                        let alpha = spiral_state(&fix, centre)?.angle.get();
+                        let alpha = spiral_state(fix, centre)?.angle.get();
                         spiral.towards(Radians::new(2.0 * alpha - desired_angle.get())?)
                     } else {
                         spiral.towards(desired_angle)
                     };
-                    spiral_command(&law, &fix, centre, v)?
+                    spiral_command(&law, fix, centre, v)?
                 }
             };
             if let Command::SkidSteer { speed, yaw_rate } = saturated.command {
@@ -693,7 +693,7 @@ fn steer(
             //# heading minus the path's, and of a spiral wrap(α − α_d) from the true pose.
             let tf = a
                 .path
-                .project_near(&truth, Meters::ZERO, Meters::new(a.s_true)?, window)?;
+                .project_near(truth, Meters::ZERO, Meters::new(a.s_true)?, window)?;
             a.s_true = tf.s.get();
             let kt = segment_at(&a.segments, a.s_true);
             match a.segments.get(kt).map(|s| s.2) {
@@ -701,7 +701,7 @@ fn steer(
                     centre,
                     desired_angle,
                 }) => {
-                    let st = spiral_state(&truth, centre)?;
+                    let st = spiral_state(truth, centre)?;
                     let radius = a.radius;
                     let y = st.distance.get() - radius;
                     let e = wrap(st.angle.get() - desired_angle.get());
