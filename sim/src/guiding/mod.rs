@@ -18,6 +18,7 @@ pub mod boundary;
 pub mod farm;
 pub mod field;
 pub mod file;
+pub mod mission;
 pub mod plot;
 
 use std::fmt::Write as _;
@@ -467,6 +468,23 @@ fn sample_path(path: &ReferencePath<PATH_CAPACITY>) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The speed profile of a path of `planner`: the turn speed with 0.3 m of
+/// acceleration and braking on GoToGoal paths, the line speed with 1 m on
+/// lines.
+fn profile(c: &ControlSpec, planner: Planner) -> Result<SpeedProfile, Precondition> {
+    let (v, ramp) = match planner {
+        Planner::GoToGoal => (c.turn_speed, 0.3),
+        Planner::LineFollowing => (c.line_speed, 1.0),
+    };
+    SpeedProfile::new(
+        MetersPerSecond::new(c.threshold_speed.min(v))?,
+        MetersPerSecond::new(v)?,
+        Meters::new(ramp)?,
+        Braking::Fixed(Meters::new(ramp)?),
+        Meters::new(REACH_DISTANCE)?,
+    )
+}
+
 /// Plans the path to goal `g` from the fix `fix` (the previous goal `from`
 /// is the start of a LineFollowing line).
 fn plan(
@@ -502,13 +520,7 @@ fn plan(
                     (end - seg.length.get(), end, tracker_for(seg))
                 })
                 .collect();
-            let profile = SpeedProfile::new(
-                MetersPerSecond::new(c.threshold_speed.min(c.turn_speed))?,
-                MetersPerSecond::new(c.turn_speed)?,
-                Meters::new(0.3)?,
-                Braking::Fixed(Meters::new(0.3)?),
-                Meters::new(REACH_DISTANCE)?,
-            )?;
+            let profile = profile(c, Planner::GoToGoal)?;
             (path, segments, profile, goal.radius_m)
         }
         Planner::LineFollowing => {
@@ -517,13 +529,7 @@ fn plan(
                 (goal.pose, Curvature::ZERO),
             ])?;
             let l = path.length().get();
-            let profile = SpeedProfile::new(
-                MetersPerSecond::new(c.threshold_speed.min(c.line_speed))?,
-                MetersPerSecond::new(c.line_speed)?,
-                Meters::new(1.0)?,
-                Braking::Fixed(Meters::new(1.0)?),
-                Meters::new(REACH_DISTANCE)?,
-            )?;
+            let profile = profile(c, Planner::LineFollowing)?;
             (path, vec![(0.0, l, Tracker::Lateral)], profile, 0.0)
         }
     };
