@@ -52,8 +52,9 @@ pub const STANDING_M: f64 = 1e-4;
 /// The safety margin round the footprint, m (EM-OBST-CONFIG).
 pub const MARGIN_M: f64 = 0.3;
 /// How far the ground-truth check of a stop's reason looks beyond the
-/// areas, m: the localisation's and the LiDAR's errors.
-pub const REASON_SLACK_M: f64 = 0.15;
+/// areas, m: the clusters' enclosing circles (up to 0.5 m, EM-OBST-SHAPE)
+/// over-approximate an obstacle, on the safe side.
+pub const REASON_SLACK_M: f64 = 0.5;
 /// Spacing of the points that stand for an obstacle's outline, m.
 const OUTLINE_STEP_M: f64 = 0.02;
 
@@ -705,9 +706,9 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                 let same = active.as_ref().is_some_and(|(p, _)| *p == plan)
                     || finished.is_some_and(|p| p == plan);
                 if !same {
-                    if let Some((_, a)) = active.take() {
-                        close_manoeuvres(&a, &mut out.drive.manoeuvres);
-                    }
+                    // A path left before its end (a detour starts) is not a
+                    // manoeuvre of the figures.
+                    active = None;
                     finished = None;
                     // A plan shorter than 1 mm is reached already.
                     if let Ok(a) = active_of(g, &plan, usize::from(leg.leg)) {
@@ -732,7 +733,12 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                     if done {
                         finished = Some(*p);
                         if let Some((_, a)) = active.take() {
-                            close_manoeuvres(&a, &mut out.drive.manoeuvres);
+                            //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+                            //# The closed-loop figures MUST be measured over the paths
+                            //# followed to their end, detours left out.
+                            if !leg.detour {
+                                close_manoeuvres(&a, &mut out.drive.manoeuvres);
+                            }
                         }
                     }
                 }
@@ -754,6 +760,14 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                         StopReason::LocalisationLost => !gnss_valid,
                         _ => false,
                     };
+                    // A stop that resumes within 0.3 s is the same stop.
+                    if stop.is_none() {
+                        if let Some(last) = out.stops.last() {
+                            if last.reason == reason && t - last.to_s <= 0.3 + 1e-9 {
+                                stop = out.stops.pop();
+                            }
+                        }
+                    }
                     match stop.as_mut() {
                         Some(s) if s.reason == reason => {
                             s.to_s = t;
@@ -1192,4 +1206,170 @@ pub fn welaser_mission(seed: u64) -> Option<MissionRun> {
             },
         ],
     })
+}
+
+/// A mission of the campaign: the `welaser-farm` farm with obstacles drawn
+/// from `seed`: a post or a box on each road's stretches, a person crossing
+/// the first road at a random time, and a person standing on a random pass
+/// of a random field who leaves after 20 s to 200 s.
+#[must_use]
+pub fn campaign_run(seed: u64) -> Option<MissionRun> {
+    use rand::Rng as _;
+    let mut run = welaser_mission(seed)?;
+    run.guiding.name = format!("emmi2024-{seed}");
+    let farm = run.guiding.farm.clone()?;
+    // Another stream than the run's own (plants, noise).
+    let mut rng = SimRng::from_seed(seed ^ 0x6f62_7374_6163_6c65);
+    let mut obstacles = Vec::new();
+    for (k, line) in farm.road_polylines().ok()?.iter().enumerate() {
+        // A stretch at least 10 m long, the obstacle at least 4 m from its ends.
+        let stretches: Vec<_> = line
+            .windows(2)
+            .filter(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1) >= 10.0)
+            .collect();
+        if stretches.is_empty() {
+            continue;
+        }
+        let w = stretches[rng.random_range(0..stretches.len())];
+        let l = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+        let s = rng.random_range(4.0..l - 4.0) / l;
+        let (ux, uy) = ((w[1].0 - w[0].0) / l, (w[1].1 - w[0].1) / l);
+        let across = rng.random_range(-0.5..0.5);
+        let at = (
+            w[0].0 + s * (w[1].0 - w[0].0) - across * uy,
+            w[0].1 + s * (w[1].1 - w[0].1) + across * ux,
+        );
+        let shape = if rng.random_range(0.0..1.0) < 0.5 {
+            Shape::Circle {
+                radius: rng.random_range(0.05..0.3),
+            }
+        } else {
+            Shape::Box {
+                length: rng.random_range(0.3..1.0),
+                width: rng.random_range(0.3..0.8),
+                heading: rng.random_range(0.0..std::f64::consts::PI),
+            }
+        };
+        obstacles.push(WorldObstacle {
+            name: format!("obstacle on road {k}"),
+            shape,
+            at,
+            walk: None,
+            present_s: (0.0, f64::INFINITY),
+        });
+    }
+    let x = rng.random_range(3.0..11.0);
+    let t0 = rng.random_range(0.0..40.0);
+    obstacles.push(WorldObstacle {
+        name: "person crossing road 0".to_owned(),
+        shape: Shape::Circle { radius: 0.25 },
+        at: (x, -7.0),
+        walk: Some(((x, 1.0), t0, t0 + 8.0)),
+        present_s: (0.0, f64::INFINITY),
+    });
+    let field = &farm.fields[rng.random_range(0..farm.fields.len())];
+    let passes = field.field.passes();
+    let pass = passes[rng.random_range(0..field.passes.min(passes.len()).max(1))];
+    let along = rng.random_range(
+        field.field.headland_m + 1.0..field.field.length_m - field.field.headland_m - 1.0,
+    );
+    obstacles.push(WorldObstacle {
+        name: "person in a field".to_owned(),
+        shape: Shape::Circle {
+            radius: rng.random_range(0.15..0.3),
+        },
+        at: field.to_world((along, pass)),
+        walk: None,
+        present_s: (0.0, rng.random_range(20.0..200.0) + 150.0),
+    });
+    run.obstacles = obstacles;
+    Some(run)
+}
+
+/// One mission of the campaign, as figures.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CampaignRow {
+    /// The seed.
+    pub seed: u64,
+    /// Every task done.
+    pub complete: bool,
+    /// The supervisor's reason for the last stop, if not complete.
+    pub reason: Option<String>,
+    /// Ticks of footprint-obstacle overlap.
+    pub collisions: usize,
+    /// Crop plants run over.
+    pub crushed: usize,
+    /// Stops.
+    pub stops: usize,
+    /// Stops whose cause ground truth does not find.
+    pub unjustified: usize,
+    /// Re-plans round obstacles.
+    pub replans: usize,
+    /// Re-plans started inside a field.
+    pub replans_in_field: usize,
+    /// Mission time, s.
+    pub duration_s: f64,
+}
+
+impl CampaignRow {
+    /// The row of one mission.
+    #[must_use]
+    pub fn of(seed: u64, o: &MissionOutcome) -> Self {
+        let reason = match o.phase {
+            Phase::Done => None,
+            Phase::Aborted(r) => Some(format!("{r:?}")),
+            Phase::Running => o.stops.last().map(|s| format!("{:?}", s.reason)),
+        };
+        Self {
+            seed,
+            complete: o.complete(),
+            reason,
+            collisions: o.collisions.len(),
+            crushed: o.drive.crushed.len(),
+            stops: o.stops.len(),
+            unjustified: o.stops.iter().filter(|s| !s.justified).count(),
+            replans: o.replans.len(),
+            replans_in_field: o.replans.iter().filter(|r| r.in_field).count(),
+            duration_s: o.drive.ticks.last().map_or(0.0, |t| t.t_s),
+        }
+    }
+}
+
+/// The campaign `emmi2024`: seeds 1 to `runs`, in parallel.
+#[must_use]
+pub fn campaign(runs: u32) -> Vec<CampaignRow> {
+    let seeds: Vec<u64> = (1..=u64::from(runs)).collect();
+    crate::parallel::map_in_order(
+        &seeds,
+        |&seed| campaign_run(seed).map(|run| CampaignRow::of(seed, &drive_mission(&run))),
+        |_, _| {},
+    )
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// The campaign's rows as CSV.
+#[must_use]
+pub fn campaign_csv(rows: &[CampaignRow]) -> String {
+    let mut csv = String::from(
+        "seed,complete,reason,collisions,crushed,stops,unjustified_stops,replans,replans_in_field,duration_s\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{},{:.1}",
+            r.seed,
+            r.complete,
+            r.reason.as_deref().unwrap_or(""),
+            r.collisions,
+            r.crushed,
+            r.stops,
+            r.unjustified,
+            r.replans,
+            r.replans_in_field,
+            r.duration_s
+        );
+    }
+    csv
 }
