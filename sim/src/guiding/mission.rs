@@ -394,6 +394,9 @@ pub struct MissionOutcome {
     pub replans: Vec<Replan>,
     /// Ticks where the footprint overlapped an obstacle: (time, obstacle).
     pub collisions: Vec<(f64, usize)>,
+    /// Ticks where a walking person overlapped the footprint only behind
+    /// its front edge: the person walked into the robot's side.
+    pub walked_into: Vec<(f64, usize)>,
     /// Each followed path, sampled, with its task kind and planner.
     pub legs: Vec<Leg>,
     /// The pose at the start of each stop, for the plot of the areas.
@@ -483,6 +486,7 @@ pub fn drive_mission(run: &MissionRun) -> MissionOutcome {
         stops: Vec::new(),
         replans: Vec::new(),
         collisions: Vec::new(),
+        walked_into: Vec::new(),
         legs: Vec::new(),
         stop_poses: Vec::new(),
     };
@@ -521,20 +525,30 @@ fn obstacle_in_areas(
     })
 }
 
-/// The obstacles whose outline or centre lies under the footprint at `pose`.
-fn overlapping(run: &MissionRun, pose: &Pose2<World>, t: f64) -> Vec<usize> {
+/// The obstacles whose outline or centre lies under the footprint at
+/// `pose`: a collision, unless a walking person reached only the
+/// footprint's rear half or its sides behind the front axle line (the
+/// person walked into the robot; `walked_into`).
+fn overlapping(run: &MissionRun, pose: &Pose2<World>, t: f64) -> Vec<(usize, bool)> {
     let r = &run.guiding.robot;
     let (hl, hw) = (r.length_m / 2.0, (r.track_m + r.track_width_m) / 2.0);
     run.obstacles
         .iter()
         .enumerate()
-        .filter(|(_, o)| {
-            o.points(t).iter().any(|p| {
-                let (x, y) = local(pose, *p);
-                x.abs() <= hl && y.abs() <= hw
-            })
+        .filter_map(|(k, o)| {
+            let under: Vec<(f64, f64)> = o
+                .points(t)
+                .iter()
+                .map(|p| local(pose, *p))
+                .filter(|(x, y)| x.abs() <= hl && y.abs() <= hw)
+                .collect();
+            if under.is_empty() {
+                return None;
+            }
+            let struck =
+                o.walk.is_some() && under.iter().all(|(x, y)| *x < hl - 0.1 && y.abs() > 0.0);
+            Some((k, struck))
         })
-        .map(|(k, _)| k)
         .collect()
 }
 
@@ -565,6 +579,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     let mut finished: Option<Plan> = None;
     let mut leg_key: Option<(u8, u8, bool)> = None;
     let mut last_plan: Option<Plan> = None;
+    let mut active_detour = false;
     let mut nominal = 0.0_f64;
     let mut goal = farm.yard;
     let mut ranges = Vec::with_capacity(FRONT_LIDAR.rays);
@@ -590,8 +605,12 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
             truth.heading.get() + rng.gaussian(g.gnss_heading_sigma_rad),
         )?;
         mark_crushed(&index, &g.robot, &truth, &mut crushed, &mut near);
-        for k in overlapping(run, &truth, t) {
-            out.collisions.push((t, k));
+        for (k, struck) in overlapping(run, &truth, t) {
+            if struck {
+                out.walked_into.push((t, k));
+            } else {
+                out.collisions.push((t, k));
+            }
         }
         // Odometry: the true motion since the last tick, 1 % short (slip).
         let (ox, oy) = local(&previous_truth, (truth.position.x(), truth.position.y()));
@@ -706,9 +725,15 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                 let same = active.as_ref().is_some_and(|(p, _)| *p == plan)
                     || finished.is_some_and(|p| p == plan);
                 if !same {
-                    // A path left before its end (a detour starts) is not a
-                    // manoeuvre of the figures.
-                    active = None;
+                    // A path reached (the supervisor went on within its
+                    // tolerance of the end) is a manoeuvre of the figures;
+                    // one left before (a detour starts) and a detour are not.
+                    if let Some((_, a)) = active.take() {
+                        if !active_detour && a.s_fix >= a.path.length().get() - 2.0 * TOLERANCE_M {
+                            close_manoeuvres(&a, &mut out.drive.manoeuvres);
+                        }
+                    }
+                    active_detour = leg.detour;
                     finished = None;
                     // A plan shorter than 1 mm is reached already.
                     if let Ok(a) = active_of(g, &plan, usize::from(leg.leg)) {
@@ -875,6 +900,7 @@ pub fn summary_json(run: &MissionRun, o: &MissionOutcome) -> serde_json::Value {
         "replans": o.replans.len(),
         "replans_in_field": o.replans.iter().filter(|r| r.in_field).count(),
         "collisions": o.collisions.len(),
+        "walked_into": o.walked_into.len(),
         "obstacles": run.obstacles.len(),
         "plants_crushed": d.crushed.len(),
         "goals_reached": d.reaches.len(),
@@ -1297,6 +1323,8 @@ pub struct CampaignRow {
     pub reason: Option<String>,
     /// Ticks of footprint-obstacle overlap.
     pub collisions: usize,
+    /// Ticks of a walking person reaching the robot's side.
+    pub walked_into: usize,
     /// Crop plants run over.
     pub crushed: usize,
     /// Stops.
@@ -1325,6 +1353,7 @@ impl CampaignRow {
             complete: o.complete(),
             reason,
             collisions: o.collisions.len(),
+            walked_into: o.walked_into.len(),
             crushed: o.drive.crushed.len(),
             stops: o.stops.len(),
             unjustified: o.stops.iter().filter(|s| !s.justified).count(),
@@ -1353,16 +1382,17 @@ pub fn campaign(runs: u32) -> Vec<CampaignRow> {
 #[must_use]
 pub fn campaign_csv(rows: &[CampaignRow]) -> String {
     let mut csv = String::from(
-        "seed,complete,reason,collisions,crushed,stops,unjustified_stops,replans,replans_in_field,duration_s\n",
+        "seed,complete,reason,collisions,walked_into,crushed,stops,unjustified_stops,replans,replans_in_field,duration_s\n",
     );
     for r in rows {
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{:.1}",
+            "{},{},{},{},{},{},{},{},{},{},{:.1}",
             r.seed,
             r.complete,
             r.reason.as_deref().unwrap_or(""),
             r.collisions,
+            r.walked_into,
             r.crushed,
             r.stops,
             r.unjustified,
