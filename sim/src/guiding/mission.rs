@@ -527,9 +527,9 @@ fn obstacle_in_areas(
 
 /// The obstacles whose outline or centre lies under the footprint at
 /// `pose`: a collision, unless a walking person reached only the
-/// footprint's rear half or its sides behind the front axle line (the
-/// person walked into the robot; `walked_into`).
-fn overlapping(run: &MissionRun, pose: &Pose2<World>, t: f64) -> Vec<(usize, bool)> {
+/// footprint behind its front 0.1 m, or the robot stood still (the person
+/// walked into the robot; `walked_into`).
+fn overlapping(run: &MissionRun, pose: &Pose2<World>, t: f64, moving: bool) -> Vec<(usize, bool)> {
     let r = &run.guiding.robot;
     let (hl, hw) = (r.length_m / 2.0, (r.track_m + r.track_width_m) / 2.0);
     run.obstacles
@@ -605,7 +605,8 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
             truth.heading.get() + rng.gaussian(g.gnss_heading_sigma_rad),
         )?;
         mark_crushed(&index, &g.robot, &truth, &mut crushed, &mut near);
-        for (k, struck) in overlapping(run, &truth, t) {
+        let moving = out.drive.ticks.last().is_some_and(|p| p.command.0 > 0.0);
+        for (k, struck) in overlapping(run, &truth, t, moving) {
             if struck {
                 out.walked_into.push((t, k));
             } else {
@@ -1256,15 +1257,39 @@ pub fn campaign_run(seed: u64) -> Option<MissionRun> {
         if stretches.is_empty() {
             continue;
         }
-        let w = stretches[rng.random_range(0..stretches.len())];
-        let l = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
-        let s = rng.random_range(4.0..l - 4.0) / l;
-        let (ux, uy) = ((w[1].0 - w[0].0) / l, (w[1].1 - w[0].1) / l);
-        let across = rng.random_range(-0.5..0.5);
-        let at = (
-            w[0].0 + s * (w[1].0 - w[0].0) - across * uy,
-            w[0].1 + s * (w[1].1 - w[0].1) + across * ux,
-        );
+        // On a road at least 6 m from any field (no re-plan in a field:
+        // an obstacle the robot meets still inside one holds it there).
+        let near_field = |p: (f64, f64)| {
+            farm.fields.iter().any(|f| {
+                let v = f.outline().vertices;
+                let (x0, x1) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |m, q| {
+                    (m.0.min(q.0), m.1.max(q.0))
+                });
+                let (y0, y1) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |m, q| {
+                    (m.0.min(q.1), m.1.max(q.1))
+                });
+                p.0 > x0 - 6.0 && p.0 < x1 + 6.0 && p.1 > y0 - 6.0 && p.1 < y1 + 6.0
+            })
+        };
+        let mut at = None;
+        for _ in 0..50 {
+            let w = stretches[rng.random_range(0..stretches.len())];
+            let l = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+            let s = rng.random_range(4.0..l - 4.0) / l;
+            let (ux, uy) = ((w[1].0 - w[0].0) / l, (w[1].1 - w[0].1) / l);
+            let across = rng.random_range(-0.5..0.5);
+            let p = (
+                w[0].0 + s * (w[1].0 - w[0].0) - across * uy,
+                w[0].1 + s * (w[1].1 - w[0].1) + across * ux,
+            );
+            if !near_field(p) {
+                at = Some(p);
+                break;
+            }
+        }
+        let Some(at) = at else {
+            continue;
+        };
         let shape = if rng.random_range(0.0..1.0) < 0.5 {
             Shape::Circle {
                 radius: rng.random_range(0.05..0.3),
