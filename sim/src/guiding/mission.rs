@@ -545,8 +545,7 @@ fn overlapping(run: &MissionRun, pose: &Pose2<World>, t: f64, moving: bool) -> V
             if under.is_empty() {
                 return None;
             }
-            let struck =
-                o.walk.is_some() && under.iter().all(|(x, y)| *x < hl - 0.1 && y.abs() > 0.0);
+            let struck = o.walk.is_some() && (!moving || under.iter().all(|(x, _)| *x < hl - 0.1));
             Some((k, struck))
         })
         .collect()
