@@ -23,6 +23,16 @@ const REACH_M: f64 = 0.045;
 //# Every stop MUST be recorded with its reason and whether ground
 //# truth agrees: a real obstacle in the critical area (or, for a
 //# warning's stop, in the warning area), or no fix.
+//= spec/emmi2024.md#em-sim-mission-the-supervisor-drives-the-farm
+//= type=test
+//# The farm's roads MUST become Approximation tasks through their goals and
+//# its fields Treatment tasks of one row per pass, and the core's mission
+//# supervisor MUST decide every tick; the simulator MUST follow its plan with
+//# the controllers of the guided missions and stand still on its Stop.
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//= type=test
+//# The closed-loop figures MUST be measured over the paths
+//# followed to their end, detours left out.
 #[test]
 fn the_built_in_mission_is_safe_over_five_seeds() {
     for seed in SEEDS {

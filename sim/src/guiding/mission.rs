@@ -1389,6 +1389,10 @@ impl CampaignRow {
 }
 
 /// The campaign `emmi2024`: seeds 1 to `runs`, in parallel.
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//# A campaign of missions with obstacles placed at random along the roads
+//# and in the fields MUST end each mission complete or stopped with a reason,
+//# with no collision and no crop plant run over.
 #[must_use]
 pub fn campaign(runs: u32) -> Vec<CampaignRow> {
     let seeds: Vec<u64> = (1..=u64::from(runs)).collect();
