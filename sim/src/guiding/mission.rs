@@ -529,6 +529,12 @@ fn obstacle_in_areas(
 /// `pose`: a collision, unless a walking person reached only the
 /// footprint behind its front 0.1 m, or the robot stood still (the person
 /// walked into the robot; `walked_into`).
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//# Over every seed of a sweep of at least five, the built-in mission with
+//# obstacles MUST complete every task; the robot's footprint MUST never
+//# overlap an obstacle; every stop MUST have its cause in the world; no
+//# re-plan MUST start inside a field; no crop plant MUST be run over; and the
+//# lateral and reach figures of EM-SIM-FIGURES MUST hold.
 fn overlapping(run: &MissionRun, pose: &Pose2<World>, t: f64, moving: bool) -> Vec<(usize, bool)> {
     let r = &run.guiding.robot;
     let (hl, hw) = (r.length_m / 2.0, (r.track_m + r.track_width_m) / 2.0);
