@@ -43,7 +43,7 @@ use clap::{Parser, Subcommand};
 
 use fieldguide_sim::crop_drive::file::CropDriveFile;
 use fieldguide_sim::crop_drive::{self, campaign, CropRun};
-use fieldguide_sim::guiding::{self, file::GuidingFile, GuidingRun};
+use fieldguide_sim::guiding::{self, file::GuidingFile, mission, GuidingRun};
 use fieldguide_sim::metrics::{summarize, Summary};
 use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds};
@@ -82,7 +82,9 @@ enum Command {
     /// `<out>/guyonneau2022/{runs.csv, tables.json, tables.md}` and a
     /// successful and a failed drive as SVG.
     Campaign {
-        /// The plan: `guyonneau2022`.
+        /// The plan: `guyonneau2022`, or `emmi2024` (farm missions of the
+        /// mission supervisor with random obstacles, seeds 1 to `--runs`,
+        /// `<out>/emmi2024/runs.csv`).
         plan: String,
         /// Runs per variant and crop (the paper: 5).
         #[arg(long, default_value_t = 5)]
@@ -139,6 +141,9 @@ fn main() -> ExitCode {
         Some(Command::List) => {
             list();
             Ok(())
+        }
+        Some(Command::Run { scenario }) if scenario == "welaser-mission" => {
+            run_welaser_mission(&cli.out).map(|row| print_missions(&[row]))
         }
         Some(Command::Run { scenario }) => match guiding_named(&scenario) {
             Ok(Some(run)) => run_mission(&run, &cli.out).map(|row| print_missions(&[row])),
@@ -310,6 +315,7 @@ fn run_all(out: &Path) -> Result<(), SimError> {
             missions.push(run_mission(&run?, out)?);
         }
     }
+    missions.push(run_welaser_mission(out)?);
     println!();
     print_missions(&missions);
     let mut rows = Vec::new();
@@ -537,10 +543,69 @@ fn print_drives(rows: &[campaign::RunRow]) {
 }
 
 /// Runs the test plan `plan` with `runs` runs per variant and crop.
+/// The built-in `welaser-mission` (the supervisor on the farm with
+/// obstacles), seed 1: writes its folder and prints its stops.
+fn run_welaser_mission(out: &Path) -> Result<(String, guiding::Outcome), SimError> {
+    let run = mission::welaser_mission(1).ok_or_else(|| SimError::Setup {
+        what: "built-in scenario `welaser-mission`".to_owned(),
+        source: fieldguide::Precondition::new("EM-SIM-MISSION", "the built-in farm"),
+    })?;
+    let outcome = mission::drive_mission(&run);
+    let dir = mission::write(out, &run, &outcome)?;
+    println!(
+        "welaser-mission: {}, stops {:?}, {} re-plans, {} collisions; wrote {}",
+        if outcome.complete() {
+            "complete"
+        } else {
+            "not complete"
+        },
+        outcome.stops_by_reason(),
+        outcome.replans.len(),
+        outcome.collisions.len(),
+        dir.display()
+    );
+    Ok(("welaser-mission".to_owned(), outcome.drive))
+}
+
+/// The campaign `emmi2024`: `runs` farm missions with random obstacles.
+fn run_emmi_campaign(runs: u32, out: &Path) -> Result<(), SimError> {
+    let started = std::time::Instant::now();
+    let rows = mission::campaign(runs);
+    let dir = out.join("emmi2024");
+    fieldguide_sim::output::write_files(&dir, &[("runs.csv", mission::campaign_csv(&rows))])?;
+    let complete = rows.iter().filter(|r| r.complete).count();
+    let sum = |f: fn(&mission::CampaignRow) -> usize| rows.iter().map(f).sum::<usize>();
+    println!(
+        "emmi2024: {} missions, {} complete, {} stopped with a reason, {} without; \
+         collisions {}, a walking person into the robot's side {}, crop plants run over {}, unjustified stops {}, re-plans {} ({} in a field), stops {}",
+        rows.len(),
+        complete,
+        rows.iter().filter(|r| !r.complete && r.reason.is_some()).count(),
+        rows.iter().filter(|r| !r.complete && r.reason.is_none()).count(),
+        sum(|r| r.collisions),
+        sum(|r| r.walked_into),
+        sum(|r| r.crushed),
+        sum(|r| r.unjustified),
+        sum(|r| r.replans),
+        sum(|r| r.replans_in_field),
+        sum(|r| r.stops),
+    );
+    println!(
+        "{} runs in {:.1} s; wrote {}",
+        rows.len(),
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    Ok(())
+}
+
 fn run_campaign(plan: &str, runs: u32, out: &Path) -> Result<(), SimError> {
+    if plan == "emmi2024" {
+        return run_emmi_campaign(runs, out);
+    }
     if plan != "guyonneau2022" {
         return Err(SimError::Setup {
-            what: format!("campaign `{plan}` (the one plan is `guyonneau2022`)"),
+            what: format!("campaign `{plan}` (the plans are `guyonneau2022` and `emmi2024`)"),
             source: fieldguide::Precondition::new("CAMPAIGN", "unknown plan"),
         });
     }

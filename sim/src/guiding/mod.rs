@@ -18,6 +18,7 @@ pub mod boundary;
 pub mod farm;
 pub mod field;
 pub mod file;
+pub mod mission;
 pub mod plot;
 
 use std::fmt::Write as _;
@@ -467,6 +468,23 @@ fn sample_path(path: &ReferencePath<PATH_CAPACITY>) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The speed profile of a path of `planner`: the turn speed with 0.3 m of
+/// acceleration and braking on GoToGoal paths, the line speed with 1 m on
+/// lines.
+fn profile(c: &ControlSpec, planner: Planner) -> Result<SpeedProfile, Precondition> {
+    let (v, ramp) = match planner {
+        Planner::GoToGoal => (c.turn_speed, 0.3),
+        Planner::LineFollowing => (c.line_speed, 1.0),
+    };
+    SpeedProfile::new(
+        MetersPerSecond::new(c.threshold_speed.min(v))?,
+        MetersPerSecond::new(v)?,
+        Meters::new(ramp)?,
+        Braking::Fixed(Meters::new(ramp)?),
+        Meters::new(REACH_DISTANCE)?,
+    )
+}
+
 /// Plans the path to goal `g` from the fix `fix` (the previous goal `from`
 /// is the start of a LineFollowing line).
 fn plan(
@@ -502,13 +520,7 @@ fn plan(
                     (end - seg.length.get(), end, tracker_for(seg))
                 })
                 .collect();
-            let profile = SpeedProfile::new(
-                MetersPerSecond::new(c.threshold_speed.min(c.turn_speed))?,
-                MetersPerSecond::new(c.turn_speed)?,
-                Meters::new(0.3)?,
-                Braking::Fixed(Meters::new(0.3)?),
-                Meters::new(REACH_DISTANCE)?,
-            )?;
+            let profile = profile(c, Planner::GoToGoal)?;
             (path, segments, profile, goal.radius_m)
         }
         Planner::LineFollowing => {
@@ -517,13 +529,7 @@ fn plan(
                 (goal.pose, Curvature::ZERO),
             ])?;
             let l = path.length().get();
-            let profile = SpeedProfile::new(
-                MetersPerSecond::new(c.threshold_speed.min(c.line_speed))?,
-                MetersPerSecond::new(c.line_speed)?,
-                Meters::new(1.0)?,
-                Braking::Fixed(Meters::new(1.0)?),
-                Meters::new(REACH_DISTANCE)?,
-            )?;
+            let profile = profile(c, Planner::LineFollowing)?;
             (path, vec![(0.0, l, Tracker::Lateral)], profile, 0.0)
         }
     };
@@ -585,6 +591,164 @@ fn mark_crushed(
     }
 }
 
+/// The command (m/s, rad/s), the true lateral error, whether stopped.
+type Steer = ((f64, f64), Option<f64>, bool);
+
+/// The controllers of a run: the vehicle, the lateral PD and the spiral.
+struct Controllers {
+    vehicle: SkidSteer,
+    lateral: LateralPd,
+    spiral: Spiral,
+}
+
+impl Controllers {
+    /// The controllers of `run`'s robot and settings.
+    fn of(run: &GuidingRun) -> Result<Self, Precondition> {
+        let r = &run.robot;
+        let vehicle = SkidSteer::new(
+            Meters::new(r.track_m)?,
+            MetersPerSecond::new(r.max_track_speed)?,
+        )?;
+        let g = run.control.lateral_gains;
+        let lateral = LateralPd {
+            gains: LateralGains::new(g[0], g[1], g[2], g[3], g[4])?,
+            control_point: Meters::new(run.control.control_point_m)?,
+            vehicle,
+        };
+        let spiral = Spiral::new(run.control.spiral_lambda, Radians::ZERO, vehicle)?;
+        Ok(Self {
+            vehicle,
+            lateral,
+            spiral,
+        })
+    }
+}
+
+/// One tick along the active path `a` from the fix: the command (m/s,
+/// rad/s), the true lateral error, and whether the speed profile stopped
+/// at the path's end.
+fn steer(
+    run: &GuidingRun,
+    ctl: &Controllers,
+    a: &mut Active,
+    fix: &Pose2<World>,
+    truth: &Pose2<World>,
+) -> Result<Steer, Precondition> {
+    let (lateral, spiral) = (&ctl.lateral, &ctl.spiral);
+    let mut command = (0.0, 0.0);
+    let mut lateral_now = None;
+    let mut finished = false;
+    let window = Meters::new(0.5)?;
+    let f = a
+        .path
+        .project_near(fix, Meters::ZERO, Meters::new(a.s_fix)?, window)?;
+    a.s_fix = f.s.get();
+    let length = a.path.length().get();
+    let (next, speed) = a.profile.step(
+        a.speed,
+        Meters::new(a.s_fix.max(0.0))?,
+        Meters::new(length - a.s_fix)?,
+    );
+    a.speed = next;
+    match speed {
+        SpeedCommand::Stop => finished = true,
+        SpeedCommand::Go(v) => {
+            let k = segment_at(&a.segments, a.s_fix);
+            let tracker = a.segments.get(k).map_or(Tracker::Lateral, |s| s.2);
+            let saturated = match tracker {
+                Tracker::Lateral => {
+                    let mut e = f.tracking_error();
+                    if run.fault == Some(Fault::FlippedLateralGain) {
+                        e.y = Meters::new(-e.y.get())?;
+                    }
+                    let y_cp = lateral.control_point_error(&e)?;
+                    let rate = match a.previous_y {
+                        Some((pk, py)) if pk == k => LateralRate::between_ticks(
+                            Meters::new(py)?,
+                            y_cp,
+                            Seconds::new(PERIOD_S)?,
+                        )?,
+                        _ => LateralRate::ZERO,
+                    };
+                    a.previous_y = Some((k, y_cp.get()));
+                    lateral.command(&e, &rate, v)?
+                }
+                Tracker::Spiral {
+                    centre,
+                    desired_angle,
+                } => {
+                    a.previous_y = None;
+                    let law = if run.fault == Some(Fault::FlippedSpiralGain) {
+                        // α_d reflected about α: e changes sign.
+                        let alpha = spiral_state(fix, centre)?.angle.get();
+                        spiral.towards(Radians::new(2.0 * alpha - desired_angle.get())?)
+                    } else {
+                        spiral.towards(desired_angle)
+                    };
+                    spiral_command(&law, fix, centre, v)?
+                }
+            };
+            if let Command::SkidSteer { speed, yaw_rate } = saturated.command {
+                command = (speed.get(), yaw_rate.get());
+            }
+            // Ground truth: the true pose against the planned path.
+            //= spec/emmi2024.md#em-sim-kpi-reach-lateral-and-angular-errors
+            //# The lateral error of a line MUST be the signed distance of the true pose to
+            //# the planned straight, and of a spiral |d − r|, d the true distance to the
+            //# arc's centre and r its radius; the angular error of a line MUST be the true
+            //# heading minus the path's, and of a spiral wrap(α − α_d) from the true pose.
+            let tf = a
+                .path
+                .project_near(truth, Meters::ZERO, Meters::new(a.s_true)?, window)?;
+            a.s_true = tf.s.get();
+            let kt = segment_at(&a.segments, a.s_true);
+            match a.segments.get(kt).map(|s| s.2) {
+                Some(Tracker::Spiral {
+                    centre,
+                    desired_angle,
+                }) => {
+                    let st = spiral_state(truth, centre)?;
+                    let radius = a.radius;
+                    let y = st.distance.get() - radius;
+                    let e = wrap(st.angle.get() - desired_angle.get());
+                    add(&mut a.sums, kt, y, e);
+                    lateral_now = Some(y);
+                }
+                _ => {
+                    let y = tf.y.get();
+                    add(&mut a.sums, kt, y, tf.angular_deviation.get());
+                    lateral_now = Some(y);
+                }
+            }
+        }
+    }
+    Ok((command, lateral_now, finished))
+}
+
+/// Ends the path `a`: the figures of each of its segments long enough to
+/// count as a manoeuvre.
+fn close_manoeuvres(a: &Active, manoeuvres: &mut Vec<Manoeuvre>) {
+    for (k, &(s0, s1, tracker)) in a.segments.iter().enumerate() {
+        let Some(&(sy, sa, my, n)) = a.sums.get(k) else {
+            continue;
+        };
+        if s1 - s0 < MIN_MANOEUVRE_M || n == 0 {
+            continue;
+        }
+        let nf = f64::from(u32::try_from(n).unwrap_or(u32::MAX));
+        manoeuvres.push(Manoeuvre {
+            kind: match tracker {
+                Tracker::Lateral => Kind::Line,
+                Tracker::Spiral { .. } => Kind::Spiral(a.radius),
+            },
+            lateral_m: sy / nf,
+            angular_rad: sa / nf,
+            max_lateral_m: my,
+            ticks: n,
+        });
+    }
+}
+
 /// Drives the mission of `run`.
 //= spec/emmi2024.md#em-sim-figures-closed-loop-figures
 //# Over every seed of a sweep of at least five, a built-in mission MUST reach
@@ -630,18 +794,9 @@ fn drive_in(
     rng: &mut SimRng,
     out: &mut Outcome,
 ) -> Result<(), Precondition> {
+    let ctl = Controllers::of(run)?;
     let r = &run.robot;
-    let vehicle = SkidSteer::new(
-        Meters::new(r.track_m)?,
-        MetersPerSecond::new(r.max_track_speed)?,
-    )?;
-    let g = run.control.lateral_gains;
-    let lateral = LateralPd {
-        gains: LateralGains::new(g[0], g[1], g[2], g[3], g[4])?,
-        control_point: Meters::new(run.control.control_point_m)?,
-        vehicle,
-    };
-    let spiral = Spiral::new(run.control.spiral_lambda, Radians::ZERO, vehicle)?;
+    let vehicle = ctl.vehicle;
     let plant = r.plant();
     let terrain = Terrain::default();
     let index = PlantIndex::new(plants.to_vec(), 0.5);
@@ -714,8 +869,7 @@ fn drive_in(
                 pending = None;
             }
         }
-        let mut command = (0.0, 0.0);
-        let mut lateral_now = None;
+        let command = (0.0, 0.0);
         if pending.is_none() && active.is_none() {
             if next_goal >= goals.len() {
                 out.end = End::Done;
@@ -735,117 +889,13 @@ fn drive_in(
             active = Some(a);
             next_goal += 1;
         }
-        let mut finished = false;
-        if let Some(a) = active.as_mut() {
-            let window = Meters::new(0.5)?;
-            let f = a
-                .path
-                .project_near(&fix, Meters::ZERO, Meters::new(a.s_fix)?, window)?;
-            a.s_fix = f.s.get();
-            let length = a.path.length().get();
-            let (next, speed) = a.profile.step(
-                a.speed,
-                Meters::new(a.s_fix.max(0.0))?,
-                Meters::new(length - a.s_fix)?,
-            );
-            a.speed = next;
-            match speed {
-                SpeedCommand::Stop => finished = true,
-                SpeedCommand::Go(v) => {
-                    let k = segment_at(&a.segments, a.s_fix);
-                    let tracker = a.segments.get(k).map_or(Tracker::Lateral, |s| s.2);
-                    let saturated = match tracker {
-                        Tracker::Lateral => {
-                            let mut e = f.tracking_error();
-                            if run.fault == Some(Fault::FlippedLateralGain) {
-                                e.y = Meters::new(-e.y.get())?;
-                            }
-                            let y_cp = lateral.control_point_error(&e)?;
-                            let rate = match a.previous_y {
-                                Some((pk, py)) if pk == k => LateralRate::between_ticks(
-                                    Meters::new(py)?,
-                                    y_cp,
-                                    Seconds::new(PERIOD_S)?,
-                                )?,
-                                _ => LateralRate::ZERO,
-                            };
-                            a.previous_y = Some((k, y_cp.get()));
-                            lateral.command(&e, &rate, v)?
-                        }
-                        Tracker::Spiral {
-                            centre,
-                            desired_angle,
-                        } => {
-                            a.previous_y = None;
-                            let law = if run.fault == Some(Fault::FlippedSpiralGain) {
-                                // α_d reflected about α: e changes sign.
-                                let alpha = spiral_state(&fix, centre)?.angle.get();
-                                spiral.towards(Radians::new(2.0 * alpha - desired_angle.get())?)
-                            } else {
-                                spiral.towards(desired_angle)
-                            };
-                            spiral_command(&law, &fix, centre, v)?
-                        }
-                    };
-                    if let Command::SkidSteer { speed, yaw_rate } = saturated.command {
-                        command = (speed.get(), yaw_rate.get());
-                    }
-                    // Ground truth: the true pose against the planned path.
-                    //= spec/emmi2024.md#em-sim-kpi-reach-lateral-and-angular-errors
-                    //# The lateral error of a line MUST be the signed distance of the true pose to
-                    //# the planned straight, and of a spiral |d − r|, d the true distance to the
-                    //# arc's centre and r its radius; the angular error of a line MUST be the true
-                    //# heading minus the path's, and of a spiral wrap(α − α_d) from the true pose.
-                    let tf = a.path.project_near(
-                        &truth,
-                        Meters::ZERO,
-                        Meters::new(a.s_true)?,
-                        window,
-                    )?;
-                    a.s_true = tf.s.get();
-                    let kt = segment_at(&a.segments, a.s_true);
-                    match a.segments.get(kt).map(|s| s.2) {
-                        Some(Tracker::Spiral {
-                            centre,
-                            desired_angle,
-                        }) => {
-                            let st = spiral_state(&truth, centre)?;
-                            let radius = a.radius;
-                            let y = st.distance.get() - radius;
-                            let e = wrap(st.angle.get() - desired_angle.get());
-                            add(&mut a.sums, kt, y, e);
-                            lateral_now = Some(y);
-                        }
-                        _ => {
-                            let y = tf.y.get();
-                            add(&mut a.sums, kt, y, tf.angular_deviation.get());
-                            lateral_now = Some(y);
-                        }
-                    }
-                }
-            }
-        }
+        let (command, lateral_now, finished) = match active.as_mut() {
+            Some(a) => steer(run, &ctl, a, &fix, &truth)?,
+            None => ((0.0, 0.0), None, false),
+        };
         if finished {
             if let Some(a) = active.take() {
-                for (k, &(s0, s1, tracker)) in a.segments.iter().enumerate() {
-                    let Some(&(sy, sa, my, n)) = a.sums.get(k) else {
-                        continue;
-                    };
-                    if s1 - s0 < MIN_MANOEUVRE_M || n == 0 {
-                        continue;
-                    }
-                    let nf = f64::from(u32::try_from(n).unwrap_or(u32::MAX));
-                    out.manoeuvres.push(Manoeuvre {
-                        kind: match tracker {
-                            Tracker::Lateral => Kind::Line,
-                            Tracker::Spiral { .. } => Kind::Spiral(a.radius),
-                        },
-                        lateral_m: sy / nf,
-                        angular_rad: sa / nf,
-                        max_lateral_m: my,
-                        ticks: n,
-                    });
-                }
+                close_manoeuvres(&a, &mut out.manoeuvres);
                 pending = Some((a.goal, a.planner));
                 rest_until = t + REST_S;
             }
