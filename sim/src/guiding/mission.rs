@@ -29,7 +29,8 @@ use fieldguide::{
     Meters, MetersPerSecond, Pose2, Precondition, RadiansPerSecond, Robot, Seconds, World,
 };
 
-use super::farm::{Farm, Task};
+use super::farm::{Farm, PlacedField, RouteGoal, Task};
+use super::field::Goal;
 use super::{
     close_manoeuvres, mark_crushed, profile, sample_path, steer, wrap, Active, Controllers, End,
     GuidingRun, Kpi, Outcome, Reach, Tick, PATH_CAPACITY, PATH_SPACING_M, PERIOD_S, SUBSTEPS,
@@ -248,27 +249,53 @@ impl MissionRun {
             let Some(field) = farm.fields.get(k) else {
                 continue;
             };
-            // The treatment's goals: pass ends, each next pass's start.
-            let mut starts = vec![field.entry()?];
-            let mut ends = Vec::new();
-            for (i, g) in field.treatment()?.iter().enumerate() {
-                if i % 2 == 0 {
-                    ends.push(g.pose);
-                } else {
-                    starts.push(g.pose);
+            let rows = rows_of(field)?;
+            out.push((Task::Field(k), CoreTask::treatment(&rows)?));
+        }
+        Ok(out)
+    }
+
+    /// The goal of every leg the supervisor drives, in order, with its task:
+    /// each road's waypoints, and each row's start (the turn to it) and end
+    /// (the pass).
+    ///
+    /// # Errors
+    /// As [`MissionRun::tasks`].
+    pub fn leg_goals(&self) -> Result<Vec<RouteGoal>, Precondition> {
+        let farm = self.farm()?;
+        let radius = self.radius()?.get().get();
+        let mut out = Vec::new();
+        for g in farm.route()? {
+            match g.task {
+                Task::Road(_) => out.push(g),
+                Task::Field(k) => {
+                    // A field's legs follow its first goal's place in the route.
+                    if out.iter().any(|r: &RouteGoal| r.task == g.task) {
+                        continue;
+                    }
+                    let field = farm.fields.get(k).ok_or_else(|| {
+                        Precondition::new("EM-SIM-FARM", "a route goal names no field")
+                    })?;
+                    for row in rows_of(field)? {
+                        let (s, c) = row.start.heading.get().sin_cos();
+                        let l = row.length.get();
+                        let end = Pose2::new(
+                            row.start.position.x() + l * c,
+                            row.start.position.y() + l * s,
+                            row.start.heading.get(),
+                        )?;
+                        for pose in [row.start, end] {
+                            out.push(RouteGoal {
+                                goal: Goal {
+                                    pose,
+                                    radius_m: radius,
+                                },
+                                task: g.task,
+                            });
+                        }
+                    }
                 }
             }
-            let rows = starts
-                .iter()
-                .zip(&ends)
-                .map(|(a, b)| {
-                    Ok(Row {
-                        start: *a,
-                        length: a.position.distance_to(b.position)?,
-                    })
-                })
-                .collect::<Result<Vec<_>, Precondition>>()?;
-            out.push((Task::Field(k), CoreTask::treatment(&rows)?));
         }
         Ok(out)
     }
@@ -496,6 +523,30 @@ pub fn drive_mission(run: &MissionRun) -> MissionOutcome {
     out
 }
 
+/// The rows of a field's treatment: each pass from its start (the field's
+/// entry, then each U-turn's goal) to its end.
+fn rows_of(field: &PlacedField) -> Result<Vec<Row>, Precondition> {
+    let mut starts = vec![field.entry()?];
+    let mut ends = Vec::new();
+    for (i, g) in field.treatment()?.iter().enumerate() {
+        if i % 2 == 0 {
+            ends.push(g.pose);
+        } else {
+            starts.push(g.pose);
+        }
+    }
+    starts
+        .iter()
+        .zip(&ends)
+        .map(|(a, b)| {
+            Ok(Row {
+                start: *a,
+                length: a.position.distance_to(b.position)?,
+            })
+        })
+        .collect()
+}
+
 /// Ground truth: whether a real obstacle lies in the areas at `pose`
 /// (`warning`: the critical or the warning area), `slack` m beyond them.
 fn obstacle_in_areas(
@@ -565,6 +616,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     let plants = g.plants(&mut rng);
     out.drive.plants.clone_from(&plants);
     let tasks = run.tasks()?;
+    out.drive.goals = run.leg_goals()?;
     let core: Vec<CoreTask> = tasks.iter().map(|(_, t)| t.clone()).collect();
     let mut mission = Mission::new(run.mission_config()?, &core)?;
     let obstacle_config = run.obstacle_config()?;
@@ -677,6 +729,11 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
             odometry,
             hazard,
             in_field,
+            // Arrival by distance to the goal (the supervisor's rule without
+            // the pipeline's remaining distance): with this loop's distance
+            // along its path the first seed aborts with GoalMissed, not yet
+            // understood.
+            remaining: None,
         };
         let before = *mission.state();
         let answer = mission.tick(&input);
