@@ -6,7 +6,7 @@
 //! supervisor (`fieldguide::supervisor::mission::Mission`) gets the
 //! localisation and the hazard of the obstacles a front LiDAR sees
 //! (`fieldguide::perception::obstacles`); its plan is followed with the
-//! controllers of the guided missions ([`super::steer`]). Obstacles are
+//! controllers of the guided missions (`steer` in `guiding`). Obstacles are
 //! posts and people (circles, a person may walk a line between two times)
 //! and boxes; ground truth checks that the footprint never overlaps one.
 
