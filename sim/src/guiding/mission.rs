@@ -20,7 +20,7 @@ use fieldguide::perception::obstacles::{
     assess, cluster, AreaLength, ClusterConfig, Footprint, Hazard, ObstacleConfig, Obstacles,
 };
 use fieldguide::planning::dubins::TurningRadius;
-use fieldguide::planning::manager::{tracker_for, Planner, Tracker};
+use fieldguide::planning::manager::{Planner, Tracker};
 use fieldguide::supervisor::mission::{
     Command, MachineConfig, Mission, MissionConfig, MissionInput, Phase, Plan, Row, StopReason,
     Task as CoreTask, TaskKind,
@@ -455,18 +455,11 @@ fn active_of(run: &GuidingRun, plan: &Plan, goal: usize) -> Result<Active, Preco
     let path: ReferencePath<PATH_CAPACITY> =
         plan.to_reference_path(Meters::new(PATH_SPACING_M)?)?;
     let (planner, segments, radius) = match plan {
-        Plan::GoToGoal { path: dubins, .. } => {
-            let mut end = 0.0;
-            let segments = dubins
-                .segments()
-                .iter()
-                .map(|seg| {
-                    end += seg.length.get();
-                    (end - seg.length.get(), end, tracker_for(seg))
-                })
-                .collect();
-            (Planner::GoToGoal, segments, dubins.radius().get())
-        }
+        Plan::GoToGoal { path: dubins, .. } => (
+            Planner::GoToGoal,
+            super::tracked_segments(dubins),
+            dubins.radius().get(),
+        ),
         Plan::Line { .. } => (
             Planner::LineFollowing,
             vec![(0.0, path.length().get(), Tracker::Lateral)],
@@ -1002,21 +995,8 @@ pub fn mission_svg(run: &MissionRun, o: &MissionOutcome) -> String {
         .iter()
         .flat_map(|f| f.outline().vertices)
         .collect();
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in corners.iter().chain(&path) {
-        (x0, x1, y0, y1) = (
-            x0.min(x - 2.0),
-            x1.max(x + 2.0),
-            y0.min(y - 2.0),
-            y1.max(y + 2.0),
-        );
-    }
-    let axes = Axes::equal((x0, x1), (y0, y1), 1400.0, 900.0);
+    let (xs, ys) = super::plot::bounds(corners.iter().chain(&path), 2.0);
+    let axes = Axes::equal(xs, ys, 1400.0, 900.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
     svg.frame(

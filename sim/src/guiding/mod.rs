@@ -511,15 +511,7 @@ fn plan(
             };
             let path: ReferencePath<PATH_CAPACITY> =
                 turn.to_reference_path(Meters::new(PATH_SPACING_M)?)?;
-            let mut end = 0.0;
-            let segments = turn
-                .segments()
-                .iter()
-                .map(|seg| {
-                    end += seg.length.get();
-                    (end - seg.length.get(), end, tracker_for(seg))
-                })
-                .collect();
+            let segments = tracked_segments(&turn);
             let profile = profile(c, Planner::GoToGoal)?;
             (path, segments, profile, goal.radius_m)
         }
@@ -547,6 +539,21 @@ fn plan(
         radius,
         sums: vec![(0.0, 0.0, 0.0, 0); n],
     })
+}
+
+/// Each segment of a Dubins path: where it starts and ends along the path,
+/// and the controller that tracks it (`tracker_for`, EM-TRACKER).
+pub(crate) fn tracked_segments(
+    path: &fieldguide::planning::dubins::DubinsPath,
+) -> Vec<(f64, f64, Tracker)> {
+    let mut end = 0.0;
+    path.segments()
+        .iter()
+        .map(|seg| {
+            end += seg.length.get();
+            (end - seg.length.get(), end, tracker_for(seg))
+        })
+        .collect()
 }
 
 /// The segment index at abscissa `s`.

@@ -12,6 +12,25 @@ const CROP: &str = "#2ca02c";
 const CRUSHED: &str = "#d62728";
 const ROAD: &str = "#e3ddd0";
 
+/// The x and y ranges holding every point, `pad` m beyond them.
+pub(crate) fn bounds<'a>(
+    points: impl Iterator<Item = &'a (f64, f64)>,
+    pad: f64,
+) -> ((f64, f64), (f64, f64)) {
+    points.fold(
+        (
+            (f64::INFINITY, f64::NEG_INFINITY),
+            (f64::INFINITY, f64::NEG_INFINITY),
+        ),
+        |((x0, x1), (y0, y1)), &(x, y)| {
+            (
+                (x0.min(x - pad), x1.max(x + pad)),
+                (y0.min(y - pad), y1.max(y + pad)),
+            )
+        },
+    )
+}
+
 /// The mission of `run` over its field, as an SVG document.
 #[must_use]
 pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
@@ -22,21 +41,8 @@ pub fn trajectory_svg(run: &GuidingRun, outcome: &Outcome) -> String {
         .map(|t| (t.truth.position.x(), t.truth.position.y()))
         .collect();
     let corners: Vec<(f64, f64)> = fields.iter().flat_map(|f| f.outline().vertices).collect();
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in corners.iter().chain(&path) {
-        (x0, x1, y0, y1) = (
-            x0.min(x - 1.0),
-            x1.max(x + 1.0),
-            y0.min(y - 1.0),
-            y1.max(y + 1.0),
-        );
-    }
-    let axes = Axes::equal((x0, x1), (y0, y1), 1000.0, 900.0);
+    let (xs, ys) = bounds(corners.iter().chain(&path), 1.0);
+    let axes = Axes::equal(xs, ys, 1000.0, 900.0);
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
     svg.frame(
