@@ -168,6 +168,41 @@ pub fn harness(properties: &[&str], sequences: u64, depth: Option<u64>) -> Explo
     }
 }
 
+/// Explores every reachable state of `model`, asserts every property,
+/// prints what was explored, records it in `run`, and returns the number of
+/// distinct states.
+pub fn explore<M>(run: Run, model: M) -> usize
+where
+    M: stateright::Model + Send + Sync + 'static,
+    M::State: Clone + core::fmt::Debug + core::hash::Hash + PartialEq + Send + Sync + 'static,
+    M::Action: Clone + core::fmt::Debug + PartialEq + Send + Sync + 'static,
+{
+    use stateright::Checker;
+    let properties = model
+        .properties()
+        .iter()
+        .map(|p| p.name.to_owned())
+        .collect();
+    let checker = model.checker().spawn_bfs().join();
+    checker.assert_properties();
+    let states = checker.unique_state_count();
+    println!(
+        "{}: {states} states, {} transitions, depth {}, {:.1?}",
+        run.name(),
+        checker.state_count(),
+        checker.max_depth(),
+        run.started.elapsed()
+    );
+    run.finish(&Explored {
+        properties,
+        states: u64::try_from(states).ok(),
+        transitions: u64::try_from(checker.state_count()).ok(),
+        depth: u64::try_from(checker.max_depth()).ok(),
+        ..Explored::default()
+    });
+    states
+}
+
 /// A mutant's record: the `fault` injected was caught breaking `property`.
 #[must_use]
 pub fn mutant_caught(property: &str, fault: &str) -> Explored {

@@ -6,12 +6,11 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::collections::BTreeSet;
-use std::time::Instant;
 
 use fieldguide::supervisor::mission::{
     Arrival, Command, Events, Fault, HazardLevel, MachineConfig, Shape, StopReason, TaskKind,
 };
-use fieldguide_proofs::evidence::{self, Explored, Kind};
+use fieldguide_proofs::evidence::{self, Kind};
 use fieldguide_proofs::mission::{check_run, MissionModel, Property};
 use stateright::{Checker, HasDiscoveries, Model};
 
@@ -58,31 +57,11 @@ fn model(config: MachineConfig) -> MissionModel {
 //# earlier than any leg commanded before, at a speed that is never negative.
 #[test]
 fn every_reachable_state_keeps_m1_to_m5() {
-    let run = evidence::start("mission (2 + 2 legs, stall 3, leg 5 ticks)", Kind::Model);
-    let start = Instant::now();
-    let model = model(config());
-    let properties = model
-        .properties()
-        .iter()
-        .map(|p| p.name.to_owned())
-        .collect();
-    let checker = model.checker().spawn_bfs().join();
-    checker.assert_properties();
-    let states = checker.unique_state_count();
-    println!(
-        "mission (2 + 2 legs, stall 3, leg 5 ticks): {states} states, {} transitions, depth {}, {:.1?}",
-        checker.state_count(),
-        checker.max_depth(),
-        start.elapsed()
+    let states = evidence::explore(
+        evidence::start("mission (2 + 2 legs, stall 3, leg 5 ticks)", Kind::Model),
+        model(config()),
     );
     assert!(states > 1_000, "{states}");
-    run.finish(&Explored {
-        properties,
-        states: u64::try_from(states).ok(),
-        transitions: u64::try_from(checker.state_count()).ok(),
-        depth: u64::try_from(checker.max_depth()).ok(),
-        ..Explored::default()
-    });
 }
 
 /// The counterexample the checker reports for `property` on `config`, if

@@ -6,10 +6,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::collections::BTreeSet;
-use std::time::Instant;
 
 use fieldguide::supervisor::switching::{CommandSource, Fault, Mode, Switching, SwitchingConfig};
-use fieldguide_proofs::evidence::{self, Explored, Kind};
+use fieldguide_proofs::evidence::{self, Kind};
 use fieldguide_proofs::switching::{
     check_run, config_from_millis, Monitor, Property, Spec, SwitchingModel, Sym, Tick, Violation,
     EDGE_MS, FURROW_MS,
@@ -22,31 +21,7 @@ const PERIOD_MS: u32 = 10;
 /// Explores every reachable state, asserts every property, records what was
 /// explored in `run`, and returns the number of distinct states.
 fn explore<const K: usize>(run: evidence::Run, config: SwitchingConfig<K>, spec: Spec<K>) -> usize {
-    let start = Instant::now();
-    let model = SwitchingModel::new(config, spec);
-    let properties = model
-        .properties()
-        .iter()
-        .map(|p| p.name.to_owned())
-        .collect();
-    let checker = model.checker().spawn_bfs().join();
-    checker.assert_properties();
-    let states = checker.unique_state_count();
-    println!(
-        "{}: {states} states, {} transitions, depth {}, {:.1?}",
-        run.name(),
-        checker.state_count(),
-        checker.max_depth(),
-        start.elapsed()
-    );
-    run.finish(&Explored {
-        properties,
-        states: u64::try_from(states).ok(),
-        transitions: u64::try_from(checker.state_count()).ok(),
-        depth: u64::try_from(checker.max_depth()).ok(),
-        ..Explored::default()
-    });
-    states
+    evidence::explore(run, SwitchingModel::new(config, spec))
 }
 
 /// The model of `behaviours` at 100 Hz, with its configuration built from
