@@ -28,6 +28,7 @@ pub mod rng;
 pub mod runner;
 pub mod scenario;
 pub mod sensors;
+pub mod stress;
 pub mod sweep;
 pub mod vineyard;
 pub mod world;

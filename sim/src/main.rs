@@ -49,7 +49,7 @@ use fieldguide_sim::scenario::{Source, BUILTIN};
 use fieldguide_sim::sweep::{self, Cell, Seeds};
 use fieldguide_sim::vineyard::file::VineyardFile;
 use fieldguide_sim::vineyard::{self, VineyardRun};
-use fieldguide_sim::{evidence, output, runner, SimError};
+use fieldguide_sim::{evidence, output, runner, stress, SimError};
 
 #[derive(Debug, Parser)]
 #[command(
@@ -133,6 +133,19 @@ enum Command {
         #[arg(long)]
         criterion: Option<PathBuf>,
     },
+    /// Run the stress campaign: fields that differ from the built-ins the
+    /// way real farms do, each over the seeds and held to its bounds; print
+    /// the worst figure of every bound and the seed it came from, write
+    /// `<out>/stress/{stress.md, stress.json}` and each case's worst seed's
+    /// trace and plots. Exits with 1 when a bound is broken.
+    Stress {
+        /// The seeds, FIRST..=LAST with both included.
+        #[arg(long, value_name = "FIRST..=LAST", default_value = "1..=20")]
+        seeds: Seeds,
+        /// Only this class (`fieldguide stress --class speed-offset`).
+        #[arg(long)]
+        class: Option<String>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -176,6 +189,16 @@ fn main() -> ExitCode {
                 }
             };
         }
+        Some(Command::Stress { seeds, class }) => {
+            return match run_stress(seeds, class.as_deref(), &cli.out) {
+                Ok(true) => ExitCode::SUCCESS,
+                Ok(false) => ExitCode::from(1),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
         None => run_all(&cli.out),
     };
     match result {
@@ -189,6 +212,31 @@ fn main() -> ExitCode {
 
 /// Writes the evidence report; `true` when it is complete (every section
 /// passed, none skipped but those deliberately skipped).
+/// Runs the stress campaign (every class, or `class`) over `seeds`; prints
+/// each case's line as it is measured and the table; writes the files.
+/// `Ok(false)` when a bound is broken.
+fn run_stress(seeds: Seeds, class: Option<&str>, out: &Path) -> Result<bool, SimError> {
+    let classes = stress::select(class)?;
+    let started = std::time::Instant::now();
+    let results = stress::campaign(&classes, seeds, |r| {
+        let verdict = if r.pass() { "pass" } else { "FAIL" };
+        eprintln!(
+            "{} / {}: {verdict} (worst seed {})",
+            r.class, r.scenario, r.worst_seed
+        );
+    })?;
+    println!("{}", stress::table_md(&results));
+    let dir = stress::write(out, &results)?;
+    let failed = results.iter().filter(|r| !r.pass()).count();
+    println!(
+        "{} cases over seeds {seeds}, {failed} failing, in {:.1} s; wrote {}",
+        results.len(),
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    Ok(failed == 0)
+}
+
 fn run_evidence(options: &evidence::Options) -> Result<bool, SimError> {
     let started = std::time::Instant::now();
     let report = evidence::Report::gather(options)?;

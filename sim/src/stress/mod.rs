@@ -1,0 +1,363 @@
+//! The stress campaign: fields that differ from the built-in scenarios the
+//! way real farms do (speeds from 0.3 to 3 m/s, a slow steering, tight
+//! U-turns, slip patches, rows off the path, outages at a plot's end,
+//! ragged hedges, trunk rows), each run over a range of seeds and held to
+//! stated bounds ([`Bound`]). `fieldguide stress` runs it, prints the worst
+//! figure of every bound with the seed it came from, writes `stress.md` and
+//! `stress.json`, and keeps the trace and plots of each run's worst seed.
+//!
+//! A class's runs are built-in scenarios or files of `sim/scenarios/stress/`
+//! (read from the source tree, so that their CSV and waypoint files resolve
+//! beside them). A claim about a class is a claim about its worst seed.
+
+pub mod bounds;
+mod report;
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+pub use self::bounds::{Bound, Judged};
+pub use self::report::{table_md, write};
+use crate::error::SimError;
+use crate::metrics::summarize;
+use crate::runner;
+use crate::scenario::Source;
+use crate::sweep::Seeds;
+
+/// One scenario of a class and the bounds each of its runs is held to.
+#[derive(Debug, Clone, Copy)]
+pub struct Case {
+    /// A built-in scenario's name, or a file name in `sim/scenarios/stress/`.
+    pub scenario: &'static str,
+    /// The bounds of every seed's run.
+    pub bounds: &'static [Bound],
+}
+
+/// A class of stress fields: what it stresses and its cases.
+#[derive(Debug, Clone, Copy)]
+pub struct Class {
+    /// Short name (`speed-offset`).
+    pub name: &'static str,
+    /// What the fields stress, one line.
+    pub stresses: &'static str,
+    /// The scenarios and their bounds.
+    pub cases: &'static [Case],
+}
+
+use Bound::{
+    ConvergesInTime, CurvatureStep, MaxFrom, NoPlantCrushed, Overshoot, ScenarioChecks,
+    SettledBefore, SettledInBand, SlipStep,
+};
+
+const STRAIGHT_FROM_0_8: &[Bound] = &[ConvergesInTime, Overshoot(0.10), SettledInBand];
+const STRAIGHT_FROM_1_5: &[Bound] = &[ConvergesInTime, Overshoot(0.12), SettledInBand];
+const CROPS: &[Bound] = &[ScenarioChecks, NoPlantCrushed];
+
+/// Every class of the campaign, in the order of the README's table.
+pub const CLASSES: &[Class] = &[
+    Class {
+        name: "speed-offset",
+        stresses: "path tracking at 0.3, 1, 2 and 3 m/s from 0.8 m off a straight",
+        cases: &[
+            Case {
+                scenario: "tracking-v0_3-offset",
+                bounds: STRAIGHT_FROM_0_8,
+            },
+            Case {
+                scenario: "tracking-v1-offset",
+                bounds: STRAIGHT_FROM_0_8,
+            },
+            Case {
+                scenario: "tracking-v2-offset",
+                bounds: STRAIGHT_FROM_0_8,
+            },
+            Case {
+                scenario: "tracking-v3-offset",
+                bounds: STRAIGHT_FROM_0_8,
+            },
+        ],
+    },
+    Class {
+        name: "speed-heading",
+        stresses: "path tracking at 0.3, 1, 2 and 3 m/s from 1.5 m off, heading 20° away",
+        cases: &[
+            Case {
+                scenario: "tracking-v0_3-heading",
+                bounds: STRAIGHT_FROM_1_5,
+            },
+            Case {
+                scenario: "tracking-v1-heading",
+                bounds: STRAIGHT_FROM_1_5,
+            },
+            Case {
+                scenario: "tracking-v2-heading",
+                bounds: STRAIGHT_FROM_1_5,
+            },
+            Case {
+                scenario: "tracking-v3-heading",
+                bounds: STRAIGHT_FROM_1_5,
+            },
+        ],
+    },
+    Class {
+        name: "s-bends",
+        stresses: "8 m S-bends (curvature reverses) at 1.5 and 3 m/s",
+        cases: &[
+            Case {
+                scenario: "tracking-sbend-v1_5",
+                bounds: &[CurvatureStep(0.25)],
+            },
+            Case {
+                scenario: "tracking-sbend-v3",
+                bounds: &[CurvatureStep(0.25)],
+            },
+        ],
+    },
+    Class {
+        name: "tight-u-turn",
+        stresses: "a 4.5 m U-turn at 1.5 m/s",
+        cases: &[Case {
+            scenario: "tracking-uturn",
+            bounds: &[CurvatureStep(1.0 / 4.5)],
+        }],
+    },
+    Class {
+        name: "slip-patches",
+        stresses: "slip patches (β_F −4°, β_R −6°) on a straight and a curve at 2 m/s",
+        cases: &[Case {
+            scenario: "tracking-slip",
+            bounds: &[SlipStep(6.0, 0.5)],
+        }],
+    },
+    Class {
+        name: "steering-lag-2s",
+        stresses: "a steering that settles in 2 s, at 2 m/s, from 0.8 m off, then an S-bend",
+        // The first straight ends at s = 40 m; the S-bend's 0.15 m is measured, not derived.
+        cases: &[Case {
+            scenario: "tracking-lag-2s",
+            bounds: &[SettledBefore(40.0), MaxFrom(40.0, 0.15)],
+        }],
+    },
+    Class {
+        name: "crops",
+        stresses: "the Pierre 2022 crop scenarios over more seeds: plots, volunteers, outages",
+        cases: &[
+            Case {
+                scenario: "furrow-pursuing",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "exp1-hedge-maize",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "exp2-acre",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "exp3-acre-curved",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "gnss-outage",
+                bounds: CROPS,
+            },
+        ],
+    },
+];
+
+/// The folder of the campaign's own scenario files.
+#[must_use]
+pub fn files_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join("stress")
+}
+
+/// The source of a case: a built-in, else a file of [`files_dir`].
+///
+/// # Errors
+/// When neither exists or the file cannot be read.
+pub fn source(scenario: &str) -> Result<Source, SimError> {
+    if let Some(builtin) = Source::builtin(scenario) {
+        return Ok(builtin);
+    }
+    Ok(Source::file(&files_dir().join(scenario))?)
+}
+
+/// The worst figure of one bound over a case's seeds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Worst {
+    /// The bound's figure at its worst seed (largest value over limit).
+    pub judged: Judged,
+    /// The seed it came from.
+    pub seed: u64,
+    /// The seeds whose run broke the bound.
+    pub failed_seeds: Vec<u64>,
+}
+
+/// The outcome of one case over the seeds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaseResult {
+    /// The class's name.
+    pub class: &'static str,
+    /// The scenario.
+    pub scenario: &'static str,
+    /// The seeds run.
+    pub seeds: String,
+    /// One entry per bound, in the case's order.
+    pub bounds: Vec<Worst>,
+    /// The seed whose run came closest to (or went furthest past) a bound:
+    /// its trace and plots are kept.
+    pub worst_seed: u64,
+}
+
+impl CaseResult {
+    /// Whether every seed met every bound.
+    #[must_use]
+    pub fn pass(&self) -> bool {
+        self.bounds.iter().all(|w| w.failed_seeds.is_empty())
+    }
+}
+
+/// How far a figure is into its limit: value / limit (a zero limit gives 0
+/// for a zero value, else infinity).
+fn ratio(j: &Judged) -> f64 {
+    if j.limit > 0.0 {
+        j.value / j.limit
+    } else if j.value <= 0.0 {
+        0.0
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Runs one case over `seeds` (the seeds shared out over every core) and
+/// calls `each` after every seed.
+///
+/// # Errors
+/// When the scenario cannot be read or a seed's world cannot be built.
+pub fn run_case(
+    class: &'static str,
+    case: &Case,
+    seeds: Seeds,
+    mut each: impl FnMut(u64),
+) -> Result<CaseResult, SimError> {
+    let source = source(case.scenario)?;
+    let all: Vec<u64> = seeds.iter().collect();
+    let runs = crate::parallel::map_in_order(
+        &all,
+        |&seed| {
+            let (setup, mut rng) = runner::prepare_with_seed(&source, seed)
+                .map_err(|source| SimError::AtSeed { seed, source })?;
+            let run = runner::run(&setup, &mut rng);
+            let summary = summarize(&setup, &run);
+            Ok::<_, SimError>(
+                case.bounds
+                    .iter()
+                    .map(|b| b.judge(&setup, &run, &summary))
+                    .collect::<Vec<_>>(),
+            )
+        },
+        |k, _| each(all.get(k).copied().unwrap_or_default()),
+    );
+    let per_seed: Vec<(u64, Vec<Judged>)> = all
+        .iter()
+        .copied()
+        .zip(runs)
+        .map(|(seed, r)| r.map(|j| (seed, j)))
+        .collect::<Result<_, _>>()?;
+    let mut bounds = Vec::with_capacity(case.bounds.len());
+    for k in 0..case.bounds.len() {
+        let figures = per_seed
+            .iter()
+            .filter_map(|(seed, judged)| judged.get(k).map(|j| (*seed, j)));
+        let failed_seeds = figures
+            .clone()
+            .filter(|(_, j)| !j.pass())
+            .map(|(seed, _)| seed)
+            .collect();
+        if let Some((seed, judged)) = figures.max_by(|a, b| ratio(a.1).total_cmp(&ratio(b.1))) {
+            bounds.push(Worst {
+                judged: judged.clone(),
+                seed,
+                failed_seeds,
+            });
+        }
+    }
+    let worst_seed = per_seed
+        .iter()
+        .map(|(seed, judged)| (*seed, judged.iter().map(ratio).fold(0.0, f64::max)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(seeds.first(), |(seed, _)| seed);
+    Ok(CaseResult {
+        class,
+        scenario: case.scenario,
+        seeds: seeds.to_string(),
+        bounds,
+        worst_seed,
+    })
+}
+
+/// The classes whose name is `only`, or all of them.
+///
+/// # Errors
+/// When `only` names no class.
+pub fn select(only: Option<&str>) -> Result<Vec<&'static Class>, SimError> {
+    match only {
+        None => Ok(CLASSES.iter().collect()),
+        Some(name) => CLASSES
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| vec![c])
+            .ok_or_else(|| SimError::Setup {
+                what: format!(
+                    "stress class `{name}` (the classes are {})",
+                    CLASSES
+                        .iter()
+                        .map(|c| c.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                source: fieldguide::Precondition::new("STRESS", "unknown class"),
+            }),
+    }
+}
+
+/// Runs every case of `classes` over `seeds`, calling `each` with every
+/// case's result as it is measured.
+///
+/// # Errors
+/// As [`run_case`].
+pub fn campaign(
+    classes: &[&'static Class],
+    seeds: Seeds,
+    mut each: impl FnMut(&CaseResult),
+) -> Result<Vec<CaseResult>, SimError> {
+    let mut results = Vec::new();
+    for class in classes {
+        for case in class.cases {
+            let result = run_case(class.name, case, seeds, |_| {})?;
+            each(&result);
+            results.push(result);
+        }
+    }
+    Ok(results)
+}
+
+/// Runs the worst seed of `result` again and writes its trace, summary and
+/// plots to `dir/<scenario>-seed-<n>/`; returns that folder.
+///
+/// # Errors
+/// When the scenario cannot be built or the files cannot be written.
+pub fn keep_worst(result: &CaseResult, dir: &Path) -> Result<PathBuf, SimError> {
+    let source = source(result.scenario)?;
+    let seed = result.worst_seed;
+    let (mut setup, mut rng) = runner::prepare_with_seed(&source, seed)
+        .map_err(|source| SimError::AtSeed { seed, source })?;
+    setup.name = format!("{}-seed-{seed}", result.scenario);
+    let run = runner::run(&setup, &mut rng);
+    let summary = summarize(&setup, &run);
+    crate::output::write_run(dir, &setup, &run, &summary)
+}

@@ -1,0 +1,90 @@
+//! The stress campaign (`fieldguide stress`): every class over the seeds
+//! CI runs (`STRESS_SEEDS`, default `1..=5`; the full campaign is
+//! `fieldguide stress`, seeds 1-20), and the campaign's own machinery: a
+//! broken bound names its seeds, and the worst seed's run is kept.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+use fieldguide_sim::stress::{self, Bound, Case};
+use fieldguide_sim::sweep::Seeds;
+
+/// The seeds of the reduced campaign.
+fn ci_seeds() -> Seeds {
+    std::env::var("STRESS_SEEDS")
+        .ok()
+        .map_or_else(|| Seeds::new(1, 5).unwrap(), |s| s.parse().unwrap())
+}
+
+#[test]
+fn every_stress_class_holds_its_bounds_over_the_seeds() {
+    let seeds = ci_seeds();
+    let classes = stress::select(None).unwrap();
+    let results = stress::campaign(&classes, seeds, |r| {
+        eprintln!("{} / {}: pass {}", r.class, r.scenario, r.pass());
+    })
+    .unwrap();
+    eprintln!("{}", stress::table_md(&results));
+    let cases: usize = stress::CLASSES.iter().map(|c| c.cases.len()).sum();
+    assert_eq!(results.len(), cases);
+    let failing: Vec<_> = results
+        .iter()
+        .filter(|r| !r.pass())
+        .map(|r| (r.scenario, &r.bounds))
+        .collect();
+    assert!(failing.is_empty(), "{failing:#?}");
+}
+
+/// No run can keep |y| at exactly 0 from its first tick: the bound breaks
+/// on every seed, and the table says so.
+const IMPOSSIBLE: Case = Case {
+    scenario: "tracking-v1-offset",
+    bounds: &[Bound::MaxFrom(0.0, 0.0), Bound::NoPlantCrushed],
+};
+
+#[test]
+fn a_broken_bound_names_every_seed_that_broke_it() {
+    let seeds = Seeds::new(3, 4).unwrap();
+    let result = stress::run_case("test", &IMPOSSIBLE, seeds, |_| {}).unwrap();
+    assert!(!result.pass());
+    assert_eq!(result.bounds[0].failed_seeds, vec![3, 4]);
+    // From 0.8 m off, the worst |y| is the start's.
+    assert!((result.bounds[0].judged.value - 0.8).abs() < 0.05);
+    assert!(result.bounds[1].failed_seeds.is_empty());
+    let table = stress::table_md(&[result]);
+    assert!(table.contains("FAIL (seeds 3, 4)"), "{table}");
+    assert!(table.contains("| pass |"), "{table}");
+}
+
+#[test]
+fn the_campaign_writes_its_table_and_keeps_each_worst_seed() {
+    let seeds = Seeds::new(1, 2).unwrap();
+    let result = stress::run_case("test", &IMPOSSIBLE, seeds, |_| {}).unwrap();
+    let worst = result.worst_seed;
+    assert!(seeds.iter().any(|s| s == worst));
+    let out = std::env::temp_dir().join(format!("fieldguide-stress-{}", std::process::id()));
+    let dir = stress::write(&out, std::slice::from_ref(&result)).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("stress.json")).unwrap()).unwrap();
+    assert_eq!(json[0]["worst_seed"], worst);
+    assert_eq!(json[0]["scenario"], "tracking-v1-offset");
+    let md = std::fs::read_to_string(dir.join("stress.md")).unwrap();
+    assert!(md.contains("`tracking-v1-offset`"), "{md}");
+    let kept = dir.join(format!("tracking-v1-offset-seed-{worst}"));
+    for file in ["trace.csv", "summary.json", "trajectory.svg"] {
+        assert!(kept.join(file).is_file(), "{}", kept.join(file).display());
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(kept.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["seed"], worst);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn an_unknown_class_is_refused_with_the_list() {
+    let e = stress::select(Some("speeds")).unwrap_err().to_string();
+    assert!(e.contains("speed-offset") && e.contains("crops"), "{e}");
+}
