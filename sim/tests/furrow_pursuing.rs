@@ -41,24 +41,20 @@ const BUILTIN_SEED: u64 = 2022;
 /// The seed sweep of the bounds: 100 other fields with other noise.
 const SWEEP: std::ops::RangeInclusive<u64> = 1..=100;
 
-/// Seeds of the sweep known to run over crop plants, with how many: the
-/// bound "no plant crushed" fails there, and stays asserted everywhere else.
-/// A listed seed must still crush exactly that many, so a change that mends
-/// (or worsens) it fails the test until this list is updated.
+/// No seed may run over a crop plant; the smallest tyre-to-crop clearance
+/// is printed, since the rear-axle metrics cannot show how close a front
+/// tyre came.
 ///
-/// Seed 5 (investigated, reported to the lead): 17-19 m into the beans the
-/// row detector's estimate is off the true centre line by up to 0.093 m,
-/// then 0.106 m, for about half a second each while its verdict stays Enter
-/// (a cluster of four wide beans, footprint radius 0.102-0.115 m, 2-3σ of
-/// the generator's 0.07 ± 0.015 m, lies in the LiDAR's view band then;
-/// errors of 0.09 m also occur elsewhere, as after the bare stretch).
-/// Furrow pursuing follows it: the heading swings 3.4° off the rows while O
-/// stays within 0.03 m of the centre line, the front axle 2 m ahead moves
-/// about 0.12 m sideways, and the front-left tyre overlaps by 2.2 cm the
-/// 0.115 m bean of the left row at 21.1 m (0.10 m of nominal clearance: a
-/// legitimate field, not an impossible one). The rear-axle metrics do not
-/// show it; the smallest tyre-to-crop clearance printed below does.
-const KNOWN_CRUSHES: [(u64, usize); 1] = [(5, 1)];
+/// The closest is seed 5: 17-19 m into the beans the row detector's
+/// estimate is off the true centre line by up to 0.093 m, then 0.106 m, for
+/// about half a second each while its verdict stays Enter (a cluster of four
+/// wide beans, footprint radius 0.102-0.115 m, 2-3σ of the generator's
+/// 0.07 ± 0.015 m, lies in the LiDAR's view band then). Furrow pursuing
+/// follows it and the heading swings off the rows while O stays within
+/// 0.03 m of the centre line, moving the front axle 2 m ahead sideways. With
+/// Table 2's gains unscheduled the front-left tyre overlapped the 0.115 m
+/// bean of the left row at 21.1 m; with the gains scheduled for the
+/// steering (PT-SCHEDULE, the scenario's `[control.schedule]`) it clears it.
 
 fn prepare() -> (Setup, SimRng) {
     runner::prepare(&Source::builtin(SCENARIO).unwrap()).unwrap()
@@ -203,20 +199,11 @@ fn two_rows_are_followed_within_5_cm_on_average_and_10_cm_at_most() {
             summary.plants_crushed
         );
         crushed.push((seed, summary.plants_crushed as f64));
-        let known = KNOWN_CRUSHES
-            .iter()
-            .find(|(s, _)| *s == seed)
-            .map_or(0, |(_, n)| *n);
-        if known == 0 {
-            clearances.push((seed, -gap));
+        clearances.push((seed, -gap));
+        if summary.plants_crushed != 0 {
+            fail(format!("{} plants crushed", summary.plants_crushed));
         }
-        if summary.plants_crushed != known {
-            fail(format!(
-                "{} plants crushed (expected {known})",
-                summary.plants_crushed
-            ));
-        }
-        if known == 0 && !summary.success {
+        if !summary.success {
             fail(format!("not a success: {summary:?}"));
         }
         if !summary
@@ -234,8 +221,7 @@ fn two_rows_are_followed_within_5_cm_on_average_and_10_cm_at_most() {
     eprintln!(
         "furrow-pursuing, seeds {BUILTIN_SEED} and {}-{}: worst in-plot |y| (per plot): mean {mean:.4} m \
          (seed {mean_seed}), max {max:.4} m (seed {max_seed}); at most {most_crushed} plants crushed \
-         (seed {crushed_seed}; known: {KNOWN_CRUSHES:?}); smallest tyre-to-crop clearance of the other \
-         seeds {:.4} m (seed {gap_seed}); furrow pursuing over at least {:.1} % of a plot (seed {share_seed})",
+         (seed {crushed_seed}); smallest tyre-to-crop clearance {:.4} m (seed {gap_seed}); furrow pursuing over at least {:.1} % of a plot (seed {share_seed})",
         SWEEP.start(),
         SWEEP.end(),
         -gap,
