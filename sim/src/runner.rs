@@ -321,7 +321,7 @@ fn stalled_in_outage(setup: &Setup, record: &TickRecord, stalled_s: &mut f64) ->
     *stalled_s += setup.control.period_s;
     (*stalled_s >= OUTAGE_STALL_S).then(|| {
         format!(
-            "GNSS outage {} [{}, {}) m never ends: the robot stood in Stop for {OUTAGE_STALL_S} s \
+            "GNSS outage {} [{:.2}, {:.2}) m never ends: the robot stood in Stop for {OUTAGE_STALL_S} s \
              at s = {:.2} m without a fix or another source (an outage placed by distance ends \
              only when the robot moves past it)",
             span.field, span.from_m, span.to_m, record.s_m

@@ -57,7 +57,7 @@ pub fn write_run(
     let contents = [
         csv::trace_csv(&output.trace, &names, &plot_names, &hedge_names),
         json,
-        plots::trajectory_svg(setup, &output.trace),
+        plots::trajectory_svg_marked(setup, &output.trace, &output.crushed),
         plots::lateral_error_svg(setup, &output.trace),
     ];
     for (name, text) in FILES.iter().zip(contents) {
@@ -66,8 +66,11 @@ pub fn write_run(
     }
     if !setup.world.plants.is_empty() {
         let file = dir.join(ROWS_FILE);
-        std::fs::write(&file, plots::rows_svg(setup, &output.trace))
-            .map_err(|source| SimError::Write { file, source })?;
+        std::fs::write(
+            &file,
+            plots::rows_svg_marked(setup, &output.trace, &output.crushed),
+        )
+        .map_err(|source| SimError::Write { file, source })?;
     }
     Ok(dir)
 }

@@ -398,6 +398,8 @@ pub struct MetricsSection {
     /// When set, success also needs the largest |lateral error to the true
     /// offset line| along the hedges, after convergence, at most this, metres.
     pub along_hedge_max_abs_m: Option<f64>,
+    /// |curvature| of the path from which a tick counts as in a turn, 1/m (default 0.1).
+    pub turn_curvature_per_m: Option<f64>,
 }
 
 /// `[world]`: crop plots and grass.
