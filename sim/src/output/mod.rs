@@ -37,6 +37,18 @@ pub fn write_run(
     summary: &Summary,
 ) -> Result<PathBuf, SimError> {
     let dir = out_root.join(&setup.name);
+    write_run_to(&dir, setup, output, summary)?;
+    Ok(dir)
+}
+
+/// [`write_run`]'s files written into `dir` itself, creating it.
+pub fn write_run_to(
+    dir: &Path,
+    setup: &Setup,
+    output: &RunOutput,
+    summary: &Summary,
+) -> Result<(), SimError> {
+    let dir = dir.to_path_buf();
     std::fs::create_dir_all(&dir).map_err(|source| SimError::Write {
         file: dir.clone(),
         source,
@@ -72,7 +84,7 @@ pub fn write_run(
         )
         .map_err(|source| SimError::Write { file, source })?;
     }
-    Ok(dir)
+    Ok(())
 }
 
 /// Writes `sweep.csv` (one line per seed, [`crate::sweep::sweep_csv`]) into
