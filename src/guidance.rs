@@ -475,6 +475,26 @@ where
         self.since_projection = 0.0;
     }
 
+    /// Replaces the desired speed of path tracking between ticks (a path
+    /// recorded with a speed per stretch); the mode, the switching counters
+    /// and the held detections are kept, and the next tick's command and
+    /// curvature look-ahead v (T + τ) use the new speed (GD-SPEED-CHANGE).
+    ///
+    /// # Errors
+    /// `GD-SPEED` when `speed` is not positive, the path-tracking law's error
+    /// when it refuses it (`PT-SCHEDULE-RANGE` outside a backstepping law's
+    /// speed schedule); the configured speed is then unchanged.
+    //= spec/guidance.md#gd-speed-change-path-trackings-desired-speed-changed-between-ticks
+    //# The desired speed of path tracking MUST be replaceable between ticks without
+    //# rebuilding the pipeline, keeping the mode, the switching counters and the held
+    //# detections; a speed that is not positive MUST be refused with `GD-SPEED` and a
+    //# speed the path-tracking law refuses with the law's error, leaving the
+    //# configured speed unchanged; after a change, the command of path tracking and
+    //# the look-ahead v (T + τ) of its curvature MUST use the new speed.
+    pub fn set_path_speed(&mut self, speed: MetersPerSecond) -> Result<(), Precondition> {
+        self.config.set_path_speed(speed)
+    }
+
     /// The switching machine (its mode and counters).
     #[must_use]
     pub const fn switching(&self) -> &Switching<K> {

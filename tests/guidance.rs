@@ -752,6 +752,78 @@ fn a_path_replaced_between_ticks_keeps_the_state_and_is_searched_whole() {
     }
 }
 
+//= spec/guidance.md#gd-speed-change-path-trackings-desired-speed-changed-between-ticks
+//= type=test
+//# The desired speed of path tracking MUST be replaceable between ticks without
+//# rebuilding the pipeline, keeping the mode, the switching counters and the held
+//# detections; a speed that is not positive MUST be refused with `GD-SPEED` and a
+//# speed the path-tracking law refuses with the law's error, leaving the
+//# configured speed unchanged; after a change, the command of path tracking and
+//# the look-ahead v (T + τ) of its curvature MUST use the new speed.
+#[test]
+fn path_trackings_speed_replaced_between_ticks_keeps_the_state() {
+    let path = straight_path();
+    let mut params = edge_params();
+    params.path.law.schedule = Some(
+        fieldguide::control::backstepping::SpeedSchedule::new(
+            MetersPerSecond::new(0.3).unwrap(),
+            MetersPerSecond::new(3.0).unwrap(),
+            fieldguide::RadiansPerSecond::new(2.0).unwrap(),
+        )
+        .unwrap(),
+    );
+    let lead = params.path.horizon.get() + params.path.steering_lag.get();
+    assert!(lead > 0.0);
+    let mut g = pipeline(&params, &path);
+    let pose = (5.0, 1.6, 0.0);
+    let ranges = wall_ranges(pose, long_wall(3.1));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
+    let tick = TickInput {
+        scans: &scans,
+        ..bare(pose, true)
+    };
+    for _ in 0..20 {
+        g.step(&tick).unwrap();
+    }
+    let (mode, machine, held) = (g.mode(), *g.switching(), *g.held(EDGE).unwrap());
+    let before = g.config().params().path;
+    // Refused: not positive (GD-SPEED), outside the schedule (the law's own error).
+    for (v, id) in [
+        (0.0, "GD-SPEED"),
+        (-1.0, "GD-SPEED"),
+        (3.5, "PT-SCHEDULE-RANGE"),
+    ] {
+        let e = g
+            .set_path_speed(MetersPerSecond::new(v).unwrap())
+            .unwrap_err();
+        assert_eq!(e.requirement, id, "{v} m/s");
+        assert_eq!(g.config().params().path.speed, before.speed);
+        assert!((g.config().lookahead().get() - before.speed.get() * lead).abs() < 1e-12);
+    }
+    g.set_path_speed(MetersPerSecond::new(2.5).unwrap())
+        .unwrap();
+    // Nothing but the speed and its look-ahead changed.
+    assert_eq!(g.mode(), mode);
+    assert_eq!(*g.switching(), machine);
+    assert_eq!(*g.held(EDGE).unwrap(), held);
+    assert!((g.config().params().path.speed.get() - 2.5).abs() < 1e-15);
+    assert!((g.config().lookahead().get() - 2.5 * lead).abs() < 1e-12);
+    // Path tracking commands the new speed, with the law's output of a
+    // pipeline built at that speed.
+    let mut fast = params.clone();
+    fast.path.speed = MetersPerSecond::new(2.5).unwrap();
+    let mut fresh = pipeline(&fast, &path);
+    let off = bare((5.0, 0.3, 0.05), true);
+    let out = g.step(&off).unwrap();
+    let first = fresh.step(&off).unwrap();
+    assert_eq!(out.mode, Mode::PathTracking);
+    assert!((command(&out).command.speed().get() - 2.5).abs() < 1e-15);
+    assert_eq!(out.path.frenet, first.path.frenet);
+    assert_eq!(out.path.law, first.path.law);
+    // The held detection was kept: the scan of before the change is one tick old.
+    assert_eq!(status(&out, EDGE).scan_age, Some(1));
+}
+
 //= spec/guidance.md#gd-stop-the-stop-command
 //= type=test
 //# In Stop the command MUST be the stop of the last command made (every speed

@@ -1883,6 +1883,11 @@ proptest! {
             if i == 3 {
                 check!("guidance::Guidance::set_path", guidance.set_path(&replacement));
             }
+            if i == 2 {
+                // Any finite speed: refused (GD-SPEED, PT-SCHEDULE-RANGE) or taken.
+                let speed = MetersPerSecond::new(v).unwrap_or(MetersPerSecond::ZERO);
+                check!("guidance::Guidance::set_path_speed", guidance.set_path_speed(speed));
+            }
             let (start, increment, ranges) = parts;
             let ranges = if wall { wall_ranges(1.5, 360, &[]) } else { ranges };
             let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };

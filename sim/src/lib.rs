@@ -16,6 +16,7 @@ pub mod capacity;
 pub mod crop_drive;
 pub mod error;
 pub mod evidence;
+pub mod gnss;
 pub mod guidance;
 pub mod guiding;
 pub mod lidar;

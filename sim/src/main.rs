@@ -692,7 +692,22 @@ fn run_sweep(scenario: &str, seeds: Seeds, out: &Path) -> Result<(), SimError> {
     let source = Source::resolve(scenario)?;
     let mut table = SweepTable::<Summary>::new(seeds);
     let result = sweep::sweep(&source, seeds, |s| table.row(s))?;
-    table.finish(out, &result)
+    table.finish(out, &result)?;
+    // The worst seed of each column, run again with its trace and plots.
+    let kept = sweep::keep_worst(&source, &result, out)?;
+    if let Some((_, _, dir)) = kept.first() {
+        let folder = dir.parent().unwrap_or(dir);
+        println!(
+            "{}: wrote the worst seeds' runs to {} ({})",
+            result.scenario,
+            folder.display(),
+            kept.iter()
+                .map(|(column, seed, _)| format!("{column}: {seed}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    Ok(())
 }
 
 /// The table a sweep prints as its rows come.

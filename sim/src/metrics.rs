@@ -26,12 +26,20 @@
 //!   `along_hedge_after_convergence_m` the statistics from there on. With
 //!   `metrics.along_hedge_mean_abs_m` / `along_hedge_max_abs_m`, success also
 //!   needs that convergence and those statistics within them.
+//! - Turns: a tick is in a turn when the path's |curvature| at the true
+//!   projection is at least `metrics.turn_curvature_per_m`. `turn_s` is the
+//!   time in turns, `turn_mode_s` that time per mode, `turn_specialised_s`
+//!   the part of it in a specialised behaviour (not path tracking, not Stop);
+//!   `lateral_error_straight_m` and `lateral_error_curve_m` split the true
+//!   |y| between the ticks off and in turns.
+//! - `crushed_plants`: each crop plant crushed, located (x, y, plot, wheel,
+//!   time of the first overlap).
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::runner::{LineTruth, RunEnd, RunOutput, TickRecord};
+use crate::runner::{CrushedPlant, LineTruth, RunEnd, RunOutput, TickRecord};
 use crate::scenario::Setup;
 use fieldguide::guidance::Mode;
 
@@ -132,6 +140,22 @@ pub struct Summary {
     pub plants_crushed: usize,
     /// Crop plants in the world.
     pub crop_plants: usize,
+    /// The crushed crop plants, located, in the order they were crushed.
+    pub crushed_plants: Vec<CrushedPlant>,
+    /// Simulated time with a float GNSS fix, seconds.
+    pub gnss_float_s: f64,
+    /// |curvature| from which a tick is in a turn, 1/m.
+    pub turn_curvature_per_m: f64,
+    /// Simulated time in turns, seconds.
+    pub turn_s: f64,
+    /// Simulated time in turns in each mode, seconds.
+    pub turn_mode_s: BTreeMap<&'static str, f64>,
+    /// Simulated time in turns in a specialised behaviour, seconds.
+    pub turn_specialised_s: f64,
+    /// |y| statistics over the ticks off turns (null if none), metres.
+    pub lateral_error_straight_m: Option<ErrorStats>,
+    /// |y| statistics over the ticks in turns (null if none), metres.
+    pub lateral_error_curve_m: Option<ErrorStats>,
     /// |error to the true centre line of the followed rows| over the ticks
     /// with O inside a plot (null without plots), metres.
     pub in_plot_lateral_error_m: Option<ErrorStats>,
@@ -265,6 +289,59 @@ fn mode_distances(
     out
 }
 
+/// The turn metrics of a trace (module documentation, "Turns").
+#[derive(Debug, Clone, PartialEq)]
+pub struct Turns {
+    /// |curvature| from which a tick is in a turn, 1/m.
+    pub threshold: f64,
+    /// Time in turns, seconds.
+    pub time_s: f64,
+    /// Time in turns per mode label, seconds.
+    pub mode_s: BTreeMap<&'static str, f64>,
+    /// Time in turns in a specialised behaviour, seconds.
+    pub specialised_s: f64,
+    /// |y| off turns.
+    pub straight: Option<ErrorStats>,
+    /// |y| in turns.
+    pub curve: Option<ErrorStats>,
+}
+
+/// Whether `record` is in a turn: |curvature| at least `threshold`.
+#[must_use]
+pub fn in_turn(record: &TickRecord, threshold: f64) -> bool {
+    record.curvature.abs() >= threshold
+}
+
+/// The turn metrics of `trace` at curvature `threshold`, each tick counting
+/// `period_s`.
+#[must_use]
+pub fn turns(trace: &[TickRecord], threshold: f64, period_s: f64) -> Turns {
+    let mut mode_s = BTreeMap::new();
+    let mut specialised_s = 0.0;
+    for r in trace.iter().filter(|r| in_turn(r, threshold)) {
+        *mode_s.entry(r.label()).or_insert(0.0) += period_s;
+        if matches!(r.mode(), Mode::Behaviour(_)) {
+            specialised_s += period_s;
+        }
+    }
+    let split = |turning: bool| {
+        error_stats(
+            trace
+                .iter()
+                .filter(|r| in_turn(r, threshold) == turning)
+                .map(|r| r.lateral_error_m),
+        )
+    };
+    Turns {
+        threshold,
+        time_s: mode_s.values().sum(),
+        mode_s,
+        specialised_s,
+        straight: split(false),
+        curve: split(true),
+    }
+}
+
 /// The summary of `output`, a run of `setup`.
 #[must_use]
 pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
@@ -315,6 +392,11 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
         }
     }
     let crop_plants = setup.world.crop_count();
+    let turn = turns(
+        trace,
+        setup.metrics.turn_curvature_per_m,
+        setup.control.period_s,
+    );
     let reached_end = match output.end {
         RunEnd::PathEnd => true,
         RunEnd::Duration => !setup.run.stop_at_path_end,
@@ -369,6 +451,14 @@ pub fn summarize(setup: &Setup, output: &RunOutput) -> Summary {
             * setup.control.period_s,
         plants_crushed: output.plants_crushed,
         crop_plants,
+        crushed_plants: output.crushed.clone(),
+        gnss_float_s: trace.iter().filter(|r| r.gnss_float).count() as f64 * setup.control.period_s,
+        turn_curvature_per_m: turn.threshold,
+        turn_s: turn.time_s,
+        turn_mode_s: turn.mode_s,
+        turn_specialised_s: turn.specialised_s,
+        lateral_error_straight_m: turn.straight,
+        lateral_error_curve_m: turn.curve,
         in_plot_lateral_error_m: in_plot,
         plots,
         along_hedge_lateral_error_m: along_hedge,

@@ -9,14 +9,17 @@
 //!    and on its scan ticks each mounted LiDAR scans the one world (ground,
 //!    plants, hedges) from the true pose, its scan routed to its behaviour;
 //! 3. the guidance turns the readings into a command;
-//! 4. the tick is recorded, crop plants under the wheels are counted, and the
-//!    run stops at the end of the path, at the duration, or on a core error;
+//! 4. the tick is recorded, crop plants under the wheels are counted (and
+//!    located), and the run stops at the end of the path, at the duration, on
+//!    a core error, or when the robot stands in Stop inside a GNSS outage
+//!    placed by distance (which then can never end);
 //! 5. the plant integrates the command over one period.
 
 use fieldguide::geometry::path::PathPosition;
 use fieldguide::{Meters, Pose2, Precondition, World};
 
 use crate::error::ScenarioError;
+use crate::gnss::GnssErrorState;
 use crate::guidance::pipeline::Pipeline;
 use crate::guidance::{Command, Guidance, TickInput, SEARCH_WINDOW_M};
 use crate::lidar::inclined::InclinedScan;
@@ -41,6 +44,32 @@ pub const PLOT_REACH_M: f64 = 2.0;
 
 /// Cell size of the obstacle grid the horizontal LiDAR casts through, metres.
 pub const OBSTACLE_GRID_CELL_M: f64 = 0.5;
+
+/// How long the robot may stand in Stop inside a GNSS outage placed by
+/// distance before the run is stopped: the outage ends only when the robot
+/// moves past it, and nothing else moves it, seconds.
+pub const OUTAGE_STALL_S: f64 = 5.0;
+
+/// The names of the wheels, in the order of
+/// [`crate::plant::VehicleParams::wheel_centres`].
+pub const WHEELS: [&str; 4] = ["rear_left", "rear_right", "front_left", "front_right"];
+
+/// A crop plant a wheel went over: where, in which plot, under which wheel, when.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CrushedPlant {
+    /// Index of the plant in `setup.world.plants`.
+    pub index: usize,
+    /// East coordinate of the plant, metres.
+    pub x_m: f64,
+    /// North coordinate of the plant, metres.
+    pub y_m: f64,
+    /// The plot it grew in (null for a plant outside every plot).
+    pub plot: Option<String>,
+    /// The wheel that went over it first (`rear_left`, `rear_right`, `front_left`, `front_right`).
+    pub wheel: &'static str,
+    /// Time of the first tick a wheel's contact patch overlapped it, seconds.
+    pub t_s: f64,
+}
 
 /// Where the true pose of O lies relative to the true line a specialised
 /// behaviour should follow (ground truth): a crop plot's centre line, or the
@@ -85,6 +114,8 @@ pub struct TickRecord {
     pub patch: Option<usize>,
     /// Distance travelled by O, metres.
     pub distance_m: f64,
+    /// Whether the GNSS fix is float at this tick (`[gnss] float_s`, `float_m`).
+    pub gnss_float: bool,
     /// Where O is relative to a crop plot it is inside, if any.
     pub plot: Option<LineTruth>,
     /// Where O is relative to the offset line of a hedge present abeam of
@@ -126,6 +157,8 @@ pub struct RunOutput {
     pub end: RunEnd,
     /// Number of distinct crop plants a wheel went over (grass never counts).
     pub plants_crushed: usize,
+    /// Those plants, in the order they were crushed.
+    pub crushed: Vec<CrushedPlant>,
 }
 
 /// Parses and validates `source`, and makes the run's generator from its seed
@@ -169,6 +202,7 @@ pub fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
             trace: Vec::new(),
             end: RunEnd::Aborted(format!("guidance pipeline: {e}")),
             plants_crushed: 0,
+            crushed: Vec::new(),
         },
     }
 }
@@ -193,6 +227,7 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
                     trace: Vec::new(),
                     end: RunEnd::Aborted(format!("obstacle grid: {e}")),
                     plants_crushed: 0,
+                    crushed: Vec::new(),
                 }
             }
         }
@@ -206,7 +241,10 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     let lidars = setup.lidars();
     let mut buffers: Vec<Option<Reading>> = vec![None; lidars.len()];
     let mut crushed = vec![false; setup.world.plants.len()];
+    let mut located = Vec::new();
     let mut near = Vec::new();
+    let mut gnss = GnssErrorState::new(&setup.gnss_errors, setup.seed);
+    let mut stalled_s = 0.0;
     let mut trace = Vec::with_capacity(usize::try_from(max_ticks.min(1 << 20)).unwrap_or(0));
     let mut truth_hint: Option<Meters> = None;
     let mut end = RunEnd::Duration;
@@ -218,15 +256,26 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
             &state,
             &mut sensors,
             &mut truth_hint,
-            t_s,
+            (t_s, &mut gnss),
             (&scene, &lidars, k, &mut buffers),
             rng,
         ) {
             Ok((record, past_end)) => {
-                count_crushed(setup, &index, &record.truth, &mut crushed, &mut near);
+                count_crushed(
+                    setup,
+                    &index,
+                    &record,
+                    &mut crushed,
+                    &mut near,
+                    &mut located,
+                );
                 trace.push(record);
                 if past_end && setup.run.stop_at_path_end {
                     end = RunEnd::PathEnd;
+                    break;
+                }
+                if let Some(why) = stalled_in_outage(setup, &record, &mut stalled_s) {
+                    end = RunEnd::Aborted(why);
                     break;
                 }
                 match setup.vehicle.advance(
@@ -253,7 +302,31 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
         trace,
         end,
         plants_crushed: crushed.iter().filter(|c| **c).count(),
+        crushed: located,
     }
+}
+
+/// Counts the time the robot of `record` stands in Stop inside a GNSS outage
+/// placed by distance (`stalled_s`, reset outside); past
+/// [`OUTAGE_STALL_S`], the reason to stop the run, naming the outage's field.
+fn stalled_in_outage(setup: &Setup, record: &TickRecord, stalled_s: &mut f64) -> Option<String> {
+    let span =
+        setup.gnss_outages.0.at_abscissa(record.s_m).filter(|_| {
+            record.readings.gnss.is_none() && record.command.switching_mode == Mode::Stop
+        });
+    let Some(span) = span else {
+        *stalled_s = 0.0;
+        return None;
+    };
+    *stalled_s += setup.control.period_s;
+    (*stalled_s >= OUTAGE_STALL_S).then(|| {
+        format!(
+            "GNSS outage {} [{:.2}, {:.2}) m never ends: the robot stood in Stop for {OUTAGE_STALL_S} s \
+             at s = {:.2} m without a fix or another source (an outage placed by distance ends \
+             only when the robot moves past it)",
+            span.field, span.from_m, span.to_m, record.s_m
+        )
+    })
 }
 
 /// One LiDAR's latest scan, kept between ticks (the horizontal LiDAR's
@@ -287,7 +360,7 @@ fn tick(
     state: &VehicleState,
     sensors: &mut Sensors,
     truth_hint: &mut Option<Meters>,
-    t_s: f64,
+    (t_s, gnss): (f64, &mut GnssErrorState),
     lidars: Scanning<'_, '_>,
     rng: &mut SimRng,
 ) -> Result<(TickRecord, bool), Precondition> {
@@ -303,8 +376,17 @@ fn tick(
         )?,
     };
     *truth_hint = Some(truth.s);
-    let fix = setup.gnss_outages.has_fix(t_s);
-    let readings = sensors.read(state, setup.control.period_s, fix, rng)?;
+    let fix = setup.gnss_outages.has_fix_at(t_s, truth.s.get());
+    let mut readings = sensors.read(state, setup.control.period_s, fix, rng)?;
+    // The receiver's errors beyond its white noise (their own generator).
+    let error = gnss.step(t_s, truth.s.get(), setup.control.period_s);
+    if let (Some(p), true) = (readings.gnss, error.offset_m != (0.0, 0.0)) {
+        readings.gnss = Some(Pose2::new(
+            p.position.x() + error.offset_m.0,
+            p.position.y() + error.offset_m.1,
+            p.heading.get(),
+        )?);
+    }
     // Each LiDAR in turn, on its scan ticks (the generator's draws in the
     // order of the list).
     let mut fresh = vec![false; mounted.len()];
@@ -397,6 +479,7 @@ fn tick(
                 .iter()
                 .position(|p| p.contains(x, y)),
             distance_m: state.distance_m,
+            gnss_float: error.float,
             plot,
             hedge,
         },
@@ -405,21 +488,28 @@ fn tick(
 }
 
 /// Marks the crop plants a wheel's contact patch (a disc of the tyre width)
-/// overlaps; grass is never marked. `index` holds `setup.world.plants` in
+/// overlaps at `record`'s true pose, and locates each newly marked one in
+/// `located`; grass is never marked. `index` holds `setup.world.plants` in
 /// order; `near` is scratch space.
 fn count_crushed(
     setup: &Setup,
     index: &PlantIndex,
-    pose: &Pose2<World>,
+    record: &TickRecord,
     crushed: &mut [bool],
     near: &mut Vec<usize>,
+    located: &mut Vec<CrushedPlant>,
 ) {
     if crushed.is_empty() {
         return;
     }
     let half_tyre = setup.vehicle.tyre_width_m / 2.0;
     let reach = half_tyre + index.max_radius();
-    for w in setup.vehicle.wheel_centres(pose) {
+    for (w, wheel) in setup
+        .vehicle
+        .wheel_centres(&record.truth)
+        .iter()
+        .zip(WHEELS)
+    {
         index.query(
             (w[0] - reach, w[1] - reach),
             (w[0] + reach, w[1] + reach),
@@ -430,10 +520,23 @@ fn count_crushed(
                 continue;
             };
             let (px, py) = (plant.position.x(), plant.position.y());
-            if plant.kind == PlantKind::Crop
+            if !*hit
+                && plant.kind == PlantKind::Crop
                 && (w[0] - px).hypot(w[1] - py) < plant.radius + half_tyre
             {
                 *hit = true;
+                located.push(CrushedPlant {
+                    index: i,
+                    x_m: px,
+                    y_m: py,
+                    plot: setup
+                        .world
+                        .plot_at(px, py, PLOT_REACH_M)
+                        .and_then(|(p, _)| setup.world.plots.get(p))
+                        .map(|p| p.name.clone()),
+                    wheel,
+                    t_s: record.t_s,
+                });
             }
         }
     }

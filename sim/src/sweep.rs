@@ -6,9 +6,13 @@
 //! The `fieldguide sweep <scenario> --seeds FIRST..=LAST` command prints the
 //! rows, a final "worst" row (the largest value of each metric over the
 //! seeds, and the seed it came from), and writes them to
-//! `OUT/<scenario>/sweep.csv` ([`sweep_csv`], one line per seed); it writes no
-//! per-seed trace or plot. A claim about a scenario is a claim about its
-//! worst seed, not about one lucky run.
+//! `OUT/<scenario>/sweep.csv` ([`sweep_csv`], one line per seed). It keeps
+//! the trace and plots of the worst seed of each column ([`keep_worst`]):
+//! each such seed is run again (a run is a pure function of its seed) and
+//! written to `OUT/<scenario>/worst/seed-<N>/`, and
+//! `OUT/<scenario>/worst/worst.csv` says which column each seed is the worst
+//! of. A claim about a scenario is a claim about its worst seed, not about
+//! one lucky run.
 //!
 //! A vine-row run (`[vineyard]`, `vineyard-*`) sweeps the same way through
 //! [`vine_sweep`]: its rows are [`VineSummary`]s, its columns
@@ -16,6 +20,7 @@
 
 use std::fmt;
 use std::ops::RangeInclusive;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use crate::error::SimError;
@@ -341,6 +346,70 @@ pub fn worst<R: Row>(rows: &[R], column: &Column<R>) -> Option<(u64, Cell)> {
         }
     }
     found
+}
+
+/// The worst seed of each column that has one to blame, `(column, seed)` in
+/// the columns' order: not a [`Cell::Plain`] column, and not a column where
+/// every run did well (every flag `true`, every count 0).
+#[must_use]
+pub fn worst_seeds<R: Row>(rows: &[R]) -> Vec<(&'static str, u64)> {
+    R::COLUMNS
+        .iter()
+        .filter_map(|c| match worst(rows, c)? {
+            (_, Cell::Flag(true) | Cell::Count(0)) => None,
+            (seed, _) => Some((c.name, seed)),
+        })
+        .collect()
+}
+
+/// The folder of the worst seeds' runs under `OUT/<scenario>/`.
+pub const WORST_DIR: &str = "worst";
+
+/// The index of the worst seeds' runs in [`WORST_DIR`].
+pub const WORST_FILE: &str = "worst.csv";
+
+/// Runs again the worst seed of each column of `result`, a sweep of
+/// `source` ([`worst_seeds`]; each seed once), and writes its trace,
+/// summary and plots to `out_root/<scenario>/worst/seed-<N>/`, with
+/// `worst.csv` (`column,seed,folder`) beside them; returns that index's
+/// lines. A rerun whose summary differs from the sweep's row is an error
+/// (the run would not be the one measured).
+pub fn keep_worst(
+    source: &Source,
+    result: &Sweep,
+    out_root: &Path,
+) -> Result<Vec<(&'static str, u64, PathBuf)>, SimError> {
+    let dir = out_root.join(&result.scenario).join(WORST_DIR);
+    let _ = std::fs::remove_dir_all(&dir);
+    let blamed = worst_seeds(&result.rows);
+    let mut seeds: Vec<u64> = blamed.iter().map(|(_, s)| *s).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    for &seed in &seeds {
+        let (setup, mut rng) = runner::prepare_with_seed(source, seed)
+            .map_err(|source| SimError::AtSeed { seed, source })?;
+        let run = runner::run(&setup, &mut rng);
+        let summary = summarize(&setup, &run);
+        if result.rows.iter().find(|r| r.seed == seed) != Some(&summary) {
+            return Err(SimError::Write {
+                file: dir.clone(),
+                source: std::io::Error::other(format!(
+                    "seed {seed} run again does not give the sweep's row"
+                )),
+            });
+        }
+        crate::output::write_run_to(&dir.join(format!("seed-{seed}")), &setup, &run, &summary)?;
+    }
+    let index: Vec<(&'static str, u64, PathBuf)> = blamed
+        .into_iter()
+        .map(|(column, seed)| (column, seed, dir.join(format!("seed-{seed}"))))
+        .collect();
+    let mut csv = "column,seed,folder\n".to_owned();
+    for (column, seed, _) in &index {
+        csv.push_str(&format!("{column},{seed},seed-{seed}\n"));
+    }
+    crate::output::write_files(&dir, &[(WORST_FILE, csv)])?;
+    Ok(index)
 }
 
 /// The seeds whose run was not a success.

@@ -292,14 +292,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
         //= spec/pierre2022.md#pt-feedforward-lag-feed-forward-timed-for-the-steering-lag
         //# The curvature MUST be fed forward at s + v (T + τ), with T the
         //# prediction horizon and τ ≥ 0 the steering's configured time constant.
-        let lead = finite(
-            params.path.horizon.get() + params.path.steering_lag.get(),
-            "path look-ahead time T + tau overflows",
-        )?;
-        let lookahead = Meters::new(finite(
-            params.path.speed.get() * lead,
-            "path look-ahead v (T + tau) overflows",
-        )?)?;
+        let lookahead = path_lookahead(&params.path, params.path.speed)?;
         if params.path.search_window.get() <= 0.0 {
             return Err(Precondition::new(
                 "GD-LOCALISATION",
@@ -326,6 +319,40 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             lookahead,
             max_scan_age_ticks,
         })
+    }
+}
+
+/// The look-ahead v (T + τ) of path tracking's feed-forward at `speed`
+/// (GD-PREDICTION, PT-FEEDFORWARD-LAG); `LIB-FINITE` when it overflows.
+fn path_lookahead<L>(
+    path: &PathTrackingParams<L>,
+    speed: MetersPerSecond,
+) -> Result<Meters, Precondition> {
+    let lead = finite(
+        path.horizon.get() + path.steering_lag.get(),
+        "path look-ahead time T + tau overflows",
+    )?;
+    Meters::new(finite(
+        speed.get() * lead,
+        "path look-ahead v (T + tau) overflows",
+    )?)
+}
+
+impl<C, L: ControlLaw, const K: usize> GuidanceConfig<C, L, K> {
+    /// Replaces the desired speed of path tracking and its look-ahead
+    /// v (T + τ) (GD-SPEED-CHANGE); on an error nothing changes.
+    ///
+    /// # Errors
+    /// `GD-SPEED` when `speed` is not positive, the law's error when it
+    /// refuses it (`PT-SCHEDULE-RANGE`), `LIB-FINITE` when the look-ahead
+    /// overflows.
+    pub(crate) fn set_path_speed(&mut self, speed: MetersPerSecond) -> Result<(), Precondition> {
+        positive_speed(speed, "path.speed must be > 0")?;
+        self.params.path.law.check_speed(speed)?;
+        let lookahead = path_lookahead(&self.params.path, speed)?;
+        self.params.path.speed = speed;
+        self.lookahead = lookahead;
+        Ok(())
     }
 }
 

@@ -4,7 +4,9 @@
 //! simulator only feeds it each tick's scans (on their scan ticks, routed to
 //! their behaviours), the GNSS pose, the odometry pose and the sideslip
 //! estimate, and maps its [`TickOutput`] to the sim's [`Command`] and trace
-//! fields. No switching logic lives in the simulator.
+//! fields. No switching logic lives in the simulator. With a speed per
+//! segment of the path, it hands path tracking the speed of the stretch the
+//! robot's own latest projection is on (GD-SPEED-CHANGE).
 
 use fieldguide::control::backstepping::BacksteppingConfig;
 use fieldguide::guidance::{
@@ -20,7 +22,7 @@ use fieldguide::{Meters, Precondition, Seconds};
 use super::{Command, DetectorStatus, Guidance, TickInput, SEARCH_WINDOW_M};
 use crate::capacity::{EDGE_CHAIN, EDGE_RAYS, FURROW_RAYS, FURROW_SCANS, PATH_CAPACITY};
 use crate::plant::Plant;
-use crate::scenario::setup::Setup;
+use crate::scenario::setup::{PathSpeeds, Setup};
 pub use crate::scenario::setup::{EDGE, FURROW};
 
 /// Most behaviours a scenario configures.
@@ -43,6 +45,8 @@ pub struct Pipeline<'p> {
     last: Option<CoreOutput>,
     /// The latest command sent and whether it was saturated.
     held: Option<(fieldguide::model::Command, bool)>,
+    /// The desired speed of path tracking along the path (empty: one speed).
+    speeds: PathSpeeds,
 }
 
 /// The pipeline's parameters for `setup`: path tracking from `[control]`,
@@ -131,11 +135,17 @@ impl<'p> Pipeline<'p> {
                 "the plant takes another actuation than the pipeline's vehicle",
             ));
         }
+        let mut core = Box::new(CorePipeline::new(config, &setup.path)?);
+        // The first tick drives at the speed of the path's first stretch.
+        if let Some(v) = setup.path_speeds.at(0.0) {
+            core.set_path_speed(v)?;
+        }
         Ok(Self {
-            core: Box::new(CorePipeline::new(config, &setup.path)?),
+            core,
             period_s: setup.control.period_s,
             last: None,
             held: None,
+            speeds: setup.path_speeds.clone(),
         })
     }
 
@@ -155,6 +165,18 @@ impl<'p> Pipeline<'p> {
 impl Guidance for Pipeline<'_> {
     fn step(&mut self, input: &TickInput<'_>) -> Result<Command, Precondition> {
         let r = input.readings;
+        // The speed of the stretch of the robot's own latest projection (kept
+        // through a tick without one).
+        let reached = self
+            .last
+            .as_ref()
+            .and_then(|o| o.path.frenet)
+            .map(|f| f.s.get());
+        if let Some(v) = reached.and_then(|s| self.speeds.at(s)) {
+            if v != self.core.config().params().path.speed {
+                self.core.set_path_speed(v)?;
+            }
+        }
         let out = self.core.step(&fieldguide::guidance::TickInput {
             scans: input.scans,
             gnss: r.gnss,

@@ -37,6 +37,18 @@ pub fn write_run(
     summary: &Summary,
 ) -> Result<PathBuf, SimError> {
     let dir = out_root.join(&setup.name);
+    write_run_to(&dir, setup, output, summary)?;
+    Ok(dir)
+}
+
+/// [`write_run`]'s files written into `dir` itself, creating it.
+pub fn write_run_to(
+    dir: &Path,
+    setup: &Setup,
+    output: &RunOutput,
+    summary: &Summary,
+) -> Result<(), SimError> {
+    let dir = dir.to_path_buf();
     std::fs::create_dir_all(&dir).map_err(|source| SimError::Write {
         file: dir.clone(),
         source,
@@ -57,7 +69,7 @@ pub fn write_run(
     let contents = [
         csv::trace_csv(&output.trace, &names, &plot_names, &hedge_names),
         json,
-        plots::trajectory_svg(setup, &output.trace),
+        plots::trajectory_svg_marked(setup, &output.trace, &output.crushed),
         plots::lateral_error_svg(setup, &output.trace),
     ];
     for (name, text) in FILES.iter().zip(contents) {
@@ -66,10 +78,13 @@ pub fn write_run(
     }
     if !setup.world.plants.is_empty() {
         let file = dir.join(ROWS_FILE);
-        std::fs::write(&file, plots::rows_svg(setup, &output.trace))
-            .map_err(|source| SimError::Write { file, source })?;
+        std::fs::write(
+            &file,
+            plots::rows_svg_marked(setup, &output.trace, &output.crushed),
+        )
+        .map_err(|source| SimError::Write { file, source })?;
     }
-    Ok(dir)
+    Ok(())
 }
 
 /// Writes `sweep.csv` (one line per seed, [`crate::sweep::sweep_csv`]) into

@@ -8,7 +8,7 @@ use fieldguide::{Meters, Pose2, World};
 use fieldguide::guidance::Mode;
 
 use crate::guidance::colour;
-use crate::runner::{LineTruth, TickRecord};
+use crate::runner::{CrushedPlant, LineTruth, TickRecord};
 use crate::scenario::Setup;
 use crate::world::PlantKind;
 
@@ -132,10 +132,38 @@ fn plant_legend(setup: &Setup) -> Vec<(Stroke<'static>, bool, &'static str)> {
     .collect()
 }
 
-/// `trajectory.svg`: reference path (black), true trajectory of O coloured by
-/// mode, slip patches shaded, start marked; x east and y north in metres.
+/// Colour of the crosses marking crushed crop plants.
+pub const CRUSHED_COLOUR: &str = "#e000e0";
+
+/// The SVG class of the group of crosses marking crushed crop plants.
+pub const CRUSHED_CLASS: &str = "crushed-plants";
+
+/// The legend entry of the crushed plants' crosses.
+const CRUSHED_ENTRY: (Stroke<'static>, bool, &str) = (
+    Stroke {
+        colour: CRUSHED_COLOUR,
+        width: 2.0,
+        dash: None,
+    },
+    false,
+    "crushed crop plant (×)",
+);
+
+/// [`trajectory_svg_marked`] without crushed plants to mark.
 #[must_use]
 pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
+    trajectory_svg_marked(setup, trace, &[])
+}
+
+/// `trajectory.svg`: reference path (black), true trajectory of O coloured by
+/// mode, slip patches shaded, start marked, each of `crushed` marked by a
+/// cross; x east and y north in metres.
+#[must_use]
+pub fn trajectory_svg_marked(
+    setup: &Setup,
+    trace: &[TickRecord],
+    crushed: &[CrushedPlant],
+) -> String {
     let reference: Vec<(f64, f64)> = setup
         .path
         .vertices()
@@ -230,6 +258,8 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     mark_stops(&mut svg, &axes, trace, setup.control.period_s, |r| {
         (r.truth.position.x(), r.truth.position.y())
     });
+    let crosses: Vec<(f64, f64)> = crushed.iter().map(|c| (c.x_m, c.y_m)).collect();
+    svg.crosses(&axes, &crosses, 9.0, CRUSHED_COLOUR, CRUSHED_CLASS);
     if let Some(first) = trace.first() {
         let (px, py) = axes.px(first.truth.position.x(), first.truth.position.y());
         svg.text(px + 6.0, py + 14.0, "start", "start", 11.0);
@@ -255,6 +285,9 @@ pub fn trajectory_svg(setup: &Setup, trace: &[TickRecord]) -> String {
     }
     if !offset_lines.is_empty() {
         entries.push((OFFSET_LINE, false, "true offset line"));
+    }
+    if !crushed.is_empty() {
+        entries.push(CRUSHED_ENTRY);
     }
     svg.legend(&axes, &entries, &points);
     svg.finish()
@@ -492,6 +525,12 @@ fn truth_pieces(
 /// y) coloured by mode.
 #[must_use]
 pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
+    rows_svg_marked(setup, trace, &[])
+}
+
+/// `rows.svg` with each of `crushed` marked by a cross at its place along the path.
+#[must_use]
+pub fn rows_svg_marked(setup: &Setup, trace: &[TickRecord], crushed: &[CrushedPlant]) -> String {
     let path = &setup.path;
     let frenet = |x: f64, y: f64, hint: Option<f64>| -> Option<(f64, f64)> {
         let pose = Pose2::<World>::new(x, y, 0.0).ok()?;
@@ -602,6 +641,18 @@ pub fn rows_svg(setup: &Setup, trace: &[TickRecord]) -> String {
         "rear-axle centre O",
     ));
     entries.extend(plant_legend(setup));
+    // Each crushed plant at its place along the path, near the tick that crushed it.
+    let crosses: Vec<(f64, f64)> = crushed
+        .iter()
+        .filter_map(|c| {
+            let hint = trace.iter().find(|r| r.t_s >= c.t_s).map(|r| r.s_m);
+            frenet(c.x_m, c.y_m, hint)
+        })
+        .collect();
+    svg.crosses(&axes, &crosses, 9.0, CRUSHED_COLOUR, CRUSHED_CLASS);
+    if !crushed.is_empty() {
+        entries.push(CRUSHED_ENTRY);
+    }
     let occupied: Vec<(f64, f64)> = trace
         .iter()
         .map(|r| (r.s_m, r.lateral_error_m))

@@ -272,6 +272,42 @@ impl Svg {
         self.raw(&g);
     }
 
+    /// A cross (×) of `size` pixels at each data point, in `colour`, clipped
+    /// to the plot area, grouped under `class` (to find them in the file).
+    pub fn crosses(
+        &mut self,
+        axes: &Axes,
+        points: &[(f64, f64)],
+        size: f64,
+        colour: &str,
+        class: &str,
+    ) {
+        if points.is_empty() {
+            return;
+        }
+        let mut g = format!(
+            r#"<g class="{class}" stroke="{colour}" stroke-width="2" fill="none" clip-path="url(#plot)">"#
+        );
+        let h = size / 2.0;
+        for &(x, y) in points {
+            let (px, py) = axes.px(x, y);
+            let _ = write!(
+                g,
+                r#"<path d="M{:.1},{:.1} L{:.1},{:.1} M{:.1},{:.1} L{:.1},{:.1}"/>"#,
+                px - h,
+                py - h,
+                px + h,
+                py + h,
+                px - h,
+                py + h,
+                px + h,
+                py - h
+            );
+        }
+        g.push_str("</g>");
+        self.raw(&g);
+    }
+
     /// The clip path of the plot area; call before drawing clipped elements.
     pub fn clip_to(&mut self, axes: &Axes) {
         let (l, t, w, h) = axes.area;

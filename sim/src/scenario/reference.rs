@@ -488,12 +488,14 @@ mod tests {
                 arc_radius_m: None,
                 arc_angle_deg: None,
                 along_plot: None,
+                speed_m_s: None,
             },
             Segment {
                 straight_m: None,
                 arc_radius_m: Some(2.0),
                 arc_angle_deg: Some(-90.0),
                 along_plot: None,
+                speed_m_s: None,
             },
         ];
         let w = sample_segments(start, &segs, &[], 0.1, 4096, &checker()).unwrap();
@@ -522,6 +524,7 @@ mod tests {
             arc_radius_m: Some(2.0),
             arc_angle_deg: None,
             along_plot: None,
+            speed_m_s: None,
         };
         let e = sample_segments(start, &[half], &[], 0.1, 4096, &checker()).unwrap_err();
         assert_eq!(e.field(), Some("path.segments[0]"));
@@ -530,6 +533,7 @@ mod tests {
             arc_radius_m: None,
             arc_angle_deg: None,
             along_plot: None,
+            speed_m_s: None,
         };
         let e = sample_segments(start, &[neg], &[], 0.1, 4096, &checker()).unwrap_err();
         assert_eq!(e.field(), Some("path.segments[0].straight_m"));

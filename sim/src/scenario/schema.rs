@@ -47,11 +47,12 @@ pub struct ScenarioFile {
     /// The switching machine's delays and the plan check (`[switching]`,
     /// optional: Tables 1-2 and the library's defaults without it).
     pub switching: Option<SwitchingSection>,
-    /// Localisation outages; absent: a fix in every tick.
+    /// Localisation outages and errors; absent: a fix in every tick, white noise only.
     pub gnss: Option<GnssSection>,
 }
 
-/// `[gnss]`: when the RTK-GNSS has no fix.
+/// `[gnss]`: when the RTK-GNSS has no fix, and its errors beyond the white
+/// noise of `[noise]`. Every field is optional; the defaults add nothing.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GnssSection {
@@ -59,6 +60,57 @@ pub struct GnssSection {
     /// `0 <= from < to`, in increasing order without overlap (default none).
     #[serde(default)]
     pub outages_s: Vec<[f64; 2]>,
+    /// Spans `[from, to)` of the abscissa of the true pose's projection on
+    /// the path without a fix, metres, increasing, not overlapping (default none).
+    #[serde(default)]
+    pub outages_m: Vec<[f64; 2]>,
+    /// Outages placed from a plot's end (`[[gnss.plot_end_outages]]`).
+    #[serde(default)]
+    pub plot_end_outages: Vec<PlotEndOutage>,
+    /// Constant offset `[east, north]` of every reported position, metres (default none).
+    pub bias_m: Option<[f64; 2]>,
+    /// `"random_walk"` or `"sinusoid"`: a slow drift of the reported position (default none).
+    pub drift: Option<DriftName>,
+    /// Standard deviation per axis (random walk) or amplitude (sinusoid) of the drift, metres.
+    pub drift_m: Option<f64>,
+    /// Correlation time (random walk) or period (sinusoid) of the drift, seconds.
+    pub drift_time_constant_s: Option<f64>,
+    /// Direction of a sinusoidal drift, degrees from east (default 90: north).
+    pub drift_heading_deg: Option<f64>,
+    /// Spans of simulated time `[from, to)` with a float fix, seconds.
+    #[serde(default)]
+    pub float_s: Vec<[f64; 2]>,
+    /// Spans of abscissa `[from, to)` with a float fix, metres.
+    #[serde(default)]
+    pub float_m: Vec<[f64; 2]>,
+    /// White noise per axis added while the fix is float, metres (default 0.1).
+    pub float_noise_m: Option<f64>,
+    /// Standard deviation per axis of the offset drawn when a float span starts, metres (default 0.3).
+    pub float_jump_m: Option<f64>,
+}
+
+/// `[[gnss.plot_end_outages]]`: an outage starting `before_m` ahead of the
+/// end of plot `plot` along the path, lasting `length_m` of path.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlotEndOutage {
+    /// Index of the plot in `[[world.plots]]` (from 0).
+    pub plot: usize,
+    /// How far before the plot's end (along the path) the outage starts, metres (negative: after it).
+    pub before_m: f64,
+    /// Length of path the outage covers, metres.
+    pub length_m: f64,
+}
+
+/// The kind of the GNSS drift.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DriftName {
+    /// A first-order Gauss-Markov process per axis (a random walk pulled back
+    /// to zero with the time constant), starting at zero.
+    RandomWalk,
+    /// `drift_m · sin(2π t / T)` along `drift_heading_deg`.
+    Sinusoid,
 }
 
 /// `[switching]`: transit delays (Pierre 2022, Tables 1-2), Stop delay,
@@ -158,6 +210,8 @@ pub struct Segment {
     /// joined to the previous point by a straight: a path recorded by
     /// driving down a (curved) plot.
     pub along_plot: Option<usize>,
+    /// Desired speed of path tracking along this segment, m/s (default `control.speed_m_s`).
+    pub speed_m_s: Option<f64>,
 }
 
 /// `[initial]`: the robot's start pose, in the Frénet frame of the path's first point.
@@ -344,6 +398,8 @@ pub struct MetricsSection {
     /// When set, success also needs the largest |lateral error to the true
     /// offset line| along the hedges, after convergence, at most this, metres.
     pub along_hedge_max_abs_m: Option<f64>,
+    /// |curvature| of the path from which a tick counts as in a turn, 1/m (default 0.1).
+    pub turn_curvature_per_m: Option<f64>,
 }
 
 /// `[world]`: crop plots and grass.

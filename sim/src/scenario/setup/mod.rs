@@ -15,6 +15,7 @@ mod lidar;
 mod path;
 mod run;
 mod sensors;
+mod speeds;
 mod switching;
 mod terrain;
 mod vehicle;
@@ -39,9 +40,10 @@ pub use self::edge::EdgeSetup;
 pub use self::furrow::FurrowSetup;
 pub use self::lidar::{HorizontalLidarSetup, LidarSetup};
 pub use self::run::{MetricsSpec, RunLimits};
-pub use self::sensors::GnssOutages;
+pub use self::speeds::PathSpeeds;
 pub use self::switching::{PlanSetup, SwitchingSetup, EDGE, FURROW};
 pub use crate::capacity::{Reference, PATH_CAPACITY};
+pub use crate::gnss::{GnssErrors, GnssOutages};
 use crate::lidar::{Mounted, MountedLidar};
 
 /// Everything a run needs, validated and typed.
@@ -85,6 +87,10 @@ pub struct Setup {
     pub switching: SwitchingSetup,
     /// When the RTK-GNSS has no fix.
     pub gnss_outages: GnssOutages,
+    /// The RTK-GNSS's errors beyond its white noise.
+    pub gnss_errors: GnssErrors,
+    /// The desired speed of path tracking along the path (`speed_m_s` of `[path] segments`).
+    pub path_speeds: PathSpeeds,
 }
 
 impl Setup {
@@ -136,7 +142,9 @@ pub fn build(
         obstacle_height: world::obstacle_height(file.world.as_ref(), &check)?,
     };
     let noise = sensors::noise(file, &check)?;
-    let gnss_outages = sensors::gnss_outages(file, &check)?;
+    let gnss_outages = sensors::gnss_outages(file, &check, &path, &specs)?;
+    let gnss_errors = sensors::gnss_errors(file, &check, &path)?;
+    let path_speeds = speeds::path_speeds(file, &check, &control, &pieces, &specs)?;
     let lidar = match &file.lidar {
         Some(l) => Some(lidar::lidar(l, control.period_s, &check)?),
         None => None,
@@ -211,6 +219,8 @@ pub fn build(
         edge,
         switching,
         gnss_outages,
+        gnss_errors,
+        path_speeds,
     })
 }
 

@@ -35,7 +35,14 @@ pub struct MetricsSpec {
     /// Largest max |error to the true offset line| along the hedges after
     /// convergence of a successful run, metres.
     pub along_hedge_max_abs_m: Option<f64>,
+    /// |curvature| of the path at the true projection from which a tick is
+    /// in a turn, 1/m (the turn and straight/curve metrics).
+    pub turn_curvature_per_m: f64,
 }
+
+/// Default |curvature| from which the path turns, 1/m (a radius of 10 m:
+/// well above the curvature the recording noise leaves on a straight).
+pub const TURN_CURVATURE_PER_M: f64 = 0.1;
 
 /// The most control ticks of a run: the trace holds one record per tick
 /// (about 3 h at 100 Hz).
@@ -96,6 +103,12 @@ pub(super) fn metrics(
         along_hedge_max_abs_m: optional_positive(
             "metrics.along_hedge_max_abs_m",
             file.metrics.along_hedge_max_abs_m,
+        )?,
+        turn_curvature_per_m: check.positive(
+            "metrics.turn_curvature_per_m",
+            file.metrics
+                .turn_curvature_per_m
+                .unwrap_or(TURN_CURVATURE_PER_M),
         )?,
     })
 }
