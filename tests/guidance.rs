@@ -1425,6 +1425,8 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
         let p = GuidanceParams {
             max_scan_age: s(age),
             plan_dead_reckoning: None,
+            bridge: None,
+            steer_before_resuming: false,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1461,6 +1463,8 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
     let too_long = GuidanceParams {
         max_scan_age: s(655.35),
         plan_dead_reckoning: None,
+        bridge: None,
+        steer_before_resuming: false,
         ..edge_params()
     };
     assert_eq!(
@@ -1471,6 +1475,8 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
     let params = GuidanceParams {
         max_scan_age: s(655.34),
         plan_dead_reckoning: None,
+        bridge: None,
+        steer_before_resuming: false,
         ..edge_params()
     };
     let config = GuidanceConfig::new(&params).unwrap();
@@ -1656,6 +1662,8 @@ fn declared(
         plan_delay: params.plan_delay,
         max_scan_age: params.max_scan_age,
         plan_dead_reckoning: params.plan_dead_reckoning,
+        bridge: params.bridge,
+        steer_before_resuming: params.steer_before_resuming,
     }
 }
 

@@ -201,3 +201,29 @@ fn outage_1_s_before_the_plot_end_rejects_the_volunteers() {
 fn outage_5_s_before_the_plot_end_rejects_the_volunteers() {
     check_outage_field("outage-5s", 5.0);
 }
+
+/// Another crop, speed and turn: maize at 1.0 m/s, a 5 m U-turn to the right.
+//= spec/guidance.md#gd-resume-steering-before-moving-after-a-stop
+//= type=test
+//# When steering before resuming is configured and the vehicle is a bicycle
+//# with a known steering rate limit, the commands of the sources after a Stop
+//# MUST keep the speed zero, with the source's steering angle, while an angle
+//# moved from the held one towards each tick's commanded angle by the rate
+//# limit times the period per tick is farther than that step from the
+//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command MUST
+//# be the source's as it is.
+#[test]
+fn outage_in_a_fast_maize_plot_rejects_the_volunteers() {
+    check_outage_field("outage-maize-fast", 2.6);
+    // Rolling off while the wheels turn from straight to the 5 m turn's
+    // angle swings the robot off the turn (the failure steering first removes).
+    let (setup, out) = run_stress_edited("outage-maize-fast", 1, |t| {
+        t.replace(
+            "steer_before_resuming = true",
+            "steer_before_resuming = false",
+        )
+    });
+    let f = outage_figures(&setup, &out);
+    eprintln!("outage-maize-fast seed 1 rolling off at once: {f:?}");
+    assert!(f.stops == 1 && f.resume_swing_m > RESUME_SWING_M, "{f:?}");
+}
