@@ -61,7 +61,9 @@
 //! # }
 //! ```
 
+mod bridge;
 mod config;
+mod resume;
 
 pub use config::{
     BehaviourId, BehaviourParams, GuidanceConfig, GuidanceParams, PathTrackingParams,
@@ -210,7 +212,8 @@ pub struct BehaviourStatus {
     /// The behaviour's label.
     pub label: &'static str,
     /// The verdict of the held detection: the latest scan's, or Absent
-    /// without one, when too old or refused (GD-SCAN-AGE).
+    /// without one, when too old or refused (GD-SCAN-AGE); Hold while the
+    /// bridge carries the last valid line (GD-BRIDGE).
     pub detected: Verdict,
     /// The verdict the switching machine got: `detected`, or Exit when the
     /// law refused a valid estimate (GD-COMMAND).
@@ -230,6 +233,9 @@ pub struct BehaviourStatus {
     pub plan: Option<LineRelativeToPath>,
     /// The plan-consistency flag given to the machine (GD-PLAN).
     pub plan_consistent: bool,
+    /// When the estimate is the last valid line carried across a scan that
+    /// found nothing (GD-BRIDGE): the odometry distance since that line's scan.
+    pub bridged: Option<Meters>,
     /// The behaviour's law on its error, run only for a valid estimate.
     pub law: LawOutcome,
 }
@@ -276,6 +282,8 @@ struct Held<L> {
 struct Slot<D: Detector> {
     detector: D,
     held: Option<Held<D::Line>>,
+    /// The latest valid line, for the bridge (GD-BRIDGE).
+    last_valid: Option<bridge::LastValid<D::Line>>,
 }
 
 /// A behaviour's estimate in the current tick, before plan and law.
@@ -286,6 +294,7 @@ struct Estimate {
     quality: Option<f64>,
     age: Option<u16>,
     refused: Option<Precondition>,
+    bridged: Option<Meters>,
 }
 
 impl Estimate {
@@ -295,7 +304,20 @@ impl Estimate {
         quality: None,
         age: None,
         refused: None,
+        bridged: None,
     };
+}
+
+/// What a slot needs besides its scan to make its estimate in one tick.
+#[derive(Debug, Clone, Copy)]
+struct Carry {
+    odometry: Pose2<Odom>,
+    travelled: f64,
+    max_age: u16,
+    /// The bridge length, when configured (GD-BRIDGE).
+    bridge: Option<Meters>,
+    /// Whether the slot's behaviour is the machine's active mode.
+    active: bool,
 }
 
 impl<D: Detector> Slot<D> {
@@ -313,7 +335,40 @@ impl<D: Detector> Slot<D> {
     //# Sensor data MUST NOT be malformed input: any range, NaN and infinities
     //# included, and any scan a detector refuses MUST give a tick output, the
     //# refused scan counting as no estimate.
-    fn estimate(
+    fn estimate(&mut self, scan: Option<&Scan<'_>>, carry: &Carry) -> Estimate {
+        let estimate = self.held_estimate(scan, &carry.odometry, carry.max_age);
+        let Some(bridge) = carry.bridge else {
+            return estimate;
+        };
+        let outcome = match (scan, &self.held) {
+            (None, _) => bridge::ScanOutcome::None,
+            (Some(_), Some(held)) if estimate.refused.is_none() => {
+                bridge::ScanOutcome::Read(&held.detection)
+            }
+            (Some(_), _) => bridge::ScanOutcome::Refused,
+        };
+        bridge::record(
+            &mut self.last_valid,
+            outcome,
+            &carry.odometry,
+            carry.travelled,
+        );
+        if !carry.active || estimate.verdict.estimate_is_valid() {
+            return estimate;
+        }
+        match bridge::carried(self.last_valid.as_ref(), &carry.odometry, bridge) {
+            Some((error, carried)) => Estimate {
+                verdict: Verdict::Hold,
+                error: Some(error),
+                bridged: Some(carried),
+                ..estimate
+            },
+            None => estimate,
+        }
+    }
+
+    /// The estimate of GD-SCAN-AGE, without the bridge.
+    fn held_estimate(
         &mut self,
         scan: Option<&Scan<'_>>,
         odometry: &Pose2<Odom>,
@@ -398,6 +453,8 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     last_fix: Option<LastFix>,
     /// The last command made; its stop is held in Stop (GD-STOP).
     last_command: Command,
+    /// The wheels turning at standstill after a Stop (GD-RESUME).
+    turning: Option<resume::Turning>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -431,6 +488,7 @@ where
             let slot = Slot {
                 detector: D::configure(&b.detector)?,
                 held: None,
+                last_valid: None,
             };
             // The configuration holds at most K behaviours.
             if slots.push(slot).is_err() {
@@ -447,6 +505,7 @@ where
             since_projection: 0.0,
             last_odometry: None,
             last_fix: None,
+            turning: None,
         })
     }
 
@@ -607,18 +666,27 @@ where
 
         // 1. Detections, or the held ones aged and moved (GD-SCAN-AGE).
         let max_age = self.config.max_scan_age_ticks();
+        let was_stopped = self.machine.mode() == MachineMode::Stop;
         let mut estimates = [Estimate::NONE; K];
-        for ((estimate, slot), b) in estimates
+        for (i, ((estimate, slot), b)) in estimates
             .iter_mut()
             .zip(self.slots.iter_mut())
             .zip(self.config.behaviours())
+            .enumerate()
         {
             let scan = input
                 .scans
                 .iter()
                 .find(|s| s.behaviour == b.id)
                 .map(|s| &s.scan);
-            *estimate = slot.estimate(scan, &input.odometry, max_age);
+            let carry = Carry {
+                odometry: input.odometry,
+                travelled,
+                max_age,
+                bridge: self.config.params().bridge,
+                active: self.machine.mode() == MachineMode::Behaviour(i),
+            };
+            *estimate = slot.estimate(scan, &carry);
         }
 
         // 2. The path (GD-LOCALISATION).
@@ -730,6 +798,20 @@ where
         let mode = self.mode_of(switching.mode);
         let command = match command {
             Some(c) => {
+                let params = self.config.params();
+                let c = if params.steer_before_resuming {
+                    resume::command(
+                        &mut self.turning,
+                        was_stopped,
+                        &self.last_command,
+                        c,
+                        &params.vehicle,
+                        params.period,
+                        self.config.settle_ticks(),
+                    )
+                } else {
+                    c
+                };
                 self.last_command = c.command;
                 Some(c)
             }
@@ -959,5 +1041,6 @@ fn behaviour_status<C, L: ControlLaw>(
         plan,
         plan_consistent,
         law,
+        bridged: estimate.bridged,
     }
 }

@@ -137,6 +137,8 @@ pub fn pierre2022_path() -> Result<Pierre2022Params, Precondition> {
         plan_delay: None,
         max_scan_age: Seconds::new(0.1)?,
         plan_dead_reckoning: None,
+        bridge: None,
+        steer_before_resuming: false,
     })
 }
 

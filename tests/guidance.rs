@@ -1497,6 +1497,8 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
         let p = GuidanceParams {
             max_scan_age: s(age),
             plan_dead_reckoning: None,
+            bridge: None,
+            steer_before_resuming: false,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1533,6 +1535,8 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
     let too_long = GuidanceParams {
         max_scan_age: s(655.35),
         plan_dead_reckoning: None,
+        bridge: None,
+        steer_before_resuming: false,
         ..edge_params()
     };
     assert_eq!(
@@ -1543,6 +1547,8 @@ fn the_longest_scan_age_of_65_534_ticks_is_accepted_and_expires() {
     let params = GuidanceParams {
         max_scan_age: s(655.34),
         plan_dead_reckoning: None,
+        bridge: None,
+        steer_before_resuming: false,
         ..edge_params()
     };
     let config = GuidanceConfig::new(&params).unwrap();
@@ -1728,6 +1734,8 @@ fn declared(
         plan_delay: params.plan_delay,
         max_scan_age: params.max_scan_age,
         plan_dead_reckoning: params.plan_dead_reckoning,
+        bridge: params.bridge,
+        steer_before_resuming: params.steer_before_resuming,
     }
 }
 

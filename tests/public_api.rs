@@ -1875,6 +1875,7 @@ proptest! {
         check!("guidance::config::GuidanceConfig::switching", config.switching());
         check!("guidance::config::GuidanceConfig::lookahead", config.lookahead());
         check!("guidance::config::GuidanceConfig::max_scan_age_ticks", config.max_scan_age_ticks());
+        check!("guidance::config::GuidanceConfig::settle_ticks", config.settle_ticks());
         let (path, replacement) = (path_of(&points), path_of(&other));
         let mut guidance: Pipeline<'_> = check!("guidance::Guidance::new", Guidance::new(config, &path)).unwrap();
         check!("guidance::Guidance::config", guidance.config());

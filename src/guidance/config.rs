@@ -97,6 +97,13 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// the fix is lost, m, > 0 (GD-PLAN-DEAD-RECKONING); `None`: the plan is
     /// checked only in ticks with a fix.
     pub plan_dead_reckoning: Option<Meters>,
+    /// How far odometry carries the active behaviour's last valid line
+    /// across scans that find nothing, m, > 0 (GD-BRIDGE); `None`: such a
+    /// scan is Absent at once.
+    pub bridge: Option<Meters>,
+    /// Whether, after a Stop, the wheels are steered to the first command
+    /// at standstill before the vehicle moves (GD-RESUME).
+    pub steer_before_resuming: bool,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -107,6 +114,7 @@ pub struct GuidanceConfig<C, L, const K: usize> {
     switching: SwitchingConfig<K>,
     lookahead: Meters,
     max_scan_age_ticks: u16,
+    settle_ticks: u16,
 }
 
 fn positive_speed(speed: MetersPerSecond, violated: &'static str) -> Result<(), Precondition> {
@@ -145,6 +153,19 @@ fn scan_age_ticks(max_age: Seconds, period: Seconds) -> Result<u16, Precondition
         ));
     }
     Ok(ticks)
+}
+
+/// ⌈3 τ / period⌉ ticks, 0 without a lag (GD-RESUME); `period` is already
+/// known to be positive and τ not negative.
+//= spec/guidance.md#gd-resume-steering-before-moving-after-a-stop
+//# A configuration whose 3 τ is longer than 65 535 ticks MUST be refused with
+//# `GD-RESUME`.
+fn settle_ticks(lag: Seconds, period: Seconds) -> Result<u16, Precondition> {
+    if lag.get() <= 0.0 {
+        return Ok(0);
+    }
+    let settle = Seconds::new(finite(3.0 * lag.get(), "3 tau overflows")?)?;
+    delay_ticks(settle, period, "GD-RESUME")
 }
 
 /// The behaviours of `params` in priority order (GD-BEHAVIOURS).
@@ -225,7 +246,9 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     /// - `GD-SCAN-AGE` when the maximal scan age is negative or longer than
     ///   65 534 ticks;
     /// - `GD-PLAN-DEAD-RECKONING` when the dead-reckoning distance is not
-    ///   positive.
+    ///   positive;
+    /// - `GD-BRIDGE` when the bridge length is not positive;
+    /// - `GD-RESUME` when 3 τ is longer than 65 535 ticks.
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -309,6 +332,12 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
                 "plan_dead_reckoning must be > 0",
             ));
         }
+        //= spec/guidance.md#gd-bridge-regular-gaps-bridged-by-the-held-line
+        //# A bridge length that is not positive MUST be refused with `GD-BRIDGE`.
+        if params.bridge.is_some_and(|d| d.get() <= 0.0) {
+            return Err(Precondition::new("GD-BRIDGE", "bridge must be > 0"));
+        }
+        let settle_ticks = settle_ticks(params.path.steering_lag, params.period)?;
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,
@@ -318,6 +347,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             switching,
             lookahead,
             max_scan_age_ticks,
+            settle_ticks,
         })
     }
 }
@@ -389,5 +419,12 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
     #[must_use]
     pub const fn max_scan_age_ticks(&self) -> u16 {
         self.max_scan_age_ticks
+    }
+
+    /// The ticks the steering settles for, ⌈3 τ / period⌉, after its
+    /// rate-limited turn at standstill (GD-RESUME).
+    #[must_use]
+    pub const fn settle_ticks(&self) -> u16 {
+        self.settle_ticks
     }
 }

@@ -149,6 +149,13 @@ pub struct SwitchingSection {
     /// last fix for the check, m, in (0, 1000] (default: not carried;
     /// GD-PLAN-DEAD-RECKONING).
     pub plan_dead_reckoning_m: Option<f64>,
+    /// How far odometry carries the active behaviour's last valid line
+    /// across scans that find nothing, m, in (0, 100] (default: not
+    /// carried; GD-BRIDGE).
+    pub bridge_m: Option<f64>,
+    /// After a Stop, steer the wheels to the first command at standstill
+    /// before moving (default false; GD-RESUME).
+    pub steer_before_resuming: Option<bool>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

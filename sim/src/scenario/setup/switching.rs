@@ -48,6 +48,10 @@ pub struct SwitchingSetup {
     pub max_scan_age_s: f64,
     /// Plan consistency, when on.
     pub plan: Option<PlanSetup>,
+    /// The bridge length (GD-BRIDGE); `None`: no bridge.
+    pub bridge: Option<Meters>,
+    /// Whether the wheels are steered at standstill after a Stop (GD-RESUME).
+    pub steer_before_resuming: bool,
 }
 
 /// The switching settings of `[switching]`, each default taken when a field is absent.
@@ -139,6 +143,18 @@ pub(super) fn switching(
         stop_delay_s: pos("stop_delay_s", s.stop_delay_s, 0.5)?,
         max_scan_age_s: pos("max_scan_age_s", s.max_scan_age_s, 0.1)?,
         plan,
+        bridge: s
+            .bridge_m
+            .map(|d| {
+                let field = "switching.bridge_m";
+                let d = check.range(field, d, 0.0, 100.0)?;
+                if d <= 0.0 {
+                    return Err(check.error(field, &format!("must be > 0, got {d}")));
+                }
+                Meters::new(d).map_err(|e| check.error(field, &e.to_string()))
+            })
+            .transpose()?,
+        steer_before_resuming: s.steer_before_resuming.unwrap_or(false),
     })
 }
 
