@@ -14,7 +14,7 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 use super::count_f64;
 use super::points::RowPoint;
 use crate::error::Precondition;
-use crate::geometry::fit::{fit_line, fit_line_weighted};
+use crate::geometry::fit::MIN_RELATIVE_X_SPREAD;
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::Meters;
 use crate::perception::furrow::lines::RowLine;
@@ -295,34 +295,101 @@ impl Line {
         libm::fabs(self.a * x + self.b - y) * self.inv_norm
     }
 
-    /// The line of least absolute deviations in y through `points`, by
-    /// `rounds` re-weightings of a least-squares start (RUBY-FIT), if
-    /// determined.
+    /// The line of least absolute deviations in y through the points of
+    /// columns `xs`, `ys`, by `rounds` re-weightings of a least-squares
+    /// start (RUBY-FIT), if determined.
     //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
     //# A model's line MUST be fitted to its points by iteratively reweighted
     //# least squares: a least-squares start (FIT-LINE), then the configured
     //# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
     //# point's residual in y to the line before.
     ///
-    /// Each round's weights are computed once into `weights` (as long as
-    /// `points` at least; the rounds stop where it is shorter).
-    fn fit(points: &[Point2<Robot>], rounds: u8, weights: &mut [f64]) -> Option<Self> {
-        let mut line = fit_line(points.iter()).ok()?;
-        for _ in 0..rounds {
-            let Some(weights) = weights.get_mut(..points.len()) else {
-                break;
-            };
-            for (w, p) in weights.iter_mut().zip(points) {
-                let r = libm::fabs(p.y() - line.a * p.x() - line.b);
-                *w = 1.0 / r.max(LAD_FLOOR);
+    /// `weights` is as long as the columns at least (the fit is refused
+    /// where it is shorter). The arithmetic is that of
+    /// `geometry::fit::fit_line` and `fit_line_weighted`, operation for
+    /// operation in their order (weighted means and the spread of x, then
+    /// sums over the centred and scaled points), so that the line is the
+    /// same, bit for bit: `fit_line` is the weighted fit with every weight 1,
+    /// and the spread of x, the same in every round, is found once.
+    fn fit(xs: &[f64], ys: &[f64], rounds: u8, weights: &mut [f64]) -> Option<Self> {
+        let weights = weights.get_mut(..xs.len())?;
+        let (mut min_x, mut max_x) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64);
+        for ((&x, &y), w) in xs.iter().zip(ys).zip(weights.iter_mut()) {
+            *w = 1.0;
+            sum_x += x;
+            sum_y += y;
+            // The points are finite: as `f64::min` and `f64::max` (a zero's
+            // sign aside, which leaves the spread the same).
+            if x < min_x {
+                min_x = x;
             }
-            match fit_line_weighted(points.iter().zip(weights.iter().copied())) {
-                Ok(next) => line = next,
-                Err(_) => break,
+            if x > max_x {
+                max_x = x;
             }
         }
-        Self::new(line.a, line.b)
+        let spread = (min_x, max_x);
+        let sums = (count_f64(xs.len()), sum_x, sum_y);
+        let (mut a, mut b) = centred_fit(xs, ys, weights, sums, spread)?;
+        for _ in 0..rounds {
+            let (mut weight, mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64, 0.0_f64);
+            // A weight is finite, and > 0 unless the residual overflows.
+            let mut valid = true;
+            for ((&x, &y), w) in xs.iter().zip(ys).zip(weights.iter_mut()) {
+                let r = libm::fabs(y - a * x - b);
+                *w = 1.0 / if r > LAD_FLOOR { r } else { LAD_FLOOR };
+                valid &= *w > 0.0;
+                weight += *w;
+                sum_x += *w * x;
+                sum_y += *w * y;
+            }
+            if !valid {
+                break;
+            }
+            match centred_fit(xs, ys, weights, (weight, sum_x, sum_y), spread) {
+                Some(next) => (a, b) = next,
+                None => break,
+            }
+        }
+        Self::new(a, b)
     }
+}
+
+/// The weighted least-squares line y = a x + b through the points of
+/// columns `xs`, `ys` with `weights` (FIT-WEIGHTS), from the sums of the
+/// weights and of the weighted x and y and the least and greatest x: the
+/// second pass of `geometry::fit::fit_line_weighted`, its checks included
+/// (`None` where it gives an error).
+fn centred_fit(
+    xs: &[f64],
+    ys: &[f64],
+    weights: &[f64],
+    (weight, sum_x, sum_y): (f64, f64, f64),
+    (min_x, max_x): (f64, f64),
+) -> Option<(f64, f64)> {
+    if xs.len() < 2 {
+        return None;
+    }
+    let mean_x = sum_x / weight;
+    let mean_y = sum_y / weight;
+    let h = (max_x - mean_x).max(mean_x - min_x);
+    if !(mean_x.is_finite() && mean_y.is_finite() && h.is_finite())
+        || h < MIN_RELATIVE_X_SPREAD * mean_x.abs().max(1.0)
+    {
+        return None;
+    }
+    let (mut suu, mut suv) = (0.0_f64, 0.0_f64);
+    for ((&x, &y), &w) in xs.iter().zip(ys).zip(weights) {
+        let (u, v) = ((x - mean_x) / h, y - mean_y);
+        suu += w * u * u;
+        suv += w * u * v;
+    }
+    if suu.is_nan() || suu <= 0.0 {
+        return None;
+    }
+    let a = suv / suu / h;
+    let b = mean_y - a * mean_x;
+    (a.is_finite() && b.is_finite()).then_some((a, b))
 }
 
 /// One model of a set, with its points' count and energy (eq. 6).
@@ -471,34 +538,45 @@ impl<const N: usize> ModelSet<N> {
         }
     }
 
-    /// Copies the points of model `k` into `out`, which it returns cut to
-    /// their number.
-    fn members<'a>(
+    /// The line of model `k` fitted to its points (RUBY-FIT), the points'
+    /// coordinates taken from `cols` (the first `n`) into `scratch`.
+    fn fit(
         &self,
-        points: &[RowPoint],
         k: usize,
-        out: &'a mut [Point2<Robot>; N],
-    ) -> &'a [Point2<Robot>] {
+        cols: &Columns<N>,
+        n: usize,
+        scratch: &mut Scratch<N>,
+        rounds: u8,
+    ) -> Option<Line> {
         let b = bit(k);
         let mut count = 0_usize;
-        for (p, _) in points
+        for ((&x, &y), _) in cols
+            .xs
             .iter()
+            .zip(cols.ys.iter())
             .zip(self.masks.iter())
+            .take(n)
             .filter(|(_, &m)| m & b != 0)
         {
-            if let Some(slot) = out.get_mut(count) {
-                *slot = p.position;
+            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
+                (*mx, *my) = (x, y);
                 count = count.saturating_add(1);
             }
         }
-        out.get(..count).unwrap_or(&[])
+        Line::fit(
+            scratch.xs.get(..count).unwrap_or(&[]),
+            scratch.ys.get(..count).unwrap_or(&[]),
+            rounds,
+            &mut scratch.weights,
+        )
     }
 }
 
-/// Room for one model's fit: its points and their weights.
+/// Room for one model's fit: its points' coordinates and their weights.
 #[derive(Debug, Clone)]
 struct Scratch<const N: usize> {
-    points: [Point2<Robot>; N],
+    xs: [f64; N],
+    ys: [f64; N],
     weights: [f64; N],
 }
 
@@ -548,7 +626,8 @@ impl<const N: usize> Ruby<N> {
             kept: 0,
             weights: [0.0; N],
             scratch: Scratch {
-                points: [Point2::origin(); N],
+                xs: [0.0; N],
+                ys: [0.0; N],
                 weights: [0.0; N],
             },
             columns: Columns {
@@ -670,7 +749,7 @@ impl<const N: usize> Ruby<N> {
         // The previous lines, refitted to the points they attach on this
         // scan (RUBY-ITERATION).
         reattach(best, points, &mut self.columns, &p);
-        merge(best, points, &mut self.scratch, &p);
+        merge(best, &self.columns, n, &mut self.scratch, &p);
         let mut stats = reattach(best, points, &mut self.columns, &p);
         let start_energy = energy(best, &stats, n, &self.weights, &p);
         let mut best_energy = start_energy;
@@ -680,7 +759,7 @@ impl<const N: usize> Ruby<N> {
             let (best, candidate) = pair(&mut self.sets, self.kept);
             candidate.copy_from(best, n);
             search(candidate, points, &mut self.rng, &p);
-            merge(candidate, points, &mut self.scratch, &p);
+            merge(candidate, &self.columns, n, &mut self.scratch, &p);
             let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
             let gone = delete(candidate, &candidate_stats, &p);
             reattach_deleted(candidate, gone, points, &mut candidate_stats, &p);
@@ -840,9 +919,12 @@ fn search_side<const N: usize>(
         added = added.saturating_add(1);
         let seeds = seed.map(|i| points.get(i).map(|q| q.position));
         if let [Some(a), Some(b), Some(c)] = seeds {
-            if let (Some(line), Some(l)) =
-                (Line::fit(&[a, b, c], 0, &mut []), set.lines.get_mut(slot))
-            {
+            let xs = [a.x(), b.x(), c.x()];
+            let ys = [a.y(), b.y(), c.y()];
+            if let (Some(line), Some(l)) = (
+                Line::fit(&xs, &ys, 0, &mut [0.0; SEED_POINTS]),
+                set.lines.get_mut(slot),
+            ) {
                 *l = line;
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
@@ -879,11 +961,11 @@ fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
 //# iteration's first merge pass, merged or not.
 fn merge<const N: usize>(
     set: &mut ModelSet<N>,
-    points: &[RowPoint],
+    cols: &Columns<N>,
+    n: usize,
     scratch: &mut Scratch<N>,
     p: &RubyParams,
 ) {
-    let n = points.len();
     // Models whose points changed since they were fitted.
     let changed = set
         .masks
@@ -918,8 +1000,7 @@ fn merge<const N: usize>(
                 set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                let members = set.members(points, j, &mut scratch.points);
-                if let Some(line) = Line::fit(members, p.fit_rounds, &mut scratch.weights) {
+                if let Some(line) = set.fit(j, cols, n, scratch, p.fit_rounds) {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
                         if *l != line {
