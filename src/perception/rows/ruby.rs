@@ -459,14 +459,12 @@ fn slot_of(rank: f64) -> usize {
 /// The rank of no model.
 const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
-/// The points' coordinates in columns and each point's closest model so
-/// far (its distance and [`rank`]), for the re-attachment's inner loops.
+/// The points' coordinates in columns, for the re-attachment's inner loops
+/// and the fits.
 #[derive(Debug, Clone)]
 struct Columns<const N: usize> {
     xs: [f64; N],
     ys: [f64; N],
-    best: [f64; N],
-    rank: [f64; N],
 }
 
 /// A set of models and which points belong to each.
@@ -484,6 +482,12 @@ struct ModelSet<const N: usize> {
     masks: [u64; N],
     /// The masks when the models were last fitted.
     fit_masks: [u64; N],
+    /// Without shared points: each point's distance to its model and the
+    /// model's [`rank`], or the outlier distance and [`NO_RANK`] for an
+    /// outlier, as the last re-attachment left them. Only the points of
+    /// models moved since may be out of date.
+    dist: [f64; N],
+    rank: [f64; N],
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
@@ -535,6 +539,12 @@ impl<const N: usize> ModelSet<N> {
             .take(n)
         {
             *m = *o;
+        }
+        for (d, o) in self.dist.iter_mut().zip(other.dist.iter()).take(n) {
+            *d = *o;
+        }
+        for (r, o) in self.rank.iter_mut().zip(other.rank.iter()).take(n) {
+            *r = *o;
         }
     }
 
@@ -617,6 +627,8 @@ impl<const N: usize> Ruby<N> {
             lines: [Line::NONE; MAX_MODELS],
             masks: [0; N],
             fit_masks: [0; N],
+            dist: [0.0; N],
+            rank: [NO_RANK; N],
         };
         Self {
             config,
@@ -633,8 +645,6 @@ impl<const N: usize> Ruby<N> {
             columns: Columns {
                 xs: [0.0; N],
                 ys: [0.0; N],
-                best: [0.0; N],
-                rank: [NO_RANK; N],
             },
         }
     }
@@ -726,6 +736,9 @@ impl<const N: usize> Ruby<N> {
         }
         for m in best.fit_masks.iter_mut().take(n) {
             *m = 0;
+        }
+        for (d, r) in best.dist.iter_mut().zip(best.rank.iter_mut()).take(n) {
+            (*d, *r) = (p.outlier_distance.get(), NO_RANK);
         }
         for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
             if let (Some(slot), Some(line)) = (
@@ -1116,7 +1129,11 @@ fn reattach_deleted<const N: usize>(
     for k in slots(set.alive) {
         let _ = packed.push((bit(k), k, set.line(k)));
     }
-    for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
+    for ((pt, m), (dist, r)) in points
+        .iter()
+        .zip(set.masks.iter_mut())
+        .zip(set.dist.iter_mut().zip(set.rank.iter_mut()))
+    {
         if *m & gone == 0 {
             continue;
         }
@@ -1132,9 +1149,12 @@ fn reattach_deleted<const N: usize>(
             }
         }
         *m = closest.2;
-        if closest.2 != 0 {
+        (*dist, *r) = if closest.2 == 0 {
+            (limit, NO_RANK)
+        } else {
             stats.add(closest.1, closest.0);
-        }
+            (closest.0, rank(closest.1))
+        };
     }
 }
 
@@ -1192,16 +1212,23 @@ fn reattach<const N: usize>(
         // in slot order finds it.
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
-        let best = cols.best.get_mut(..n).unwrap_or(&mut []);
-        let ranks = cols.rank.get_mut(..n).unwrap_or(&mut []);
-        for (((&x, &y), &old), (best, r)) in xs
-            .iter()
-            .zip(ys)
-            .zip(set.masks.iter())
-            .zip(best.iter_mut().zip(ranks.iter_mut()))
-        {
-            let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
-            if old & moved != 0 {
+        let best = set.dist.get_mut(..n).unwrap_or(&mut []);
+        let ranks = set.rank.get_mut(..n).unwrap_or(&mut []);
+        // The points of the models that did not move, and the outliers,
+        // hold their distance and rank from the last re-attachment (the
+        // same line, the same bits); the points of a moved model start from
+        // the closest model that did not move.
+        if moved != 0 {
+            for (((&x, &y), &old), (best, r)) in xs
+                .iter()
+                .zip(ys)
+                .zip(set.masks.iter())
+                .zip(best.iter_mut().zip(ranks.iter_mut()))
+            {
+                if old & moved == 0 {
+                    continue;
+                }
+                let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
                     let k = usize::from(k);
@@ -1209,18 +1236,16 @@ fn reattach<const N: usize>(
                         (d_best, k_best) = (d, k);
                     }
                 }
-            } else if old != 0 {
-                let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
-                (d_best, k_best) = (set.line(k).distance_xy(x, y), k);
+                // With no model yet, the limit stands for the distance to
+                // beat: a moved model takes the point when within it
+                // (RUBY-REATTACH), and no test of the limit is left in the
+                // loop below.
+                (*best, *r) = if k_best < MAX_MODELS {
+                    (d_best, rank(k_best))
+                } else {
+                    (limit, NO_RANK)
+                };
             }
-            // With no model yet, the limit stands for the distance to beat:
-            // a moved model takes the point when within it (RUBY-REATTACH),
-            // and no test of the limit is left in the loop below.
-            (*best, *r) = if k_best < MAX_MODELS {
-                (d_best, rank(k_best))
-            } else {
-                (limit, NO_RANK)
-            };
         }
         // Each moved model over every point: one loop per model on f64
         // columns alone, without branches (a select per point), which the
