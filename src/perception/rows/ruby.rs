@@ -1158,6 +1158,19 @@ fn reattach_deleted<const N: usize>(
     }
 }
 
+/// After a strict pass of `models` (ranks and lines) over the points, the
+/// lowest rank among the models at each point's distance: the ties the
+/// strict pass left to the first model.
+fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], ranks: &mut [f64], models: &[(f64, Line)]) {
+    for ((&x, &y), (&best, r)) in xs.iter().zip(ys).zip(best.iter().zip(ranks.iter_mut())) {
+        for &(k, line) in models {
+            if line.distance_xy(x, y) - best == 0.0 && k < *r {
+                *r = k;
+            }
+        }
+    }
+}
+
 /// Re-attaches every point (Alg. 1, lines 21-24), then removes the models
 /// left with fewer than [`SEED_POINTS`] points and re-attaches theirs.
 //= spec/guyonneau2022.md#ruby-reattach-points-re-attached
@@ -1248,40 +1261,54 @@ fn reattach<const N: usize>(
             }
         }
         // Each moved model over every point: one loop per model on f64
-        // columns alone, without branches (a select per point), which the
-        // compiler vectorises. A point's distance to beat is never above
-        // the limit: the closest within it wins, ties to the lower slot.
-        // Two models per pass over the points, in slot order, halve the
-        // loads and stores of the columns.
-        let closer = |d: f64, k: f64, best: f64, r: f64| (d < best) | ((d <= best) & (k < r));
+        // columns alone, without branches (a minimum and a select per
+        // point), which the compiler vectorises. A point's distance to beat
+        // is never above the limit: the closest within it wins, ties to the
+        // lower slot. Two models per pass over the points, in slot order,
+        // halve the loads and stores of the columns. The pass takes a model
+        // strictly closer alone and notes whether any distance equalled the
+        // one to beat; only then does a second pass give each tied point
+        // the lowest slot among its closest (the least (distance, slot), as
+        // a scan of every model in slot order finds it).
         let mut pairs = changed.chunks_exact(2);
         for pair in pairs.by_ref() {
             let [(_, k1, l1), (_, k2, l2)] = pair else {
                 continue;
             };
             let (k1, k2) = (rank(usize::from(*k1)), rank(usize::from(*k2)));
+            let mut tie = false;
             for ((&x, &y), (best, r)) in
                 xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
                 let (mut b, mut q) = (*best, *r);
-                let take = closer(d1, k1, b, q);
+                tie |= d1 - b == 0.0;
+                let take = d1 < b;
                 b = if take { d1 } else { b };
                 q = if take { k1 } else { q };
-                let take = closer(d2, k2, b, q);
+                tie |= d2 - b == 0.0;
+                let take = d2 < b;
                 *best = if take { d2 } else { b };
                 *r = if take { k2 } else { q };
+            }
+            if tie {
+                lowest_on_ties(xs, ys, best, ranks, &[(k1, *l1), (k2, *l2)]);
             }
         }
         for &(_, k, line) in pairs.remainder() {
             let k = rank(usize::from(k));
+            let mut tie = false;
             for ((&x, &y), (best, r)) in
                 xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let d = line.distance_xy(x, y);
-                let take = closer(d, k, *best, *r);
+                tie |= d - *best == 0.0;
+                let take = d < *best;
                 *best = if take { d } else { *best };
                 *r = if take { k } else { *r };
+            }
+            if tie {
+                lowest_on_ties(xs, ys, best, ranks, &[(k, line)]);
             }
         }
         for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
@@ -1298,4 +1325,107 @@ fn reattach<const N: usize>(
         .fold(0_u64, |acc, k| acc | bit(k));
     reattach_deleted(set, few, points, &mut stats, p);
     stats
+}
+
+#[cfg(test)]
+mod tests {
+    //! The re-attachment's strict pass and its second pass on ties
+    //! (RUBY-REATTACH): a point at the same distance from a model that did
+    //! not move and from a moved one of a lower slot goes to the lower slot.
+
+    use super::*;
+
+    const N: usize = 16;
+
+    /// Row A (y = 0, slot 1, steady) holding every point of y = 0, the
+    /// point (4, 0) included, which lies on row B (y = x/2 − 2, slot 0,
+    /// moved) as well; B's own points; with `third`, a moved model in
+    /// slot 2 far from every point, so that B is re-attached in a pair.
+    fn reattached(third: bool) -> (ModelSet<N>, [(f64, f64); 9]) {
+        let pts = [
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (4.0, 0.0),
+            (5.0, 0.0),
+            (2.0, -1.0),
+            (3.0, -0.5),
+            (5.0, 0.5),
+            (6.0, 1.0),
+        ];
+        let p = RubyParams::authors(Variant::Rgop);
+        let flat = Line::new(0.0, 0.0).unwrap();
+        let slanted = Line::new(0.5, -2.0).unwrap();
+        let mut set = ModelSet::<N> {
+            alive: 0b11,
+            fitted: 0b11,
+            moved: 0b01,
+            lines: [Line::NONE; MAX_MODELS],
+            masks: [0; N],
+            fit_masks: [0; N],
+            dist: [0.0; N],
+            rank: [NO_RANK; N],
+        };
+        set.lines[0] = slanted;
+        set.lines[1] = flat;
+        if third {
+            set.lines[2] = Line::new(0.0, 3.0).unwrap();
+            set.alive |= 0b100;
+            set.moved |= 0b100;
+        }
+        let mut cols = Columns::<N> {
+            xs: [0.0; N],
+            ys: [0.0; N],
+        };
+        let mut points = [RowPoint {
+            position: Point2::origin(),
+            returns: 1,
+        }; 9];
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            cols.xs[i] = x;
+            cols.ys[i] = y;
+            points[i].position = Point2::new(x, y).unwrap();
+            // The flat row's points are attached to it, the others to B.
+            if y == 0.0 {
+                set.masks[i] = bit(1);
+                set.dist[i] = flat.distance_xy(x, y);
+                set.rank[i] = rank(1);
+            } else {
+                set.masks[i] = bit(0);
+            }
+        }
+        let _ = reattach(&mut set, &points, &mut cols, &p);
+        (set, pts)
+    }
+
+    /// Every point on the model of least (distance, slot) within the
+    /// outlier distance.
+    fn assert_closest(set: &ModelSet<N>, pts: &[(f64, f64)]) {
+        let limit = RubyParams::authors(Variant::Rgop).outlier_distance.get();
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            let expected = slots(set.alive)
+                .map(|k| (set.line(k).distance_xy(x, y), k))
+                .filter(|&(d, _)| d <= limit)
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+                .map_or(0, |(_, k)| bit(k));
+            assert_eq!(set.masks[i], expected, "point {i} at ({x}, {y})");
+        }
+    }
+
+    //= spec/guyonneau2022.md#ruby-reattach-points-re-attached
+    //= type=test
+    //# Every point MUST be attached to the model closest to it, or to several
+    //# models (every model within the outlier distance) when points are shared,
+    //# and MUST be an outlier when no model lies within the outlier distance;
+    //# a model left with fewer than three points MUST then be removed and its
+    //# points re-attached to the models left.
+    #[test]
+    fn a_tie_goes_to_the_lower_slot_alone_and_in_a_pair() {
+        for third in [false, true] {
+            let (set, pts) = reattached(third);
+            // (4, 0) lies on both rows: slot 0 takes it from slot 1.
+            assert_eq!(set.masks[3], bit(0), "third model: {third}");
+            assert_closest(&set, &pts);
+        }
+    }
 }
