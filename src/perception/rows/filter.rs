@@ -199,6 +199,8 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
         best: None,
         order: Vec::new(),
     };
+    // The lines taken, as bits (lines beyond 64 looked up in the rows').
+    let mut taken = 0_u64;
     // At most n assignments, each one pass over the n × m pairs.
     for _ in rows {
         let mut best: Option<(f64, usize, usize)> = None;
@@ -207,7 +209,11 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
                 continue;
             }
             for (j, line) in lines.iter().enumerate() {
-                if assignment.lines.contains(&Some(j)) {
+                let is_taken = match u32::try_from(j).ok().and_then(|j| 1_u64.checked_shl(j)) {
+                    Some(b) => taken & b != 0,
+                    None => assignment.lines.contains(&Some(j)),
+                };
+                if is_taken {
                     continue;
                 }
                 if let Some(d) = gate(line, previous, delta) {
@@ -220,6 +226,10 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
         let Some((_, i, j)) = best else { break };
         if let Some(slot) = assignment.lines.get_mut(i) {
             *slot = Some(j);
+            taken |= u32::try_from(j)
+                .ok()
+                .and_then(|j| 1_u64.checked_shl(j))
+                .unwrap_or(0);
         }
         //= spec/guyonneau2022.md#rows-filter-missing-computed-rows-eqs-15-17
         //# The best match i_best MUST be the found row whose line has the smallest D to

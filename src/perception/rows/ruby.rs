@@ -14,7 +14,7 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 use super::count_f64;
 use super::points::RowPoint;
 use crate::error::Precondition;
-use crate::geometry::fit::{fit_line, fit_line_weighted};
+use crate::geometry::fit::MIN_RELATIVE_X_SPREAD;
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::Meters;
 use crate::perception::furrow::lines::RowLine;
@@ -295,34 +295,101 @@ impl Line {
         libm::fabs(self.a * x + self.b - y) * self.inv_norm
     }
 
-    /// The line of least absolute deviations in y through `points`, by
-    /// `rounds` re-weightings of a least-squares start (RUBY-FIT), if
-    /// determined.
+    /// The line of least absolute deviations in y through the points of
+    /// columns `xs`, `ys`, by `rounds` re-weightings of a least-squares
+    /// start (RUBY-FIT), if determined.
     //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
     //# A model's line MUST be fitted to its points by iteratively reweighted
     //# least squares: a least-squares start (FIT-LINE), then the configured
     //# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
     //# point's residual in y to the line before.
     ///
-    /// Each round's weights are computed once into `weights` (as long as
-    /// `points` at least; the rounds stop where it is shorter).
-    fn fit(points: &[Point2<Robot>], rounds: u8, weights: &mut [f64]) -> Option<Self> {
-        let mut line = fit_line(points.iter()).ok()?;
-        for _ in 0..rounds {
-            let Some(weights) = weights.get_mut(..points.len()) else {
-                break;
-            };
-            for (w, p) in weights.iter_mut().zip(points) {
-                let r = libm::fabs(p.y() - line.a * p.x() - line.b);
-                *w = 1.0 / r.max(LAD_FLOOR);
+    /// `weights` is as long as the columns at least (the fit is refused
+    /// where it is shorter). The arithmetic is that of
+    /// `geometry::fit::fit_line` and `fit_line_weighted`, operation for
+    /// operation in their order (weighted means and the spread of x, then
+    /// sums over the centred and scaled points), so that the line is the
+    /// same, bit for bit: `fit_line` is the weighted fit with every weight 1,
+    /// and the spread of x, the same in every round, is found once.
+    fn fit(xs: &[f64], ys: &[f64], rounds: u8, weights: &mut [f64]) -> Option<Self> {
+        let weights = weights.get_mut(..xs.len())?;
+        let (mut min_x, mut max_x) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64);
+        for ((&x, &y), w) in xs.iter().zip(ys).zip(weights.iter_mut()) {
+            *w = 1.0;
+            sum_x += x;
+            sum_y += y;
+            // The points are finite: as `f64::min` and `f64::max` (a zero's
+            // sign aside, which leaves the spread the same).
+            if x < min_x {
+                min_x = x;
             }
-            match fit_line_weighted(points.iter().zip(weights.iter().copied())) {
-                Ok(next) => line = next,
-                Err(_) => break,
+            if x > max_x {
+                max_x = x;
             }
         }
-        Self::new(line.a, line.b)
+        let spread = (min_x, max_x);
+        let sums = (count_f64(xs.len()), sum_x, sum_y);
+        let (mut a, mut b) = centred_fit(xs, ys, weights, sums, spread)?;
+        for _ in 0..rounds {
+            let (mut weight, mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64, 0.0_f64);
+            // A weight is finite, and > 0 unless the residual overflows.
+            let mut valid = true;
+            for ((&x, &y), w) in xs.iter().zip(ys).zip(weights.iter_mut()) {
+                let r = libm::fabs(y - a * x - b);
+                *w = 1.0 / if r > LAD_FLOOR { r } else { LAD_FLOOR };
+                valid &= *w > 0.0;
+                weight += *w;
+                sum_x += *w * x;
+                sum_y += *w * y;
+            }
+            if !valid {
+                break;
+            }
+            match centred_fit(xs, ys, weights, (weight, sum_x, sum_y), spread) {
+                Some(next) => (a, b) = next,
+                None => break,
+            }
+        }
+        Self::new(a, b)
     }
+}
+
+/// The weighted least-squares line y = a x + b through the points of
+/// columns `xs`, `ys` with `weights` (FIT-WEIGHTS), from the sums of the
+/// weights and of the weighted x and y and the least and greatest x: the
+/// second pass of `geometry::fit::fit_line_weighted`, its checks included
+/// (`None` where it gives an error).
+fn centred_fit(
+    xs: &[f64],
+    ys: &[f64],
+    weights: &[f64],
+    (weight, sum_x, sum_y): (f64, f64, f64),
+    (min_x, max_x): (f64, f64),
+) -> Option<(f64, f64)> {
+    if xs.len() < 2 {
+        return None;
+    }
+    let mean_x = sum_x / weight;
+    let mean_y = sum_y / weight;
+    let h = (max_x - mean_x).max(mean_x - min_x);
+    if !(mean_x.is_finite() && mean_y.is_finite() && h.is_finite())
+        || h < MIN_RELATIVE_X_SPREAD * mean_x.abs().max(1.0)
+    {
+        return None;
+    }
+    let (mut suu, mut suv) = (0.0_f64, 0.0_f64);
+    for ((&x, &y), &w) in xs.iter().zip(ys).zip(weights) {
+        let (u, v) = ((x - mean_x) / h, y - mean_y);
+        suu += w * u * u;
+        suv += w * u * v;
+    }
+    if suu.is_nan() || suu <= 0.0 {
+        return None;
+    }
+    let a = suv / suu / h;
+    let b = mean_y - a * mean_x;
+    (a.is_finite() && b.is_finite()).then_some((a, b))
 }
 
 /// One model of a set, with its points' count and energy (eq. 6).
@@ -392,14 +459,12 @@ fn slot_of(rank: f64) -> usize {
 /// The rank of no model.
 const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
-/// The points' coordinates in columns and each point's closest model so
-/// far (its distance and [`rank`]), for the re-attachment's inner loops.
+/// The points' coordinates in columns, for the re-attachment's inner loops
+/// and the fits.
 #[derive(Debug, Clone)]
 struct Columns<const N: usize> {
     xs: [f64; N],
     ys: [f64; N],
-    best: [f64; N],
-    rank: [f64; N],
 }
 
 /// A set of models and which points belong to each.
@@ -417,6 +482,12 @@ struct ModelSet<const N: usize> {
     masks: [u64; N],
     /// The masks when the models were last fitted.
     fit_masks: [u64; N],
+    /// Without shared points: each point's distance to its model and the
+    /// model's [`rank`], or the outlier distance and [`NO_RANK`] for an
+    /// outlier, as the last re-attachment left them. Only the points of
+    /// models moved since may be out of date.
+    dist: [f64; N],
+    rank: [f64; N],
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
@@ -469,36 +540,53 @@ impl<const N: usize> ModelSet<N> {
         {
             *m = *o;
         }
+        for (d, o) in self.dist.iter_mut().zip(other.dist.iter()).take(n) {
+            *d = *o;
+        }
+        for (r, o) in self.rank.iter_mut().zip(other.rank.iter()).take(n) {
+            *r = *o;
+        }
     }
 
-    /// Copies the points of model `k` into `out`, which it returns cut to
-    /// their number.
-    fn members<'a>(
+    /// The line of model `k` fitted to its points (RUBY-FIT), the points'
+    /// coordinates taken from `cols` (the first `n`) into `scratch`.
+    fn fit(
         &self,
-        points: &[RowPoint],
         k: usize,
-        out: &'a mut [Point2<Robot>; N],
-    ) -> &'a [Point2<Robot>] {
+        cols: &Columns<N>,
+        n: usize,
+        scratch: &mut Scratch<N>,
+        rounds: u8,
+    ) -> Option<Line> {
         let b = bit(k);
         let mut count = 0_usize;
-        for (p, _) in points
+        for ((&x, &y), _) in cols
+            .xs
             .iter()
+            .zip(cols.ys.iter())
             .zip(self.masks.iter())
+            .take(n)
             .filter(|(_, &m)| m & b != 0)
         {
-            if let Some(slot) = out.get_mut(count) {
-                *slot = p.position;
+            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
+                (*mx, *my) = (x, y);
                 count = count.saturating_add(1);
             }
         }
-        out.get(..count).unwrap_or(&[])
+        Line::fit(
+            scratch.xs.get(..count).unwrap_or(&[]),
+            scratch.ys.get(..count).unwrap_or(&[]),
+            rounds,
+            &mut scratch.weights,
+        )
     }
 }
 
-/// Room for one model's fit: its points and their weights.
+/// Room for one model's fit: its points' coordinates and their weights.
 #[derive(Debug, Clone)]
 struct Scratch<const N: usize> {
-    points: [Point2<Robot>; N],
+    xs: [f64; N],
+    ys: [f64; N],
     weights: [f64; N],
 }
 
@@ -539,6 +627,8 @@ impl<const N: usize> Ruby<N> {
             lines: [Line::NONE; MAX_MODELS],
             masks: [0; N],
             fit_masks: [0; N],
+            dist: [0.0; N],
+            rank: [NO_RANK; N],
         };
         Self {
             config,
@@ -548,14 +638,13 @@ impl<const N: usize> Ruby<N> {
             kept: 0,
             weights: [0.0; N],
             scratch: Scratch {
-                points: [Point2::origin(); N],
+                xs: [0.0; N],
+                ys: [0.0; N],
                 weights: [0.0; N],
             },
             columns: Columns {
                 xs: [0.0; N],
                 ys: [0.0; N],
-                best: [0.0; N],
-                rank: [NO_RANK; N],
             },
         }
     }
@@ -648,6 +737,9 @@ impl<const N: usize> Ruby<N> {
         for m in best.fit_masks.iter_mut().take(n) {
             *m = 0;
         }
+        for (d, r) in best.dist.iter_mut().zip(best.rank.iter_mut()).take(n) {
+            (*d, *r) = (p.outlier_distance.get(), NO_RANK);
+        }
         for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
             if let (Some(slot), Some(line)) = (
                 best.lines.get_mut(k),
@@ -670,7 +762,7 @@ impl<const N: usize> Ruby<N> {
         // The previous lines, refitted to the points they attach on this
         // scan (RUBY-ITERATION).
         reattach(best, points, &mut self.columns, &p);
-        merge(best, points, &mut self.scratch, &p);
+        merge(best, &self.columns, n, &mut self.scratch, &p);
         let mut stats = reattach(best, points, &mut self.columns, &p);
         let start_energy = energy(best, &stats, n, &self.weights, &p);
         let mut best_energy = start_energy;
@@ -680,7 +772,7 @@ impl<const N: usize> Ruby<N> {
             let (best, candidate) = pair(&mut self.sets, self.kept);
             candidate.copy_from(best, n);
             search(candidate, points, &mut self.rng, &p);
-            merge(candidate, points, &mut self.scratch, &p);
+            merge(candidate, &self.columns, n, &mut self.scratch, &p);
             let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
             let gone = delete(candidate, &candidate_stats, &p);
             reattach_deleted(candidate, gone, points, &mut candidate_stats, &p);
@@ -840,9 +932,12 @@ fn search_side<const N: usize>(
         added = added.saturating_add(1);
         let seeds = seed.map(|i| points.get(i).map(|q| q.position));
         if let [Some(a), Some(b), Some(c)] = seeds {
-            if let (Some(line), Some(l)) =
-                (Line::fit(&[a, b, c], 0, &mut []), set.lines.get_mut(slot))
-            {
+            let xs = [a.x(), b.x(), c.x()];
+            let ys = [a.y(), b.y(), c.y()];
+            if let (Some(line), Some(l)) = (
+                Line::fit(&xs, &ys, 0, &mut [0.0; SEED_POINTS]),
+                set.lines.get_mut(slot),
+            ) {
                 *l = line;
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
@@ -879,11 +974,11 @@ fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
 //# iteration's first merge pass, merged or not.
 fn merge<const N: usize>(
     set: &mut ModelSet<N>,
-    points: &[RowPoint],
+    cols: &Columns<N>,
+    n: usize,
     scratch: &mut Scratch<N>,
     p: &RubyParams,
 ) {
-    let n = points.len();
     // Models whose points changed since they were fitted.
     let changed = set
         .masks
@@ -918,8 +1013,7 @@ fn merge<const N: usize>(
                 set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                let members = set.members(points, j, &mut scratch.points);
-                if let Some(line) = Line::fit(members, p.fit_rounds, &mut scratch.weights) {
+                if let Some(line) = set.fit(j, cols, n, scratch, p.fit_rounds) {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
                         if *l != line {
@@ -1035,7 +1129,11 @@ fn reattach_deleted<const N: usize>(
     for k in slots(set.alive) {
         let _ = packed.push((bit(k), k, set.line(k)));
     }
-    for (pt, m) in points.iter().zip(set.masks.iter_mut()) {
+    for ((pt, m), (dist, r)) in points
+        .iter()
+        .zip(set.masks.iter_mut())
+        .zip(set.dist.iter_mut().zip(set.rank.iter_mut()))
+    {
         if *m & gone == 0 {
             continue;
         }
@@ -1051,8 +1149,24 @@ fn reattach_deleted<const N: usize>(
             }
         }
         *m = closest.2;
-        if closest.2 != 0 {
+        (*dist, *r) = if closest.2 == 0 {
+            (limit, NO_RANK)
+        } else {
             stats.add(closest.1, closest.0);
+            (closest.0, rank(closest.1))
+        };
+    }
+}
+
+/// After a strict pass of `models` (ranks and lines) over the points, the
+/// lowest rank among the models at each point's distance: the ties the
+/// strict pass left to the first model.
+fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], ranks: &mut [f64], models: &[(f64, Line)]) {
+    for ((&x, &y), (&best, r)) in xs.iter().zip(ys).zip(best.iter().zip(ranks.iter_mut())) {
+        for &(k, line) in models {
+            if line.distance_xy(x, y) - best == 0.0 && k < *r {
+                *r = k;
+            }
         }
     }
 }
@@ -1111,16 +1225,23 @@ fn reattach<const N: usize>(
         // in slot order finds it.
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
-        let best = cols.best.get_mut(..n).unwrap_or(&mut []);
-        let ranks = cols.rank.get_mut(..n).unwrap_or(&mut []);
-        for (((&x, &y), &old), (best, r)) in xs
-            .iter()
-            .zip(ys)
-            .zip(set.masks.iter())
-            .zip(best.iter_mut().zip(ranks.iter_mut()))
-        {
-            let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
-            if old & moved != 0 {
+        let best = set.dist.get_mut(..n).unwrap_or(&mut []);
+        let ranks = set.rank.get_mut(..n).unwrap_or(&mut []);
+        // The points of the models that did not move, and the outliers,
+        // hold their distance and rank from the last re-attachment (the
+        // same line, the same bits); the points of a moved model start from
+        // the closest model that did not move.
+        if moved != 0 {
+            for (((&x, &y), &old), (best, r)) in xs
+                .iter()
+                .zip(ys)
+                .zip(set.masks.iter())
+                .zip(best.iter_mut().zip(ranks.iter_mut()))
+            {
+                if old & moved == 0 {
+                    continue;
+                }
+                let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
                     let k = usize::from(k);
@@ -1128,54 +1249,66 @@ fn reattach<const N: usize>(
                         (d_best, k_best) = (d, k);
                     }
                 }
-            } else if old != 0 {
-                let k = usize::try_from(old.trailing_zeros()).unwrap_or(MAX_MODELS);
-                (d_best, k_best) = (set.line(k).distance_xy(x, y), k);
+                // With no model yet, the limit stands for the distance to
+                // beat: a moved model takes the point when within it
+                // (RUBY-REATTACH), and no test of the limit is left in the
+                // loop below.
+                (*best, *r) = if k_best < MAX_MODELS {
+                    (d_best, rank(k_best))
+                } else {
+                    (limit, NO_RANK)
+                };
             }
-            // With no model yet, the limit stands for the distance to beat:
-            // a moved model takes the point when within it (RUBY-REATTACH),
-            // and no test of the limit is left in the loop below.
-            (*best, *r) = if k_best < MAX_MODELS {
-                (d_best, rank(k_best))
-            } else {
-                (limit, NO_RANK)
-            };
         }
         // Each moved model over every point: one loop per model on f64
-        // columns alone, without branches (a select per point), which the
-        // compiler vectorises. A point's distance to beat is never above
-        // the limit: the closest within it wins, ties to the lower slot.
-        // Two models per pass over the points, in slot order, halve the
-        // loads and stores of the columns.
-        let closer = |d: f64, k: f64, best: f64, r: f64| (d < best) | ((d <= best) & (k < r));
+        // columns alone, without branches (a minimum and a select per
+        // point), which the compiler vectorises. A point's distance to beat
+        // is never above the limit: the closest within it wins, ties to the
+        // lower slot. Two models per pass over the points, in slot order,
+        // halve the loads and stores of the columns. The pass takes a model
+        // strictly closer alone and notes whether any distance equalled the
+        // one to beat; only then does a second pass give each tied point
+        // the lowest slot among its closest (the least (distance, slot), as
+        // a scan of every model in slot order finds it).
         let mut pairs = changed.chunks_exact(2);
         for pair in pairs.by_ref() {
             let [(_, k1, l1), (_, k2, l2)] = pair else {
                 continue;
             };
             let (k1, k2) = (rank(usize::from(*k1)), rank(usize::from(*k2)));
+            let mut tie = false;
             for ((&x, &y), (best, r)) in
                 xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
                 let (mut b, mut q) = (*best, *r);
-                let take = closer(d1, k1, b, q);
+                tie |= d1 - b == 0.0;
+                let take = d1 < b;
                 b = if take { d1 } else { b };
                 q = if take { k1 } else { q };
-                let take = closer(d2, k2, b, q);
+                tie |= d2 - b == 0.0;
+                let take = d2 < b;
                 *best = if take { d2 } else { b };
                 *r = if take { k2 } else { q };
+            }
+            if tie {
+                lowest_on_ties(xs, ys, best, ranks, &[(k1, *l1), (k2, *l2)]);
             }
         }
         for &(_, k, line) in pairs.remainder() {
             let k = rank(usize::from(k));
+            let mut tie = false;
             for ((&x, &y), (best, r)) in
                 xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
             {
                 let d = line.distance_xy(x, y);
-                let take = closer(d, k, *best, *r);
+                tie |= d - *best == 0.0;
+                let take = d < *best;
                 *best = if take { d } else { *best };
                 *r = if take { k } else { *r };
+            }
+            if tie {
+                lowest_on_ties(xs, ys, best, ranks, &[(k, line)]);
             }
         }
         for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
@@ -1192,4 +1325,107 @@ fn reattach<const N: usize>(
         .fold(0_u64, |acc, k| acc | bit(k));
     reattach_deleted(set, few, points, &mut stats, p);
     stats
+}
+
+#[cfg(test)]
+mod tests {
+    //! The re-attachment's strict pass and its second pass on ties
+    //! (RUBY-REATTACH): a point at the same distance from a model that did
+    //! not move and from a moved one of a lower slot goes to the lower slot.
+
+    use super::*;
+
+    const N: usize = 16;
+
+    /// Row A (y = 0, slot 1, steady) holding every point of y = 0, the
+    /// point (4, 0) included, which lies on row B (y = x/2 − 2, slot 0,
+    /// moved) as well; B's own points; with `third`, a moved model in
+    /// slot 2 far from every point, so that B is re-attached in a pair.
+    fn reattached(third: bool) -> (ModelSet<N>, [(f64, f64); 9]) {
+        let pts = [
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (4.0, 0.0),
+            (5.0, 0.0),
+            (2.0, -1.0),
+            (3.0, -0.5),
+            (5.0, 0.5),
+            (6.0, 1.0),
+        ];
+        let p = RubyParams::authors(Variant::Rgop);
+        let flat = Line::new(0.0, 0.0).unwrap();
+        let slanted = Line::new(0.5, -2.0).unwrap();
+        let mut set = ModelSet::<N> {
+            alive: 0b11,
+            fitted: 0b11,
+            moved: 0b01,
+            lines: [Line::NONE; MAX_MODELS],
+            masks: [0; N],
+            fit_masks: [0; N],
+            dist: [0.0; N],
+            rank: [NO_RANK; N],
+        };
+        set.lines[0] = slanted;
+        set.lines[1] = flat;
+        if third {
+            set.lines[2] = Line::new(0.0, 3.0).unwrap();
+            set.alive |= 0b100;
+            set.moved |= 0b100;
+        }
+        let mut cols = Columns::<N> {
+            xs: [0.0; N],
+            ys: [0.0; N],
+        };
+        let mut points = [RowPoint {
+            position: Point2::origin(),
+            returns: 1,
+        }; 9];
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            cols.xs[i] = x;
+            cols.ys[i] = y;
+            points[i].position = Point2::new(x, y).unwrap();
+            // The flat row's points are attached to it, the others to B.
+            if y == 0.0 {
+                set.masks[i] = bit(1);
+                set.dist[i] = flat.distance_xy(x, y);
+                set.rank[i] = rank(1);
+            } else {
+                set.masks[i] = bit(0);
+            }
+        }
+        let _ = reattach(&mut set, &points, &mut cols, &p);
+        (set, pts)
+    }
+
+    /// Every point on the model of least (distance, slot) within the
+    /// outlier distance.
+    fn assert_closest(set: &ModelSet<N>, pts: &[(f64, f64)]) {
+        let limit = RubyParams::authors(Variant::Rgop).outlier_distance.get();
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            let expected = slots(set.alive)
+                .map(|k| (set.line(k).distance_xy(x, y), k))
+                .filter(|&(d, _)| d <= limit)
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+                .map_or(0, |(_, k)| bit(k));
+            assert_eq!(set.masks[i], expected, "point {i} at ({x}, {y})");
+        }
+    }
+
+    //= spec/guyonneau2022.md#ruby-reattach-points-re-attached
+    //= type=test
+    //# Every point MUST be attached to the model closest to it, or to several
+    //# models (every model within the outlier distance) when points are shared,
+    //# and MUST be an outlier when no model lies within the outlier distance;
+    //# a model left with fewer than three points MUST then be removed and its
+    //# points re-attached to the models left.
+    #[test]
+    fn a_tie_goes_to_the_lower_slot_alone_and_in_a_pair() {
+        for third in [false, true] {
+            let (set, pts) = reattached(third);
+            // (4, 0) lies on both rows: slot 0 takes it from slot 1.
+            assert_eq!(set.masks[3], bit(0), "third model: {third}");
+            assert_closest(&set, &pts);
+        }
+    }
 }
