@@ -41,20 +41,20 @@ const BUILTIN_SEED: u64 = 2022;
 /// The seed sweep of the bounds: 100 other fields with other noise.
 const SWEEP: std::ops::RangeInclusive<u64> = 1..=100;
 
-/// No seed may run over a crop plant; the smallest tyre-to-crop clearance
-/// is printed, since the rear-axle metrics cannot show how close a front
-/// tyre came.
-///
-/// The closest is seed 5: 17-19 m into the beans the row detector's
-/// estimate is off the true centre line by up to 0.093 m, then 0.106 m, for
-/// about half a second each while its verdict stays Enter (a cluster of four
-/// wide beans, footprint radius 0.102-0.115 m, 2-3σ of the generator's
-/// 0.07 ± 0.015 m, lies in the LiDAR's view band then). Furrow pursuing
-/// follows it and the heading swings off the rows while O stays within
-/// 0.03 m of the centre line, moving the front axle 2 m ahead sideways. With
-/// Table 2's gains unscheduled the front-left tyre overlapped the 0.115 m
-/// bean of the left row at 21.1 m; with the gains scheduled for the
-/// steering (PT-SCHEDULE, the scenario's `[control.schedule]`) it clears it.
+// No seed may run over a crop plant; the smallest tyre-to-crop clearance
+// is printed, since the rear-axle metrics cannot show how close a front
+// tyre came.
+//
+// The closest is seed 5: 17-19 m into the beans the row detector's
+// estimate is off the true centre line by up to 0.093 m, then 0.106 m, for
+// about half a second each while its verdict stays Enter (a cluster of four
+// wide beans, footprint radius 0.102-0.115 m, 2-3σ of the generator's
+// 0.07 ± 0.015 m, lies in the LiDAR's view band then). Furrow pursuing
+// follows it and the heading swings off the rows while O stays within
+// 0.03 m of the centre line, moving the front axle 2 m ahead sideways. With
+// Table 2's gains unscheduled the front-left tyre overlapped the 0.115 m
+// bean of the left row at 21.1 m; with the gains scheduled for the
+// steering (PT-SCHEDULE, the scenario's `[control.schedule]`) it clears it.
 
 fn prepare() -> (Setup, SimRng) {
     runner::prepare(&Source::builtin(SCENARIO).unwrap()).unwrap()
