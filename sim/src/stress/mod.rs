@@ -165,6 +165,36 @@ pub const CLASSES: &[Class] = &[
             },
         ],
     },
+    Class {
+        name: "outage-at-plot-end",
+        stresses: "GNSS lost 1, 2.6 or 5 s before a plot ends, volunteers past it, a U-turn after",
+        cases: &[
+            Case {
+                scenario: "outage-1s.toml",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "outage-2_6s.toml",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "outage-5s.toml",
+                bounds: CROPS,
+            },
+            Case {
+                scenario: "outage-maize-fast.toml",
+                bounds: CROPS,
+            },
+        ],
+    },
+    Class {
+        name: "speed-segments",
+        stresses: "a path whose segments set their own speeds, through a U-turn",
+        cases: &[Case {
+            scenario: "speed-segments-uturn.toml",
+            bounds: &[ScenarioChecks],
+        }],
+    },
 ];
 
 /// The folder of the campaign's own scenario files.
