@@ -15,6 +15,7 @@ mod lidar;
 mod path;
 mod run;
 mod sensors;
+mod shape;
 mod switching;
 mod terrain;
 mod vehicle;
@@ -118,7 +119,7 @@ pub fn build(
     let check = Checker::new(origin);
     check_name(&check, &file.name)?;
 
-    let plots = world::plots(file.world.as_ref(), &check)?;
+    let plots = world::plots(file.world.as_ref(), &check, base_dir)?;
     let specs: Vec<PlotSpec> = plots.iter().map(|p| p.spec.clone()).collect();
     let (path, pieces) = path::path(file, &specs, base_dir, &check, rng)?;
     let vehicle = vehicle::vehicle(file, &check)?;
@@ -126,7 +127,7 @@ pub fn build(
     let initial = path::initial_pose(file, &check, &path)?;
     // The plants are drawn after the path's recording noise, the hedges after the plants.
     let plants = world::plants(file.world.as_ref(), &plots, &check, rng)?;
-    let (hedges, obstacles) = world::hedges(file.world.as_ref(), &check, rng)?;
+    let (hedges, obstacles) = world::hedges(file.world.as_ref(), &check, base_dir, rng)?;
     let world = SimWorld {
         terrain: terrain::terrain(file, &check)?,
         plants,
