@@ -129,6 +129,24 @@ pub struct AlongPlots {
     pub lead_in_m: f64,
     /// Straight run-out after the last plot, along its heading, metres.
     pub run_out_m: f64,
+    /// How one plot's end is joined to the next plot's start (default `"straight"`).
+    #[serde(default)]
+    pub join: JoinName,
+    /// Turning radius of a `"dubins"` join, metres (default: the vehicle's
+    /// least, wheelbase / tan(max steering)).
+    pub turning_radius_m: Option<f64>,
+}
+
+/// How `[path.along_plots]` joins consecutive plots.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JoinName {
+    /// A straight line: a kink where the headings differ.
+    #[default]
+    Straight,
+    /// The shortest arc-line-arc path of the turning radius (Dubins):
+    /// the heading is continuous.
+    Dubins,
 }
 
 /// `[path.start]`: the pose where the first segment starts, world frame.

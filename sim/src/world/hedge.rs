@@ -443,6 +443,58 @@ impl PostRowSpec {
     }
 }
 
+/// Posts of `radius` m every `spacing` m along `curve`, from its start
+/// (a row of trunks or posts): post `k` at abscissa `k · spacing`.
+#[must_use]
+pub fn posts_along(curve: &Curve, spacing: f64, radius: f64) -> Vec<Circle> {
+    if !(spacing > 0.0 && spacing.is_finite()) {
+        return Vec::new();
+    }
+    let count = (curve.length() / spacing + 1e-9).floor().min(1e6) as usize;
+    (0..=count)
+        .map(|k| {
+            let (x, y, _) = curve.pose_at(k as f64 * spacing);
+            Circle {
+                center: [x, y],
+                radius,
+            }
+        })
+        .collect()
+}
+
+/// A fence along the polyline `vertices`: a post of `radius` m at every
+/// vertex and evenly between them, at most `spacing` m apart; with `wall`,
+/// also the segments between the vertices (a thin wall a LiDAR always hits;
+/// without it, wires a LiDAR misses: only the posts are seen).
+#[must_use]
+pub fn fence(vertices: &[[f64; 2]], spacing: f64, radius: f64, wall: bool) -> Obstacles {
+    let mut out = Obstacles::default();
+    if let Some(first) = vertices.first() {
+        out.circles.push(Circle {
+            center: *first,
+            radius,
+        });
+    }
+    for w in vertices.windows(2) {
+        let (Some(a), Some(b)) = (w.first(), w.get(1)) else {
+            continue;
+        };
+        let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let n = (length / spacing).ceil().clamp(1.0, 1e6) as usize;
+        for k in 1..=n {
+            let t = k as f64 / n as f64;
+            out.circles.push(Circle {
+                center: [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])],
+                radius,
+            });
+        }
+        if wall {
+            out.segments.push(Segment { a: *a, b: *b });
+        }
+    }
+    out
+}
+
 /// Everything a horizontal LiDAR can hit.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Obstacles {
@@ -469,6 +521,12 @@ impl Obstacles {
         let segments = spec.generate(rng)?;
         self.segments.extend(segments);
         Ok(())
+    }
+
+    /// Adds the obstacles of `other`.
+    pub fn extend(&mut self, other: Obstacles) {
+        self.segments.extend(other.segments);
+        self.circles.extend(other.circles);
     }
 
     /// Adds a generated post row.

@@ -42,6 +42,14 @@ pub(super) struct Vertices {
 }
 
 impl Vertices {
+    /// Vertices written inline in the field `field`.
+    pub fn inline(field: &str) -> Self {
+        Self {
+            field: field.to_owned(),
+            csv: None,
+        }
+    }
+
     /// The error `e` of the curve, at the vertex it names.
     pub fn error(&self, check: &Checker<'_>, e: &CurveError) -> ScenarioError {
         let vertex = match *e {
