@@ -226,12 +226,22 @@ fn sample_along_plots(
         }
         let joined = match (radius, i) {
             (Some(r), 1..) => {
-                let join = dubins_join(plots.get(i - 1), plot, r).map_err(|e| {
+                let join = dubins_join(plots.get(i - 1), plot, lead_in, r).map_err(|e| {
                     check.error(
                         &format!("world.plots[{i}].start"),
                         &format!("no Dubins join from the previous plot: {e}"),
                     )
                 })?;
+                // An arc beyond a half turn is a loop: the plots are too
+                // close for the turning radius.
+                if join.segments().iter().any(|g| {
+                    g.curvature.get() != 0.0 && g.length.get() > core::f64::consts::PI * r + 1e-9
+                }) {
+                    return Err(check.error(
+                        &format!("world.plots[{i}].start"),
+                        &format!("the Dubins join of radius {r} m from the previous plot would loop: move the plot further on or use a smaller `turning_radius_m`"),
+                    ));
+                }
                 append_dubins(
                     &join,
                     &mut points,
@@ -239,7 +249,7 @@ fn sample_along_plots(
                     &mut s_total,
                     step,
                     capacity,
-                )
+                ) && straight(&mut points, &mut pieces, &mut s_total, [x, y])
             }
             _ => straight(&mut points, &mut pieces, &mut s_total, [x, y]),
         };
@@ -282,14 +292,17 @@ fn sample_along_plots(
 }
 
 /// The shortest Dubins path of `radius` from the end of plot `from` (its
-/// true centre line's end pose) to the start of plot `to`.
+/// true centre line's end pose) to `lead_in` m before the start of plot `to`
+/// along its heading (the vehicle is straight when it reaches the rows).
 fn dubins_join(
     from: Option<&PlotSpec>,
     to: &PlotSpec,
+    lead_in: f64,
     radius: f64,
 ) -> Result<DubinsPath, fieldguide::Precondition> {
     let (xe, ye, he) = from.map_or((f64::NAN, f64::NAN, f64::NAN), |p| p.centre_line(p.length));
     let (xs, ys, hs) = to.centre_line(0.0);
+    let (xs, ys) = (xs - lead_in * hs.cos(), ys - lead_in * hs.sin());
     let radius = TurningRadius::new(Meters::new(radius)?)?;
     shortest(
         &Pose2::<World>::new(xe, ye, he)?,
