@@ -43,6 +43,25 @@ pub enum ScenarioError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A cell (or a line) of a CSV file a field refers to is wrong.
+    Table(Box<TableError>),
+}
+
+/// Where a CSV file a scenario field refers to is wrong, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TableError {
+    /// The scenario file or built-in name.
+    pub origin: String,
+    /// The dotted path of the field naming the CSV file.
+    pub field: String,
+    /// The CSV file, as the scenario names it.
+    pub file: String,
+    /// The line, from 1.
+    pub line: usize,
+    /// The column, from 1, and its header name.
+    pub column: (usize, String),
+    /// What is wrong with it.
+    pub reason: String,
 }
 
 impl ScenarioError {
@@ -51,6 +70,16 @@ impl ScenarioError {
     pub fn field(&self) -> Option<&str> {
         match self {
             Self::Field { field, .. } => Some(field),
+            Self::Table(t) => Some(&t.field),
+            _ => None,
+        }
+    }
+
+    /// The CSV file, line and column (from 1) when the error is about a cell.
+    #[must_use]
+    pub fn cell(&self) -> Option<(&str, usize, usize)> {
+        match self {
+            Self::Table(t) => Some((&t.file, t.line, t.column.0)),
             _ => None,
         }
     }
@@ -85,6 +114,11 @@ impl fmt::Display for ScenarioError {
                 field,
                 reason,
             } => write!(f, "{origin}: field `{field}`: {reason}"),
+            Self::Table(t) => write!(
+                f,
+                "{}: field `{}`: {}:{}:{} (column `{}`): {}",
+                t.origin, t.field, t.file, t.line, t.column.0, t.column.1, t.reason
+            ),
         }
     }
 }

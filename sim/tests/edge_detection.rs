@@ -48,6 +48,7 @@ fn run(seeds: u64, poses: usize) -> Tally {
                     raggedness: 0.05,
                     vertex_spacing: 0.2,
                     gaps: vec![[20.0, 22.0]],
+                    centre: None,
                 },
                 &mut rng,
             )

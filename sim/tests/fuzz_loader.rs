@@ -52,6 +52,10 @@ fn check_refusal(e: &ScenarioError) {
         ScenarioError::Read { file, .. } => {
             assert!(message.contains(&file.display().to_string()), "{message}");
         }
+        ScenarioError::Table(t) => {
+            assert_eq!(t.origin, ORIGIN);
+            assert!(message.contains(&t.file) && t.line >= 1, "{message}");
+        }
         ScenarioError::NotFound { .. } => panic!("a text is never looked up: {message}"),
     }
     if !matches!(e, ScenarioError::Read { .. }) {

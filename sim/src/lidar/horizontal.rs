@@ -401,6 +401,7 @@ mod tests {
                 raggedness: 0.03,
                 vertex_spacing: 0.25,
                 gaps: vec![],
+                centre: None,
             },
             &mut rng,
         )

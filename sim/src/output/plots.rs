@@ -310,16 +310,13 @@ fn offset_lines(setup: &Setup) -> Vec<Vec<(f64, f64)>> {
     for h in &setup.world.hedges {
         let spec = &h.spec;
         // The side of the hedge where the path starts.
-        let (c, sn) = (spec.heading.cos(), spec.heading.sin());
-        let across = -(start.0 - spec.start[0]) * sn + (start.1 - spec.start[1]) * c;
-        let line = if across >= 0.0 {
+        let line = if spec.across(start.0, start.1) >= 0.0 {
             0.5 * spec.thickness + d
         } else {
             -0.5 * spec.thickness - d
         };
         for [a, b] in spec.pieces() {
-            let (p, q) = (spec.point(a, line), spec.point(b, line));
-            lines.push(vec![(p[0], p[1]), (q[0], q[1])]);
+            lines.push(spec.line(a, b, line).iter().map(|p| (p[0], p[1])).collect());
         }
     }
     lines

@@ -17,6 +17,12 @@ impl<'a> Checker<'a> {
         Self { origin }
     }
 
+    /// The scenario's name in messages (its file or built-in name).
+    #[must_use]
+    pub const fn origin(&self) -> &'a str {
+        self.origin
+    }
+
     /// The error "`field`: `reason`".
     #[must_use]
     pub fn error(&self, field: &str, reason: &str) -> ScenarioError {

@@ -8,6 +8,7 @@ pub mod check;
 pub mod reference;
 pub mod schema;
 pub mod setup;
+pub mod table;
 
 use std::path::{Path, PathBuf};
 

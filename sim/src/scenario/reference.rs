@@ -4,7 +4,10 @@
 use std::path::Path;
 
 use super::check::Checker;
-use super::schema::{AlongPlots, PathSection, Segment, StartPose};
+use fieldguide::planning::dubins::{shortest, DubinsPath, TurningRadius};
+use fieldguide::{Meters, Pose2, World};
+
+use super::schema::{AlongPlots, JoinName, PathSection, Segment, StartPose};
 use crate::error::ScenarioError;
 use crate::rng::SimRng;
 use crate::world::crops::PlotSpec;
@@ -67,6 +70,7 @@ pub fn straight_intervals(pieces: &[Piece]) -> Vec<(f64, f64)> {
 pub fn waypoints(
     section: &PathSection,
     plots: &[PlotSpec],
+    min_turn_radius: f64,
     capacity: usize,
     base_dir: Option<&Path>,
     check: &Checker<'_>,
@@ -104,7 +108,7 @@ pub fn waypoints(
             if section.start.is_some() {
                 return Err(check.error("path.start", "not allowed with `path.along_plots`"));
             }
-            sample_along_plots(along, plots, step, capacity, check)?
+            sample_along_plots(along, plots, min_turn_radius, step, capacity, check)?
         }
         _ => {
             return Err(check.error(
@@ -121,19 +125,37 @@ pub fn waypoints(
 }
 
 /// A path down the true centre line of each plot, sampled every `step`
-/// metres, joined by straight lines, with a straight lead-in before the first
+/// metres, joined by straight lines (or Dubins paths of the turning radius,
+/// `min_turn_radius` by default: the vehicle's least), with a straight lead-in before the first
 /// plot and a run-out after the last, along their headings. Every piece is
 /// `Straight` (the rows' bend is slight). The plots must follow one another:
 /// each starts ahead of where the previous one ends.
 fn sample_along_plots(
     along: &AlongPlots,
     plots: &[PlotSpec],
+    min_turn_radius: f64,
     step: f64,
     capacity: usize,
     check: &Checker<'_>,
 ) -> Result<Waypoints, ScenarioError> {
     let lead_in = check.range("path.along_plots.lead_in_m", along.lead_in_m, 0.0, 1000.0)?;
     let run_out = check.range("path.along_plots.run_out_m", along.run_out_m, 0.0, 1000.0)?;
+    let radius = match (along.join, along.turning_radius_m) {
+        (JoinName::Dubins, Some(r)) => Some(check.range(
+            "path.along_plots.turning_radius_m",
+            r,
+            min_turn_radius,
+            1000.0,
+        )?),
+        (JoinName::Dubins, None) => Some(min_turn_radius),
+        (JoinName::Straight, Some(_)) => {
+            return Err(check.error(
+                "path.along_plots.turning_radius_m",
+                "only with `join = \"dubins\"`",
+            ))
+        }
+        (JoinName::Straight, None) => None,
+    };
     let (Some(first), Some(last)) = (plots.first(), plots.last()) else {
         return Err(check.error("path.along_plots", "needs at least one `[[world.plots]]`"));
     };
@@ -202,7 +224,36 @@ fn sample_along_plots(
                 ));
             }
         }
-        if !straight(&mut points, &mut pieces, &mut s_total, [x, y]) {
+        let joined = match (radius, i) {
+            (Some(r), 1..) => {
+                let join = dubins_join(plots.get(i - 1), plot, lead_in, r).map_err(|e| {
+                    check.error(
+                        &format!("world.plots[{i}].start"),
+                        &format!("no Dubins join from the previous plot: {e}"),
+                    )
+                })?;
+                // An arc beyond a half turn is a loop: the plots are too
+                // close for the turning radius.
+                if join.segments().iter().any(|g| {
+                    g.curvature.get() != 0.0 && g.length.get() > core::f64::consts::PI * r + 1e-9
+                }) {
+                    return Err(check.error(
+                        &format!("world.plots[{i}].start"),
+                        &format!("the Dubins join of radius {r} m from the previous plot would loop: move the plot further on or use a smaller `turning_radius_m`"),
+                    ));
+                }
+                append_dubins(
+                    &join,
+                    &mut points,
+                    &mut pieces,
+                    &mut s_total,
+                    step,
+                    capacity,
+                ) && straight(&mut points, &mut pieces, &mut s_total, [x, y])
+            }
+            _ => straight(&mut points, &mut pieces, &mut s_total, [x, y]),
+        };
+        if !joined {
             return Err(too_many());
         }
         let n = samples_for(plot.length, step);
@@ -238,6 +289,75 @@ fn sample_along_plots(
         return Err(check.error("path.along_plots", "the path needs at least two waypoints"));
     }
     Ok(Waypoints { points, pieces })
+}
+
+/// The shortest Dubins path of `radius` from the end of plot `from` (its
+/// true centre line's end pose) to `lead_in` m before the start of plot `to`
+/// along its heading (the vehicle is straight when it reaches the rows).
+fn dubins_join(
+    from: Option<&PlotSpec>,
+    to: &PlotSpec,
+    lead_in: f64,
+    radius: f64,
+) -> Result<DubinsPath, fieldguide::Precondition> {
+    let (xe, ye, he) = from.map_or((f64::NAN, f64::NAN, f64::NAN), |p| p.centre_line(p.length));
+    let (xs, ys, hs) = to.centre_line(0.0);
+    let (xs, ys) = (xs - lead_in * hs.cos(), ys - lead_in * hs.sin());
+    let radius = TurningRadius::new(Meters::new(radius)?)?;
+    shortest(
+        &Pose2::<World>::new(xe, ye, he)?,
+        &Pose2::<World>::new(xs, ys, hs)?,
+        radius,
+    )
+}
+
+/// Appends the Dubins path `join` (which starts at the last point) sampled
+/// about every `step` m, one piece per arc or straight; `false` when its
+/// samples would pass the capacity (nothing appended).
+fn append_dubins(
+    join: &DubinsPath,
+    points: &mut Vec<[f64; 2]>,
+    pieces: &mut Vec<Piece>,
+    s: &mut f64,
+    step: f64,
+    capacity: usize,
+) -> bool {
+    let length = join.length().get();
+    if length <= 0.0 {
+        return true;
+    }
+    let n = samples_for(length, step);
+    if points.len().saturating_add(n as usize) > capacity {
+        return false;
+    }
+    for k in 1..=n {
+        let at = length * f64::from(k) / f64::from(n);
+        if let Ok(p) = Meters::new(at).and_then(|m| join.pose_at(m)) {
+            points.push([p.position.x(), p.position.y()]);
+        }
+    }
+    for segment in join.segments() {
+        let l = segment.length.get();
+        if l <= 0.0 {
+            continue;
+        }
+        let start = [segment.start.position.x(), segment.start.position.y()];
+        let (h, c) = (segment.start.heading.get(), segment.curvature.get());
+        let end = advance(start[0], start[1], h, c, l);
+        pieces.push(Piece {
+            kind: if c == 0.0 {
+                PieceKind::Straight
+            } else {
+                PieceKind::Arc { curvature: c }
+            },
+            s_start: *s,
+            s_end: *s + l,
+            start,
+            end,
+        });
+        *s += l;
+    }
+    true
 }
 
 /// Samples the segments every `step` metres (at least once per segment), from `start`.

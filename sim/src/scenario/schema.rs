@@ -188,6 +188,24 @@ pub struct AlongPlots {
     pub lead_in_m: f64,
     /// Straight run-out after the last plot, along its heading, metres.
     pub run_out_m: f64,
+    /// How one plot's end is joined to the next plot's start (default `"straight"`).
+    #[serde(default)]
+    pub join: JoinName,
+    /// Turning radius of a `"dubins"` join, metres (default: the vehicle's
+    /// least, wheelbase / tan(max steering)).
+    pub turning_radius_m: Option<f64>,
+}
+
+/// How `[path.along_plots]` joins consecutive plots.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JoinName {
+    /// A straight line: a kink where the headings differ.
+    #[default]
+    Straight,
+    /// The shortest arc-line-arc path of the turning radius (Dubins):
+    /// the heading is continuous.
+    Dubins,
 }
 
 /// `[path.start]`: the pose where the first segment starts, world frame.
@@ -424,6 +442,64 @@ pub struct WorldSection {
     pub hedges: Vec<HedgeSection>,
     /// Height of the hedges and walls above the ground, metres (default 2.0).
     pub obstacle_height_m: Option<f64>,
+    /// Rows of posts or trunks (`[[world.posts]]`).
+    #[serde(default)]
+    pub posts: Vec<PostsSection>,
+    /// Fences (`[[world.fences]]`).
+    #[serde(default)]
+    pub fences: Vec<FenceSection>,
+    /// Plants read from a CSV file (columns `x_m,y_m,radius_m,height_m`
+    /// and optionally `kind`), relative to the scenario file.
+    pub plants_csv: Option<String>,
+}
+
+/// `[[world.posts]]`: posts or trunks, cylinders along a polyline or read
+/// from a CSV file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PostsSection {
+    /// Name, for messages.
+    pub name: String,
+    /// The line the posts stand on, vertices `[x_m, y_m]` (with `spacing_m`).
+    pub line: Option<Vec<[f64; 2]>>,
+    /// Distance between posts along the line, metres.
+    pub spacing_m: Option<f64>,
+    /// Post radius, metres (default for the CSV's rows without `radius_m`).
+    pub radius_m: Option<f64>,
+    /// Posts missing along the line, by number from 0.
+    #[serde(default)]
+    pub missing: Vec<usize>,
+    /// Probability that each other post is missing (default 0).
+    pub missing_fraction: Option<f64>,
+    /// The posts as a CSV file (columns `x_m,y_m` and optionally `radius_m`),
+    /// relative to the scenario file; instead of `line`.
+    pub csv: Option<String>,
+}
+
+/// What a LiDAR sees of a fence.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FenceKind {
+    /// A thin wall (boards, mesh) between the posts: every ray hits it.
+    Wall,
+    /// Wires between the posts: a ray hits only the posts.
+    Wire,
+}
+
+/// `[[world.fences]]`: posts along a polyline, with a wall or wires between them.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FenceSection {
+    /// Name, for messages.
+    pub name: String,
+    /// `"wall"` or `"wire"`.
+    pub kind: FenceKind,
+    /// The fence line, vertices `[x_m, y_m]`, at least two.
+    pub line: Vec<[f64; 2]>,
+    /// Distance between posts along the line, metres.
+    pub post_spacing_m: f64,
+    /// Post radius, metres.
+    pub post_radius_m: f64,
 }
 
 /// `[[world.hedges]]`: a straight hedge with ragged faces and gaps.
@@ -432,10 +508,19 @@ pub struct WorldSection {
 pub struct HedgeSection {
     /// Name, for the summary.
     pub name: String,
-    /// Start of the hedge's centre line and its heading, world frame.
-    pub start: StartPose,
-    /// Length along the centre line, metres.
-    pub length_m: f64,
+    /// Start of the hedge's centre line and its heading, world frame
+    /// (a straight hedge; instead of `centre` and `centre_csv`).
+    pub start: Option<StartPose>,
+    /// Length along the centre line, metres (with `start`).
+    pub length_m: Option<f64>,
+    /// The centre line as a polyline `[[x_m, y_m], ...]`, corners rounded by
+    /// `corner_radius_m`.
+    pub centre: Option<Vec<[f64; 2]>>,
+    /// The centre line's vertices as a CSV file (columns `x_m,y_m`),
+    /// relative to the scenario file.
+    pub centre_csv: Option<String>,
+    /// Radius of the arcs rounding the centre line's corners, metres (default 0).
+    pub corner_radius_m: Option<f64>,
     /// Distance between the two nominal faces, metres.
     pub thickness_m: f64,
     /// Largest displacement of a face vertex across the hedge, metres.
@@ -465,16 +550,41 @@ pub struct PlotSection {
     pub name: String,
     /// `"maize"` or `"beans"`.
     pub crop: CropName,
-    /// Start of the plot's centre line and its heading, world frame.
-    pub start: StartPose,
-    /// Length of the rows, metres.
-    pub length_m: f64,
+    /// Start of the plot's centre line and its heading, world frame
+    /// (straight rows with the bend; instead of `centre` and `centre_csv`).
+    pub start: Option<StartPose>,
+    /// Length of the rows, metres (with `start`).
+    pub length_m: Option<f64>,
+    /// The centre line as a polyline `[[x_m, y_m], ...]`, corners rounded by
+    /// `corner_radius_m`.
+    pub centre: Option<Vec<[f64; 2]>>,
+    /// The centre line's vertices as a CSV file (columns `x_m,y_m`),
+    /// relative to the scenario file.
+    pub centre_csv: Option<String>,
+    /// Radius of the arcs rounding the centre line's corners, metres (default 0).
+    pub corner_radius_m: Option<f64>,
     /// Lateral amplitude of the rows' sinusoidal bend, metres (default: the crop's, 0.05).
     pub bend_amplitude_m: Option<f64>,
     /// Wavelength of the bend, metres (default: the crop's, 40).
     pub bend_wavelength_m: Option<f64>,
     /// Probability that a plant is missing (default: the crop's, 0.05).
     pub missing_fraction: Option<f64>,
+    /// Number of rows (default: the crop's, 2 for maize, 3 for beans).
+    pub rows: Option<u32>,
+    /// Lateral distance between neighbouring rows, metres (default: the crop's).
+    pub row_spacing_m: Option<f64>,
+    /// Mean distance between neighbouring plants along a row, metres (default: the crop's).
+    pub plant_spacing_m: Option<f64>,
+    /// Standard deviation of the plant spacing, metres (default: the crop's).
+    pub plant_spacing_std_m: Option<f64>,
+    /// Mean plant height, metres (default: the crop's).
+    pub plant_height_m: Option<f64>,
+    /// Standard deviation of the plant height, metres (default: the crop's).
+    pub plant_height_std_m: Option<f64>,
+    /// Mean radius of a plant's opaque stem core, metres (default: the crop's).
+    pub stem_radius_m: Option<f64>,
+    /// Standard deviation of the stem radius, metres (default: the crop's).
+    pub stem_radius_std_m: Option<f64>,
     /// Stretches `[from_m, to_m]` along the plot where no plant grew.
     #[serde(default)]
     pub bare_m: Vec<[f64; 2]>,

@@ -14,6 +14,7 @@ use fieldguide::{Point2, World};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 
+use super::curve::Curve;
 use super::{Plant, PlantKind};
 
 /// Where a point lies relative to a plot's true centre line ([`PlotSpec::project`]).
@@ -79,6 +80,11 @@ pub struct PlotSpec {
     pub bend_amplitude: f64,
     /// Wavelength of the bend along the centre line, m.
     pub bend_wavelength: f64,
+    /// The centre line as a rounded polyline (`None`: straight from `start`
+    /// along `heading`, with the bend). With it, `start`, `heading` and
+    /// `length` are its start, its initial heading and its length, and the
+    /// bend is 0.
+    pub centre: Option<Curve>,
 }
 
 impl PlotSpec {
@@ -111,6 +117,7 @@ impl PlotSpec {
             bare: Vec::new(),
             bend_amplitude: 0.05,
             bend_wavelength: 40.0,
+            centre: None,
         }
     }
 
@@ -133,6 +140,7 @@ impl PlotSpec {
             bare: Vec::new(),
             bend_amplitude: 0.05,
             bend_wavelength: 40.0,
+            centre: None,
         }
     }
 
@@ -151,6 +159,9 @@ impl PlotSpec {
     /// measured against.
     #[must_use]
     pub fn centre_line(&self, s: f64) -> (f64, f64, f64) {
+        if let Some(curve) = &self.centre {
+            return curve.pose_at(s);
+        }
         let (c, sn) = (self.heading.cos(), self.heading.sin());
         let d = self.bend(s);
         let slope = if self.bend_wavelength > 0.0 {
@@ -176,6 +187,11 @@ impl PlotSpec {
     /// 40 m gives at most 0.008), so a few iterations reach rounding.
     #[must_use]
     pub fn project(&self, x: f64, y: f64) -> Option<PlotPosition> {
+        if let Some(curve) = &self.centre {
+            return curve
+                .project(x, y)
+                .map(|(s, lateral)| PlotPosition { s, lateral });
+        }
         let (c, sn) = (self.heading.cos(), self.heading.sin());
         let (dx, dy) = (x - self.start.x(), y - self.start.y());
         let mut s = dx * c + dy * sn;
@@ -218,8 +234,13 @@ impl PlotSpec {
                 let height = self.plant_height.draw(rng, 0.02, 3.0);
                 let present = rng.random::<f64>() >= self.missing && !self.is_bare(s);
                 if present {
-                    let x = self.start.x() + s * c - lateral * sn;
-                    let y = self.start.y() + s * sn + lateral * c;
+                    let [x, y] = match &self.centre {
+                        Some(curve) => curve.offset(s, lateral),
+                        None => [
+                            self.start.x() + s * c - lateral * sn,
+                            self.start.y() + s * sn + lateral * c,
+                        ],
+                    };
                     if let Ok(position) = Point2::new(x, y) {
                         plants.push(Plant {
                             position,

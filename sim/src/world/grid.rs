@@ -277,6 +277,7 @@ mod tests {
                 raggedness: 0.15,
                 vertex_spacing: 0.15,
                 gaps: vec![[10.0, 12.0]],
+                centre: None,
             },
             &mut rng,
         )

@@ -8,6 +8,8 @@
 
 use rand::Rng;
 
+use super::curve::Curve;
+
 /// A straight obstacle boundary from `a` to `b`, world frame, metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
@@ -73,6 +75,10 @@ pub struct HedgeSpec {
     pub vertex_spacing: f64,
     /// Along-hedge intervals `[from, to]` without hedge, metres.
     pub gaps: Vec<[f64; 2]>,
+    /// The centre line as a rounded polyline (`None`: straight from `start`
+    /// along `heading`). With it, `start`, `heading` and `length` are its
+    /// start, initial heading and length.
+    pub centre: Option<Curve>,
 }
 
 /// Which face of a hedge, looking along its heading.
@@ -127,6 +133,9 @@ impl HedgeSpec {
     /// `across` (positive to the left of the heading) from the centre line.
     #[must_use]
     pub fn point(&self, along: f64, across: f64) -> [f64; 2] {
+        if let Some(curve) = &self.centre {
+            return curve.offset(along, across);
+        }
         let (c, s) = (self.heading.cos(), self.heading.sin());
         [
             self.start[0] + along * c - across * s,
@@ -252,6 +261,9 @@ impl HedgeSpec {
         heading: f64,
         offset: f64,
     ) -> Option<OffsetLinePosition> {
+        if let Some(curve) = &self.centre {
+            return self.curved_offset_line_position(curve, (x, y, heading), offset);
+        }
         let (c, s) = (self.heading.cos(), self.heading.sin());
         let (dx, dy) = (x - self.start[0], y - self.start[1]);
         let along = dx * c + dy * s;
@@ -282,6 +294,72 @@ impl HedgeSpec {
             lateral,
             angular,
         })
+    }
+}
+
+impl HedgeSpec {
+    /// [`Self::offset_line_position`] for a hedge along a curve: the pose's
+    /// projection on the centre line gives the along-hedge distance, the
+    /// side and the line's heading there.
+    fn curved_offset_line_position(
+        &self,
+        curve: &Curve,
+        (x, y, heading): (f64, f64, f64),
+        offset: f64,
+    ) -> Option<OffsetLinePosition> {
+        let (along, across) = curve.project(x, y)?;
+        if !self.is_present(along) {
+            return None;
+        }
+        let away = if across >= 0.0 { 1.0 } else { -1.0 };
+        let lateral = across - away * (0.5 * self.thickness + offset);
+        let line_heading = curve.pose_at(along).2;
+        let relative = wrap(heading - line_heading);
+        let (lateral, angular) = if relative.abs() <= core::f64::consts::FRAC_PI_2 {
+            (lateral, relative)
+        } else {
+            (-lateral, wrap(relative - core::f64::consts::PI))
+        };
+        (lateral.is_finite() && angular.is_finite()).then_some(OffsetLinePosition {
+            along,
+            lateral,
+            angular,
+        })
+    }
+
+    /// Signed distance of `(x, y)` from the centre line, metres, positive
+    /// to the left of the heading (for a curve: of the nearest point's).
+    #[must_use]
+    pub fn across(&self, x: f64, y: f64) -> f64 {
+        match &self.centre {
+            Some(curve) => curve.project(x, y).map_or_else(
+                || {
+                    // Beyond an end: the side of the nearer end's tangent.
+                    let (px, py, h) = curve.pose_at(0.0);
+                    -(x - px) * h.sin() + (y - py) * h.cos()
+                },
+                |(_, lateral)| lateral,
+            ),
+            None => {
+                let (c, sn) = (self.heading.cos(), self.heading.sin());
+                -(x - self.start[0]) * sn + (y - self.start[1]) * c
+            }
+        }
+    }
+
+    /// The line `across` m from the centre line between the along-hedge
+    /// distances `a` and `b`: its two ends for a straight hedge, a point
+    /// every 0.5 m for a curved one.
+    #[must_use]
+    pub fn line(&self, a: f64, b: f64, across: f64) -> Vec<[f64; 2]> {
+        let n = if self.centre.is_some() {
+            ((b - a) / 0.5).ceil().clamp(1.0, 1e5) as usize
+        } else {
+            1
+        };
+        (0..=n)
+            .map(|k| self.point(a + (b - a) * k as f64 / n as f64, across))
+            .collect()
     }
 }
 
@@ -365,6 +443,58 @@ impl PostRowSpec {
     }
 }
 
+/// Posts of `radius` m every `spacing` m along `curve`, from its start
+/// (a row of trunks or posts): post `k` at abscissa `k · spacing`.
+#[must_use]
+pub fn posts_along(curve: &Curve, spacing: f64, radius: f64) -> Vec<Circle> {
+    if !(spacing > 0.0 && spacing.is_finite()) {
+        return Vec::new();
+    }
+    let count = (curve.length() / spacing + 1e-9).floor().min(1e6) as usize;
+    (0..=count)
+        .map(|k| {
+            let (x, y, _) = curve.pose_at(k as f64 * spacing);
+            Circle {
+                center: [x, y],
+                radius,
+            }
+        })
+        .collect()
+}
+
+/// A fence along the polyline `vertices`: a post of `radius` m at every
+/// vertex and evenly between them, at most `spacing` m apart; with `wall`,
+/// also the segments between the vertices (a thin wall a LiDAR always hits;
+/// without it, wires a LiDAR misses: only the posts are seen).
+#[must_use]
+pub fn fence(vertices: &[[f64; 2]], spacing: f64, radius: f64, wall: bool) -> Obstacles {
+    let mut out = Obstacles::default();
+    if let Some(first) = vertices.first() {
+        out.circles.push(Circle {
+            center: *first,
+            radius,
+        });
+    }
+    for w in vertices.windows(2) {
+        let (Some(a), Some(b)) = (w.first(), w.get(1)) else {
+            continue;
+        };
+        let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let n = (length / spacing).ceil().clamp(1.0, 1e6) as usize;
+        for k in 1..=n {
+            let t = k as f64 / n as f64;
+            out.circles.push(Circle {
+                center: [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])],
+                radius,
+            });
+        }
+        if wall {
+            out.segments.push(Segment { a: *a, b: *b });
+        }
+    }
+    out
+}
+
 /// Everything a horizontal LiDAR can hit.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Obstacles {
@@ -391,6 +521,12 @@ impl Obstacles {
         let segments = spec.generate(rng)?;
         self.segments.extend(segments);
         Ok(())
+    }
+
+    /// Adds the obstacles of `other`.
+    pub fn extend(&mut self, other: Obstacles) {
+        self.segments.extend(other.segments);
+        self.circles.extend(other.circles);
     }
 
     /// Adds a generated post row.
@@ -475,6 +611,7 @@ mod tests {
             raggedness: 0.1,
             vertex_spacing: 0.2,
             gaps: vec![[8.0, 10.0]],
+            centre: None,
         }
     }
 

@@ -6,6 +6,7 @@
 //! hedges whose nominal faces score edge following.
 
 pub mod crops;
+pub mod curve;
 pub mod grid;
 pub mod hedge;
 pub mod scene;

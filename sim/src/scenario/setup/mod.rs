@@ -15,7 +15,9 @@ mod lidar;
 mod path;
 mod run;
 mod sensors;
+mod shape;
 mod speeds;
+mod structures;
 mod switching;
 mod terrain;
 mod vehicle;
@@ -124,15 +126,31 @@ pub fn build(
     let check = Checker::new(origin);
     check_name(&check, &file.name)?;
 
-    let plots = world::plots(file.world.as_ref(), &check)?;
+    let plots = world::plots(file.world.as_ref(), &check, base_dir)?;
     let specs: Vec<PlotSpec> = plots.iter().map(|p| p.spec.clone()).collect();
-    let (path, pieces) = path::path(file, &specs, base_dir, &check, rng)?;
     let vehicle = vehicle::vehicle(file, &check)?;
+    let (path, pieces) = path::path(
+        file,
+        &specs,
+        min_turn_radius(&vehicle),
+        base_dir,
+        &check,
+        rng,
+    )?;
     let control = control::control(file, &check, vehicle)?;
     let initial = path::initial_pose(file, &check, &path)?;
     // The plants are drawn after the path's recording noise, the hedges after the plants.
-    let plants = world::plants(file.world.as_ref(), &plots, &check, rng)?;
-    let (hedges, obstacles) = world::hedges(file.world.as_ref(), &check, rng)?;
+    let mut plants = world::plants(file.world.as_ref(), &plots, &check, rng)?;
+    plants.extend(structures::csv_plants(
+        file.world.as_ref(),
+        &check,
+        base_dir,
+        &initial,
+        &vehicle,
+    )?);
+    let (hedges, mut obstacles) = world::hedges(file.world.as_ref(), &check, base_dir, rng)?;
+    // Posts and fences after the hedges (drawn only for posts missing by chance).
+    structures::posts_and_fences(file.world.as_ref(), &check, base_dir, rng, &mut obstacles)?;
     let world = SimWorld {
         terrain: terrain::terrain(file, &check)?,
         plants,
@@ -222,6 +240,11 @@ pub fn build(
         gnss_errors,
         path_speeds,
     })
+}
+
+/// The vehicle's least turning radius, m: wheelbase / tan(max steering).
+fn min_turn_radius(vehicle: &VehicleParams) -> f64 {
+    vehicle.wheelbase.get().get() / vehicle.actuator.limit.get().get().tan()
 }
 
 /// Checks the scenario's `name`: it names the output folder.

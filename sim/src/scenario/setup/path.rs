@@ -15,17 +15,27 @@ use crate::scenario::reference::{self, Piece};
 use crate::scenario::schema::ScenarioFile;
 use crate::world::crops::PlotSpec;
 
-/// The reference path of `[path]` (`plots` for a path along them, `base_dir`
+/// The reference path of `[path]` (`plots` for a path along them joined
+/// with `min_turn_radius`, the vehicle's least turning radius, `base_dir`
 /// resolving a waypoint CSV, the recording noise drawn from `rng`) and its
 /// nominal pieces with their abscissas on it.
 pub(super) fn path(
     file: &ScenarioFile,
     plots: &[PlotSpec],
+    min_turn_radius: f64,
     base_dir: Option<&Path>,
     check: &Checker<'_>,
     rng: &mut SimRng,
 ) -> Result<(Box<Reference>, Vec<Piece>), ScenarioError> {
-    let w = reference::waypoints(&file.path, plots, PATH_CAPACITY, base_dir, check, rng)?;
+    let w = reference::waypoints(
+        &file.path,
+        plots,
+        min_turn_radius,
+        PATH_CAPACITY,
+        base_dir,
+        check,
+        rng,
+    )?;
     let window = check.positive("path.smoothing_window_m", file.path.smoothing_window_m)?;
     let points = w
         .points

@@ -1,23 +1,28 @@
 //! Validates `[world]`: the crop plots, the grass and the hedges, and draws
 //! their plants and outlines.
 
+use std::path::Path;
+
 use fieldguide::{Point2, World};
 
+use super::shape::{self, ShapeFields};
 use crate::error::ScenarioError;
-
-/// The most vertices a hedge face may have (a 1 km hedge at 1 cm).
-const MAX_HEDGE_VERTICES: f64 = 100_000.0;
 use crate::rng::SimRng;
 use crate::scenario::check::Checker;
-use crate::scenario::schema::{CropName, StartPose, WorldSection};
+use crate::scenario::schema::{CropName, PlotSection, WorldSection};
 use crate::world::crops::{scatter_grass, PlotSpec, Spread};
 use crate::world::hedge::{HedgeSpec, Obstacles};
 use crate::world::{Hedge, Plant, PlantKind, Plot};
 
-/// The plots of `[world]`, validated (no plant drawn yet).
+/// The most vertices a hedge face may have (a 1 km hedge at 1 cm).
+const MAX_HEDGE_VERTICES: f64 = 100_000.0;
+
+/// The plots of `[world]`, validated (no plant drawn yet); a centre line
+/// CSV is read relative to `base_dir`.
 pub(super) fn plots(
     world: Option<&WorldSection>,
     check: &Checker<'_>,
+    base_dir: Option<&Path>,
 ) -> Result<Vec<Plot>, ScenarioError> {
     let Some(world) = world else {
         return Ok(Vec::new());
@@ -28,14 +33,40 @@ pub(super) fn plots(
         if p.name.trim().is_empty() {
             return Err(check.error(&field("name"), "must not be empty"));
         }
-        let ([x, y], heading) = start(check, &field("start"), &p.start)?;
+        let shape = shape::shape(
+            check,
+            &format!("world.plots[{i}]"),
+            ShapeFields {
+                start: p.start.as_ref(),
+                length_m: p.length_m,
+                centre: p.centre.as_deref(),
+                centre_csv: p.centre_csv.as_deref(),
+                corner_radius_m: p.corner_radius_m,
+            },
+            base_dir,
+        )?;
+        let ([x, y], heading, length) = shape.start_heading_length();
         let start =
             Point2::<World>::new(x, y).map_err(|e| check.error(&field("start"), &e.to_string()))?;
-        let length = check.open_range(&field("length_m"), p.length_m, 0.0, 1000.0)?;
         let mut spec = match p.crop {
             CropName::Maize => PlotSpec::maize(start, heading, length),
             CropName::Beans => PlotSpec::beans(start, heading, length),
         };
+        if let Some(curve) = shape.curve() {
+            for (name, given) in [
+                ("bend_amplitude_m", p.bend_amplitude_m),
+                ("bend_wavelength_m", p.bend_wavelength_m),
+            ] {
+                if given.is_some() {
+                    return Err(check.error(
+                        &field(name),
+                        "not with a centre line: its polyline gives the rows' shape",
+                    ));
+                }
+            }
+            spec.bend_amplitude = 0.0;
+            spec.centre = Some(curve.clone());
+        }
         if let Some(a) = p.bend_amplitude_m {
             spec.bend_amplitude = check.range(&field("bend_amplitude_m"), a, 0.0, 5.0)?;
         }
@@ -45,6 +76,10 @@ pub(super) fn plots(
         if let Some(m) = p.missing_fraction {
             spec.missing = check.range(&field("missing_fraction"), m, 0.0, 1.0)?;
         }
+        layout(&mut spec, p, check, &field)?;
+        // The band of rows: the outer rows' offset and a stem's radius.
+        let half_width = spec.row_offset(0).abs() + spec.plant_radius.mean;
+        shape.check_band(check, half_width)?;
         for (k, b) in p.bare_m.iter().enumerate() {
             let [from, to] = stretch(check, &field(&format!("bare_m[{k}]")), *b, length)?;
             spec.bare.push((from, to));
@@ -55,6 +90,82 @@ pub(super) fn plots(
         });
     }
     Ok(plots)
+}
+
+/// The optional layout fields of a `[[world.plots]]` (rows, row spacing,
+/// plant spacing, height and stem radius), each replacing the crop's value
+/// when given; `field` names a field of this plot.
+fn layout(
+    spec: &mut PlotSpec,
+    p: &PlotSection,
+    check: &Checker<'_>,
+    field: &dyn Fn(&str) -> String,
+) -> Result<(), ScenarioError> {
+    if let Some(rows) = p.rows {
+        spec.rows = check.count(&field("rows"), rows, 1, 50)?;
+    }
+    check.replace(
+        &mut spec.row_spacing,
+        p.row_spacing_m,
+        &field("row_spacing_m"),
+        0.05,
+        10.0,
+    )?;
+    check.replace(
+        &mut spec.plant_spacing.mean,
+        p.plant_spacing_m,
+        &field("plant_spacing_m"),
+        0.01,
+        10.0,
+    )?;
+    let mean = spec.plant_spacing.mean;
+    check.replace(
+        &mut spec.plant_spacing.std_dev,
+        p.plant_spacing_std_m,
+        &field("plant_spacing_std_m"),
+        0.0,
+        mean,
+    )?;
+    check.replace(
+        &mut spec.plant_height.mean,
+        p.plant_height_m,
+        &field("plant_height_m"),
+        0.02,
+        3.0,
+    )?;
+    check.replace(
+        &mut spec.plant_height.std_dev,
+        p.plant_height_std_m,
+        &field("plant_height_std_m"),
+        0.0,
+        1.0,
+    )?;
+    check.replace(
+        &mut spec.plant_radius.mean,
+        p.stem_radius_m,
+        &field("stem_radius_m"),
+        0.01,
+        1.0,
+    )?;
+    check.replace(
+        &mut spec.plant_radius.std_dev,
+        p.stem_radius_std_m,
+        &field("stem_radius_std_m"),
+        0.0,
+        0.5,
+    )?;
+    // Neighbouring rows' plants must not overlap: a row spacing below a
+    // stem's diameter would merge two rows into one.
+    if spec.rows > 1 && spec.row_spacing <= 2.0 * spec.plant_radius.mean {
+        return Err(check.error(
+            &field("row_spacing_m"),
+            &format!(
+                "must exceed a stem's diameter (2 × {} m) so that rows stay apart, got {}",
+                spec.plant_radius.mean, spec.row_spacing
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The plants of `plots` and of the grass rectangles of `[world]`, drawn from `rng`.
@@ -92,6 +203,7 @@ pub(super) fn plants(
             missing: 0.0,
             bare: Vec::new(),
             bend_amplitude: 0.0,
+            centre: None,
             ..p.spec.clone()
         };
         plants.extend(tail.generate(rng).into_iter().map(|mut v| {
@@ -137,6 +249,7 @@ pub(super) fn plants(
 pub(super) fn hedges(
     world: Option<&WorldSection>,
     check: &Checker<'_>,
+    base_dir: Option<&Path>,
     rng: &mut SimRng,
 ) -> Result<(Vec<Hedge>, Obstacles), ScenarioError> {
     let mut hedges = Vec::new();
@@ -146,7 +259,19 @@ pub(super) fn hedges(
         if h.name.trim().is_empty() {
             return Err(check.error(&field("name"), "must not be empty"));
         }
-        let length = check.open_range(&field("length_m"), h.length_m, 0.0, 1000.0)?;
+        let shape = shape::shape(
+            check,
+            &format!("world.hedges[{i}]"),
+            ShapeFields {
+                start: h.start.as_ref(),
+                length_m: h.length_m,
+                centre: h.centre.as_deref(),
+                centre_csv: h.centre_csv.as_deref(),
+                corner_radius_m: h.corner_radius_m,
+            },
+            base_dir,
+        )?;
+        let (start, heading, length) = shape.start_heading_length();
         let thickness = check.open_range(&field("thickness_m"), h.thickness_m, 0.0, 20.0)?;
         let raggedness = check.range(&field("raggedness_m"), h.raggedness_m, 0.0, 20.0)?;
         if raggedness >= 0.5 * thickness {
@@ -171,7 +296,7 @@ pub(super) fn hedges(
         for (k, g) in h.gaps_m.iter().enumerate() {
             gaps.push(stretch(check, &field(&format!("gaps_m[{k}]")), *g, length)?);
         }
-        let (start, heading) = start(check, &field("start"), &h.start)?;
+        shape.check_band(check, 0.5 * thickness + raggedness)?;
         let spec = HedgeSpec {
             start,
             heading,
@@ -180,6 +305,7 @@ pub(super) fn hedges(
             raggedness,
             vertex_spacing: spacing,
             gaps,
+            centre: shape.curve().cloned(),
         };
         obstacles
             .add_hedge(&spec, rng)
@@ -190,24 +316,6 @@ pub(super) fn hedges(
         });
     }
     Ok((hedges, obstacles))
-}
-
-/// The start of a plot's or a hedge's centre line, `field` naming it: its
-/// position `[x, y]` within ±1e6 m and its heading (radians) within ±360°.
-fn start(
-    check: &Checker<'_>,
-    field: &str,
-    start: &StartPose,
-) -> Result<([f64; 2], f64), ScenarioError> {
-    let x = check.range(&format!("{field}.x_m"), start.x_m, -1e6, 1e6)?;
-    let y = check.range(&format!("{field}.y_m"), start.y_m, -1e6, 1e6)?;
-    let heading = check.range(
-        &format!("{field}.heading_deg"),
-        start.heading_deg,
-        -360.0,
-        360.0,
-    )?;
-    Ok(([x, y], heading.to_radians()))
 }
 
 /// A stretch `[from_m, to_m]` along a plot or a hedge of length `length`,
