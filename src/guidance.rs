@@ -543,7 +543,7 @@ where
     /// `GD-SPEED` when `speed` is not positive, the path-tracking law's error
     /// when it refuses it (`PT-SCHEDULE-RANGE` outside a backstepping law's
     /// speed schedule); the configured speed is then unchanged.
-    //= spec/guidance.md#gd-speed-change-path-trackings-desired-speed-changed-between-ticks
+    //= spec/guidance.md#gd-speed-change-desired-speed-of-path-tracking-changed-between-ticks
     //# The desired speed of path tracking MUST be replaceable between ticks without
     //# rebuilding the pipeline, keeping the mode, the switching counters and the held
     //# detections; a speed that is not positive MUST be refused with `GD-SPEED` and a

@@ -752,7 +752,7 @@ fn a_path_replaced_between_ticks_keeps_the_state_and_is_searched_whole() {
     }
 }
 
-//= spec/guidance.md#gd-speed-change-path-trackings-desired-speed-changed-between-ticks
+//= spec/guidance.md#gd-speed-change-desired-speed-of-path-tracking-changed-between-ticks
 //= type=test
 //# The desired speed of path tracking MUST be replaceable between ticks without
 //# rebuilding the pipeline, keeping the mode, the switching counters and the held
