@@ -528,24 +528,16 @@ impl<const N: usize> ModelSet<N> {
         self.alive = other.alive;
         self.fitted = other.fitted;
         self.moved = other.moved;
-        self.lines = other.lines;
-        for (m, o) in self.masks.iter_mut().zip(other.masks.iter()).take(n) {
-            *m = *o;
+        // The lines of live models alone: a dead slot's line is never read.
+        for k in slots(other.alive) {
+            if let (Some(l), Some(o)) = (self.lines.get_mut(k), other.lines.get(k)) {
+                *l = *o;
+            }
         }
-        for (m, o) in self
-            .fit_masks
-            .iter_mut()
-            .zip(other.fit_masks.iter())
-            .take(n)
-        {
-            *m = *o;
-        }
-        for (d, o) in self.dist.iter_mut().zip(other.dist.iter()).take(n) {
-            *d = *o;
-        }
-        for (r, o) in self.rank.iter_mut().zip(other.rank.iter()).take(n) {
-            *r = *o;
-        }
+        copy_first(&mut self.masks, &other.masks, n);
+        copy_first(&mut self.fit_masks, &other.fit_masks, n);
+        copy_first(&mut self.dist, &other.dist, n);
+        copy_first(&mut self.rank, &other.rank, n);
     }
 
     /// The line of model `k` fitted to its points (RUBY-FIT), the points'
@@ -560,17 +552,16 @@ impl<const N: usize> ModelSet<N> {
     ) -> Option<Line> {
         let b = bit(k);
         let mut count = 0_usize;
-        for ((&x, &y), _) in cols
-            .xs
-            .iter()
-            .zip(cols.ys.iter())
-            .zip(self.masks.iter())
-            .take(n)
-            .filter(|(_, &m)| m & b != 0)
-        {
-            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
-                (*mx, *my) = (x, y);
-                count = count.saturating_add(1);
+        let xs = cols.xs.get(..n).unwrap_or(&[]);
+        let ys = cols.ys.get(..n).unwrap_or(&[]);
+        let masks = self.masks.get(..n).unwrap_or(&[]);
+        for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
+            if m & b != 0 {
+                if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count))
+                {
+                    (*mx, *my) = (x, y);
+                    count = count.saturating_add(1);
+                }
             }
         }
         Line::fit(
@@ -579,6 +570,16 @@ impl<const N: usize> ModelSet<N> {
             rounds,
             &mut scratch.weights,
         )
+    }
+}
+
+/// Copies the first `n` entries of `from` into `to`.
+fn copy_first<T: Copy, const N: usize>(to: &mut [T; N], from: &[T; N], n: usize) {
+    let n = n.min(N);
+    if let (Some(to), Some(from)) = (to.get_mut(..n), from.get(..n)) {
+        for (t, f) in to.iter_mut().zip(from) {
+            *t = *f;
+        }
     }
 }
 
@@ -982,9 +983,10 @@ fn merge<const N: usize>(
     // Models whose points changed since they were fitted.
     let changed = set
         .masks
+        .get(..n)
+        .unwrap_or(&[])
         .iter()
-        .zip(set.fit_masks.iter())
-        .take(n)
+        .zip(set.fit_masks.get(..n).unwrap_or(&[]))
         .fold(0_u64, |acc, (m, f)| acc | (m ^ f));
     set.fitted &= !changed;
     // The first pass refits; each later pass but the last merges, removing
@@ -1030,9 +1032,7 @@ fn merge<const N: usize>(
             break;
         }
     }
-    for (f, m) in set.fit_masks.iter_mut().zip(set.masks.iter()).take(n) {
-        *f = *m;
-    }
+    copy_first(&mut set.fit_masks, &set.masks, n);
     set.fitted = set.alive;
 }
 
