@@ -488,6 +488,10 @@ struct ModelSet<const N: usize> {
     /// models moved since may be out of date.
     dist: [f64; N],
     rank: [f64; N],
+    /// Models seeded by this iteration's search, and each one's points in
+    /// ray order (valid until the merge that follows the search).
+    seeded: u64,
+    seeds: [[usize; SEED_POINTS]; MAX_MODELS],
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
@@ -528,24 +532,45 @@ impl<const N: usize> ModelSet<N> {
         self.alive = other.alive;
         self.fitted = other.fitted;
         self.moved = other.moved;
-        self.lines = other.lines;
-        for (m, o) in self.masks.iter_mut().zip(other.masks.iter()).take(n) {
-            *m = *o;
+        // The lines of live models alone: a dead slot's line is never read.
+        for k in slots(other.alive) {
+            if let (Some(l), Some(o)) = (self.lines.get_mut(k), other.lines.get(k)) {
+                *l = *o;
+            }
         }
-        for (m, o) in self
-            .fit_masks
-            .iter_mut()
-            .zip(other.fit_masks.iter())
-            .take(n)
-        {
-            *m = *o;
+        copy_first(&mut self.masks, &other.masks, n);
+        copy_first(&mut self.fit_masks, &other.fit_masks, n);
+        copy_first(&mut self.dist, &other.dist, n);
+        copy_first(&mut self.rank, &other.rank, n);
+    }
+
+    /// The line fitted to the points of indices `members`, ascending
+    /// (RUBY-FIT), their coordinates taken from `cols` into `scratch`.
+    fn fit_points(
+        &self,
+        members: &[usize],
+        cols: &Columns<N>,
+        scratch: &mut Scratch<N>,
+        rounds: u8,
+    ) -> Option<Line> {
+        let mut count = 0_usize;
+        for &i in members {
+            if let (Some(&x), Some(&y), Some(mx), Some(my)) = (
+                cols.xs.get(i),
+                cols.ys.get(i),
+                scratch.xs.get_mut(count),
+                scratch.ys.get_mut(count),
+            ) {
+                (*mx, *my) = (x, y);
+                count = count.saturating_add(1);
+            }
         }
-        for (d, o) in self.dist.iter_mut().zip(other.dist.iter()).take(n) {
-            *d = *o;
-        }
-        for (r, o) in self.rank.iter_mut().zip(other.rank.iter()).take(n) {
-            *r = *o;
-        }
+        Line::fit(
+            scratch.xs.get(..count).unwrap_or(&[]),
+            scratch.ys.get(..count).unwrap_or(&[]),
+            rounds,
+            &mut scratch.weights,
+        )
     }
 
     /// The line of model `k` fitted to its points (RUBY-FIT), the points'
@@ -560,17 +585,16 @@ impl<const N: usize> ModelSet<N> {
     ) -> Option<Line> {
         let b = bit(k);
         let mut count = 0_usize;
-        for ((&x, &y), _) in cols
-            .xs
-            .iter()
-            .zip(cols.ys.iter())
-            .zip(self.masks.iter())
-            .take(n)
-            .filter(|(_, &m)| m & b != 0)
-        {
-            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
-                (*mx, *my) = (x, y);
-                count = count.saturating_add(1);
+        let xs = cols.xs.get(..n).unwrap_or(&[]);
+        let ys = cols.ys.get(..n).unwrap_or(&[]);
+        let masks = self.masks.get(..n).unwrap_or(&[]);
+        for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
+            if m & b != 0 {
+                if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count))
+                {
+                    (*mx, *my) = (x, y);
+                    count = count.saturating_add(1);
+                }
             }
         }
         Line::fit(
@@ -579,6 +603,16 @@ impl<const N: usize> ModelSet<N> {
             rounds,
             &mut scratch.weights,
         )
+    }
+}
+
+/// Copies the first `n` entries of `from` into `to`.
+fn copy_first<T: Copy, const N: usize>(to: &mut [T; N], from: &[T; N], n: usize) {
+    let n = n.min(N);
+    if let (Some(to), Some(from)) = (to.get_mut(..n), from.get(..n)) {
+        for (t, f) in to.iter_mut().zip(from) {
+            *t = *f;
+        }
     }
 }
 
@@ -629,6 +663,8 @@ impl<const N: usize> Ruby<N> {
             fit_masks: [0; N],
             dist: [0.0; N],
             rank: [NO_RANK; N],
+            seeded: 0,
+            seeds: [[0; SEED_POINTS]; MAX_MODELS],
         };
         Self {
             config,
@@ -731,6 +767,7 @@ impl<const N: usize> Ruby<N> {
         let (best, _) = pair(&mut self.sets, self.kept);
         best.alive = 0;
         best.fitted = 0;
+        best.seeded = 0;
         for m in best.masks.iter_mut().take(n) {
             *m = 0;
         }
@@ -888,6 +925,7 @@ fn search<const N: usize>(
     rng: &mut Xoshiro128PlusPlus,
     p: &RubyParams,
 ) {
+    set.seeded = 0;
     if p.variant.split_sides() {
         //= spec/guyonneau2022.md#ruby-split-sides-seeds-left-and-right
         //# With split sides, the search MUST run on the outliers left of the
@@ -934,11 +972,15 @@ fn search_side<const N: usize>(
         if let [Some(a), Some(b), Some(c)] = seeds {
             let xs = [a.x(), b.x(), c.x()];
             let ys = [a.y(), b.y(), c.y()];
-            if let (Some(line), Some(l)) = (
+            if let (Some(line), Some(l), Some(points)) = (
                 Line::fit(&xs, &ys, 0, &mut [0.0; SEED_POINTS]),
                 set.lines.get_mut(slot),
+                set.seeds.get_mut(slot),
             ) {
                 *l = line;
+                *points = seed;
+                points.sort_unstable();
+                set.seeded |= bit(slot);
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
                 set.moved |= bit(slot);
@@ -982,9 +1024,10 @@ fn merge<const N: usize>(
     // Models whose points changed since they were fitted.
     let changed = set
         .masks
+        .get(..n)
+        .unwrap_or(&[])
         .iter()
-        .zip(set.fit_masks.iter())
-        .take(n)
+        .zip(set.fit_masks.get(..n).unwrap_or(&[]))
         .fold(0_u64, |acc, (m, f)| acc | (m ^ f));
     set.fitted &= !changed;
     // The first pass refits; each later pass but the last merges, removing
@@ -1013,7 +1056,17 @@ fn merge<const N: usize>(
                 set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                if let Some(line) = set.fit(j, cols, n, scratch, p.fit_rounds) {
+                // A model seeded by the search holds its seeds alone until
+                // it absorbs another.
+                let seeds = set
+                    .seeds
+                    .get(j)
+                    .filter(|_| absorbed == 0 && set.seeded & bit(j) != 0);
+                let fitted = match seeds {
+                    Some(&seeds) => set.fit_points(&seeds, cols, scratch, p.fit_rounds),
+                    None => set.fit(j, cols, n, scratch, p.fit_rounds),
+                };
+                if let Some(line) = fitted {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
                         if *l != line {
@@ -1030,10 +1083,9 @@ fn merge<const N: usize>(
             break;
         }
     }
-    for (f, m) in set.fit_masks.iter_mut().zip(set.masks.iter()).take(n) {
-        *f = *m;
-    }
+    copy_first(&mut set.fit_masks, &set.masks, n);
     set.fitted = set.alive;
+    set.seeded = 0;
 }
 
 /// ψ(L_j) of eq. 8, counting the model itself: the models whose slope
@@ -1365,6 +1417,8 @@ mod tests {
             fit_masks: [0; N],
             dist: [0.0; N],
             rank: [NO_RANK; N],
+            seeded: 0,
+            seeds: [[0; SEED_POINTS]; MAX_MODELS],
         };
         set.lines[0] = slanted;
         set.lines[1] = flat;
