@@ -2,14 +2,15 @@
 //! EM-SIM-MISSION-SAFE).
 
 use fieldguide::supervisor::mission::StopReason;
+use fieldguide_sim::guiding::file::{builtin_mission, GuidingFile, BUILTIN};
 use fieldguide_sim::guiding::mission::{
-    campaign, drive_mission, welaser_mission, Shape, WorldObstacle,
+    campaign, drive_mission, welaser_mission, Shape, WorldObstacle, BOUNDS,
 };
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
-const LATERAL_LINE_M: f64 = 0.038;
-const LATERAL_SPIRAL_M: f64 = 0.06;
-const REACH_M: f64 = 0.045;
+const LATERAL_LINE_M: f64 = BOUNDS.lateral_line_m;
+const LATERAL_SPIRAL_M: f64 = BOUNDS.lateral_spiral_m;
+const REACH_M: f64 = BOUNDS.reach_m;
 
 //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
 //= type=test
@@ -69,6 +70,8 @@ fn the_built_in_mission_is_safe_over_five_seeds() {
         // The scenario's three events: the box re-planned round, the
         // crossing person a stop, the person in the field a stop.
         assert!(!o.replans.is_empty(), "seed {seed}: no re-plan");
+        // Each detour planned once (EM-MISSION-OBSTACLE).
+        assert_eq!(o.detour_plans, o.replans.len(), "seed {seed}");
         let reasons: Vec<StopReason> = o.stops.iter().map(|s| s.reason).collect();
         assert!(
             reasons.contains(&StopReason::Obstacle),
@@ -154,3 +157,83 @@ fn a_reduced_campaign_has_no_collision_and_no_crushed_plant() {
     }
     assert!(rows.iter().filter(|r| r.complete).count() >= 5);
 }
+
+//= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
+//= type=test
+//# A scenario file with `[guiding]`, `[farm]` and `[[obstacle]]` tables MUST be
+//# driven by the core's mission supervisor with those obstacles, and the
+//# built-in `welaser-mission` MUST be such a file.
+#[test]
+fn the_built_in_mission_is_a_file_with_its_obstacles() {
+    let run = builtin_mission("welaser-mission")
+        .expect("listed")
+        .expect("valid");
+    assert_eq!(run.guiding.name, "welaser-mission");
+    assert_eq!(run.obstacles.len(), 3);
+    let walker = &run.obstacles[1];
+    // 7 m at 1 m/s from 16 s.
+    assert_eq!(walker.walk, Some(((9.0, 0.5), 16.0, 23.0)));
+    assert_eq!(walker.centre(19.5), Some((9.0, -3.0)));
+    assert!(
+        matches!(run.obstacles[0].shape, Shape::Box { heading, .. } if (heading - 0.3).abs() < 1e-12)
+    );
+    assert_eq!(run.obstacles[2].present_s, (0.0, 400.0));
+    // The guided missions without obstacles are not missions of the supervisor.
+    for (name, _) in BUILTIN.iter().filter(|(n, _)| *n != "welaser-mission") {
+        assert!(builtin_mission(name).is_none(), "{name}");
+    }
+}
+
+//= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
+//= type=test
+//# A scenario file's `[[obstacle]]` tables MUST be refused, naming the file
+//# and the field, for an unknown kind, a size or radius out of range, a
+//# non-finite place, a walk that is not a person's or has no positive
+//# duration, or a presence that ends before it starts.
+#[test]
+fn bad_obstacle_tables_name_their_file_and_field() {
+    let good = BUILTIN
+        .iter()
+        .find(|(n, _)| *n == "welaser-mission")
+        .expect("listed")
+        .1;
+    let refused = |text: &str| {
+        let e = GuidingFile::parse(text, "my-mission.toml")
+            .and_then(|f| f.mission("my-mission.toml"))
+            .expect_err("refused");
+        assert!(e.to_string().contains("my-mission.toml"), "{e}");
+        e.field().map(str::to_owned)
+    };
+    let cases = [
+        (good.replace("kind = \"box\"", "kind = \"tree\""), "obstacle[0].kind"),
+        (good.replace("size_m = [0.6, 0.6]", "size_m = [0.6, 30.0]"), "obstacle[0].size_m"),
+        (good.replace("size_m = [0.6, 0.6]", "radius_m = 0.3"), "obstacle[0].radius_m"),
+        (good.replace("at = [50.0, -3.2]", "at = [nan, -3.2]"), "obstacle[0].at"),
+        (good.replace("radius_m = 0.25\n\n[obstacle.walk]", "radius_m = 3.0\n\n[obstacle.walk]"), "obstacle[1].radius_m"),
+        (good.replace("kind = \"person\"\nat = [9.0", "kind = \"post\"\nat = [9.0"), "obstacle[1].walk"),
+        (good.replace("speed_mps = 1.0", "speed_mps = 0.0"), "obstacle[1].walk.speed_mps"),
+        (good.replace("to = [9.0, 0.5]", "to = [9.0, -6.5]"), "obstacle[1].walk.to"),
+        (good.replace("start_s = 16.0", "start_s = -1.0"), "obstacle[1].walk.start_s"),
+        (good.replace("present_s = [0.0, 400.0]", "present_s = [400.0, 100.0]"), "obstacle[2].present_s"),
+        (good.replace("name = \"person in the field\"", "name = \" \""), "obstacle[2].name"),
+        (format!("{good}\n[[obstacle]]\nname = \"x\"\nkind = \"post\"\nat = [1.0, 1.0]\n"), "obstacle[3].radius_m"),
+        (format!("{good}\n[[obstacle]]\nname = \"x\"\nkind = \"post\"\nat = [1.0, 1.0]\nradius_m = 0.1\nheight_m = 2.0\n"), "obstacle[3].height_m"),
+    ];
+    for (text, field) in &cases {
+        assert_ne!(text.as_str(), good, "{field}: the case changed nothing");
+        assert_eq!(refused(text).as_deref(), Some(*field), "{field}");
+    }
+    // Obstacles need a farm.
+    let start = good.find("[farm]").expect("farm");
+    let end = good.find("# The mission's obstacles").expect("obstacles");
+    let no_farm = format!("{}{}", &good[..start], &good[end..]);
+    assert_eq!(refused(&no_farm).as_deref(), Some("obstacle"));
+    // `obstacle = []`: a supervised mission with no obstacle.
+    let none = good[..end].replacen("seed = 1\n", "seed = 1\nobstacle = []\n", 1);
+    let run = GuidingFile::parse(&none, "t")
+        .and_then(|f| f.mission("t"))
+        .expect("valid")
+        .expect("a mission");
+    assert!(run.obstacles.is_empty());
+}
+
