@@ -445,6 +445,9 @@ pub struct MissionOutcome {
     /// Detour plans followed: one per detour started, more when a detour was
     /// re-planned (EM-MISSION-OBSTACLE: only when it became invalid).
     pub detour_plans: usize,
+    /// The farthest the footprint's corners came outside the road's edge on
+    /// a detour, m (negative: inside by that much; `-inf` without a detour).
+    pub detour_off_road_m: f64,
     /// Ticks where the footprint overlapped an obstacle: (time, obstacle).
     pub collisions: Vec<(f64, usize)>,
     /// Ticks where a walking person overlapped the footprint only behind
@@ -532,6 +535,7 @@ pub fn drive_mission(run: &MissionRun) -> MissionOutcome {
         stops: Vec::new(),
         replans: Vec::new(),
         detour_plans: 0,
+        detour_off_road_m: f64::NEG_INFINITY,
         collisions: Vec::new(),
         walked_into: Vec::new(),
         legs: Vec::new(),
@@ -643,6 +647,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     let lidar = HorizontalLidar::new(FRONT_LIDAR)
         .map_err(|_| Precondition::new("EM-SIM-MISSION", "front LiDAR"))?;
     let outlines: Vec<_> = farm.fields.iter().map(|f| f.outline()).collect();
+    let roads = farm.road_polylines()?;
     let ctl = Controllers::of(g)?;
     let plant = g.robot.plant();
     let terrain = Terrain::default();
@@ -802,6 +807,21 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                 }
                 leg_key = Some(key);
                 last_plan = Some(plan);
+                //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+                //# On every tick of a detour on a road, the distance of the
+                //# footprint's corners outside the road's edge MUST be measured.
+                if leg.detour {
+                    if let Some((Task::Road(k), _)) = tasks.get(usize::from(leg.task)) {
+                        if let Some(line) = roads.get(*k) {
+                            out.detour_off_road_m = out.detour_off_road_m.max(off_road(
+                                &g.robot,
+                                &truth,
+                                line,
+                                farm.road_width_m,
+                            ));
+                        }
+                    }
+                }
                 goal = plan.goal();
                 nominal = answer.speed.get();
                 let same = active.as_ref().is_some_and(|(p, _)| *p == plan)
@@ -947,6 +967,26 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     Ok(())
 }
 
+/// How far the footprint's farthest corner at `pose` lies outside a road of
+/// `width` along `line`, m (negative inside).
+fn off_road(robot: &super::RobotSpec, pose: &Pose2<World>, line: &[(f64, f64)], width: f64) -> f64 {
+    let (hl, hw) = (
+        robot.length_m / 2.0,
+        (robot.track_m + robot.track_width_m) / 2.0,
+    );
+    let (s, c) = pose.heading.get().sin_cos();
+    [(hl, hw), (hl, -hw), (-hl, hw), (-hl, -hw)]
+        .iter()
+        .map(|(u, v)| {
+            let p = (
+                pose.position.x() + u * c - v * s,
+                pose.position.y() + u * s + v * c,
+            );
+            Farm::distance_to_road(line, p) - width / 2.0
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// `pose` moved by `step` of its own frame.
 fn pose_after(pose: &Pose2<World>, step: &Pose2<Robot>) -> Result<Pose2<World>, Precondition> {
     let (s, c) = pose.heading.get().sin_cos();
@@ -985,6 +1025,7 @@ pub fn summary_json(run: &MissionRun, o: &MissionOutcome) -> serde_json::Value {
         "replans": o.replans.len(),
         "replans_in_field": o.replans.iter().filter(|r| r.in_field).count(),
         "detour_plans": o.detour_plans,
+        "detour_off_road_m": if o.detour_off_road_m.is_finite() { Some(o.detour_off_road_m) } else { None },
         "collisions": o.collisions.len(),
         "walked_into": o.walked_into.len(),
         "obstacles": run.obstacles.len(),
@@ -1402,6 +1443,8 @@ pub struct CampaignRow {
     pub replans_in_field: usize,
     /// Detour plans followed (one per detour unless one became invalid).
     pub detour_plans: usize,
+    /// The farthest a footprint corner came outside the road on a detour, m.
+    pub detour_off_road_m: f64,
     /// Mission time, s.
     pub duration_s: f64,
 }
@@ -1427,6 +1470,7 @@ impl CampaignRow {
             replans: o.replans.len(),
             replans_in_field: o.replans.iter().filter(|r| r.in_field).count(),
             detour_plans: o.detour_plans,
+            detour_off_road_m: o.detour_off_road_m,
             duration_s: o.drive.ticks.last().map_or(0.0, |t| t.t_s),
         }
     }
@@ -1454,12 +1498,12 @@ pub fn campaign(runs: u32) -> Vec<CampaignRow> {
 #[must_use]
 pub fn campaign_csv(rows: &[CampaignRow]) -> String {
     let mut csv = String::from(
-        "seed,complete,reason,collisions,walked_into,crushed,stops,unjustified_stops,replans,replans_in_field,detour_plans,duration_s\n",
+        "seed,complete,reason,collisions,walked_into,crushed,stops,unjustified_stops,replans,replans_in_field,detour_plans,detour_off_road_m,duration_s\n",
     );
     for r in rows {
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{:.1}",
+            "{},{},{},{},{},{},{},{},{},{},{},{:.3},{:.1}",
             r.seed,
             r.complete,
             r.reason.as_deref().unwrap_or(""),
@@ -1471,6 +1515,7 @@ pub fn campaign_csv(rows: &[CampaignRow]) -> String {
             r.replans,
             r.replans_in_field,
             r.detour_plans,
+            r.detour_off_road_m,
             r.duration_s
         );
     }
