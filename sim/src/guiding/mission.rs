@@ -56,6 +56,8 @@ pub const MARGIN_M: f64 = 0.3;
 /// areas, m: the clusters' enclosing circles (up to 0.5 m, EM-OBST-SHAPE)
 /// over-approximate an obstacle, on the safe side.
 pub const REASON_SLACK_M: f64 = 0.5;
+/// A plan followed less than this far was not driven, m (not drawn).
+const UNDRIVEN_M: f64 = 0.05;
 /// Spacing of the points that stand for an obstacle's outline, m.
 const OUTLINE_STEP_M: f64 = 0.02;
 
@@ -833,6 +835,12 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                     if let Some((_, a)) = active.take() {
                         if !active_detour && a.s_fix >= a.path.length().get() - 2.0 * TOLERANCE_M {
                             close_manoeuvres(&a, &mut out.drive.manoeuvres);
+                        }
+                        // A plan left before it was driven (a leg reached
+                        // where it was planned) is not drawn as followed.
+                        if a.s_true < UNDRIVEN_M && a.path.length().get() > 2.0 * UNDRIVEN_M {
+                            out.legs.pop();
+                            out.drive.paths.pop();
                         }
                     }
                     active_detour = leg.detour;
