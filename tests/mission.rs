@@ -580,6 +580,70 @@ fn a_warning_detours_on_roads_and_stops_in_fields() {
     assert!(miss <= 0.05, "{miss}");
 }
 
+//= spec/emmi2024.md#em-mission-obstacle-obstacles
+//= type=test
+//# A detour MUST be planned once per obstacle: the machine MUST ask for a
+//# plan only when the leg or the detour changes, and while a detour is
+//# followed a further warning MUST NOT re-plan it unless its waypoint lies
+//# farther than the tolerance from the one followed.
+#[test]
+fn a_detour_is_planned_once_per_obstacle() {
+    for seed in 0..8_u64 {
+        let mut rng = Rng(seed * 7_919 + 5);
+        let goal = pose(30.0, 0.0, 0.0);
+        let (mut mission, mut driver) = straight_road();
+        let mut odometry = still();
+        let mut detour_plans: Vec<Plan> = Vec::new();
+        let mut followed = Vec::new();
+        for tick in 0..3000 {
+            // One obstacle seen for 30 ticks, its waypoint jittering by up
+            // to 5 cm (scan noise); from tick 60, for 10 ticks, a second one
+            // whose waypoint lies 1 m further on.
+            let hazard = match tick {
+                20..50 => Hazard::Warning {
+                    detour: Some(pose(
+                        12.0 + rng.uniform(-0.05, 0.05),
+                        3.0 + rng.uniform(-0.05, 0.05),
+                        0.0,
+                    )),
+                },
+                60..70 if mission.state().detour() => Hazard::Warning {
+                    detour: Some(pose(13.0, 3.0, 0.0)),
+                },
+                _ => Hazard::Clear,
+            };
+            let out = mission.tick(&MissionInput {
+                remaining: driver.remaining(),
+                ..input(Some(driver.pose), odometry, hazard, false)
+            });
+            if let (Command::Follow(leg), Some(plan)) = (out.command, out.plan) {
+                if leg.detour && detour_plans.last() != Some(&plan) {
+                    detour_plans.push(plan);
+                }
+                followed.push(leg.detour);
+            }
+            odometry = driver.drive(&out);
+            if out.phase == Phase::Done {
+                break;
+            }
+        }
+        assert_eq!(mission.state().phase(), Phase::Done, "seed {seed}");
+        // The first waypoint as first seen, then the moved one: two plans.
+        assert_eq!(detour_plans.len(), 2, "seed {seed}: {detour_plans:?}");
+        assert!((detour_plans[0].goal().position.x() - 12.0).abs() <= 0.05);
+        assert_eq!(detour_plans[1].goal(), pose(13.0, 3.0, 0.0));
+        assert!(
+            driver
+                .pose
+                .position
+                .distance_to(goal.position)
+                .unwrap()
+                .get()
+                <= 0.05
+        );
+    }
+}
+
 //= spec/emmi2024.md#em-mission-monitor-malfunctions
 //= type=test
 //# While Follow is commanded, a run of ticks without progress as long as the
@@ -631,10 +695,11 @@ fn malfunctions_abort_with_their_reason() {
         let (mut mission, _) = straight_road();
         let mut x = 0.0;
         let mut last = None;
+        let step = Pose2::<Robot>::new(0.05, 0.0, 0.0).unwrap();
         for _ in 0..700 {
             let o = mission.tick(&MissionInput {
                 remaining: Some(m(30.0 - x)),
-                ..input(Some(pose(x, offset, 0.0)), still(), Hazard::Clear, false)
+                ..input(Some(pose(x, offset, 0.0)), step, Hazard::Clear, false)
             });
             last = Some((x, o));
             if o.phase != Phase::Running {
@@ -651,13 +716,9 @@ fn malfunctions_abort_with_their_reason() {
     let (mut mission, _) = straight_road();
     let mut x = 0.0;
     let mut last = None;
+    let step = Pose2::<Robot>::new(0.05, 0.0, 0.0).unwrap();
     for _ in 0..700 {
-        let o = mission.tick(&input(
-            Some(pose(x, 0.3, 0.0)),
-            still(),
-            Hazard::Clear,
-            false,
-        ));
+        let o = mission.tick(&input(Some(pose(x, 0.3, 0.0)), step, Hazard::Clear, false));
         last = Some((x, o));
         if o.phase != Phase::Running {
             break;
@@ -667,6 +728,174 @@ fn malfunctions_abort_with_their_reason() {
     let (x, o) = last.unwrap();
     assert_eq!(o.phase, Phase::Aborted(StopReason::GoalMissed));
     assert!(x > 30.5 && x < 30.6, "{x}");
+}
+
+//= spec/emmi2024.md#em-mission-monitor-malfunctions
+//= type=test
+//# The end of a leg MUST count as passed when the pipeline's remaining
+//# distance along it is at most the speed profile's reach distance
+//# (EM-SPEED-REACH), and a tolerance not above that reach distance MUST be
+//# refused with the `EM-MISSION-CONFIG` error.
+#[test]
+fn the_end_of_a_leg_is_judged_at_the_reach_distance_inside_the_tolerance() {
+    let carob = MissionConfig::carob().unwrap();
+    let speeds = (carob.cruise_speed, carob.turn_speed);
+    for tol in [0.01, 0.05] {
+        let e = MissionConfig::new(
+            carob.machine,
+            m(tol),
+            m(500.0),
+            m(5.0),
+            carob.radius,
+            speeds,
+        );
+        assert_eq!(e.unwrap_err().requirement, "EM-MISSION-CONFIG", "{tol}");
+    }
+    // The simulator's tolerance, 0.15 m: the end is passed at 0.05 m, not at
+    // the tolerance's edge.
+    let config = MissionConfig::new(
+        carob.machine,
+        m(0.15),
+        m(500.0),
+        m(5.0),
+        carob.radius,
+        speeds,
+    )
+    .unwrap();
+    assert_eq!(config.reach_distance, m(0.05));
+    // A robot whose pose runs 0.03 m beside and 0.02 m behind what the
+    // pipeline's distance says (two estimates of one robot): the end is
+    // judged once 0.05 m remain, the goal 0.07 m away, reached; judged at
+    // the tolerance (0.15 m remaining) it would be 0.17 m away, missed.
+    for lag in [0.0, 0.02, 0.04] {
+        let task = Task::approximation(&[pose(30.0, 0.0, 0.0)]).unwrap();
+        let mut mission = Mission::new(config, &[task]).unwrap();
+        let step = Pose2::<Robot>::new(0.01, 0.0, 0.0).unwrap();
+        let mut x = 0.0;
+        let mut judged = None;
+        for _ in 0..4000 {
+            let o = mission.tick(&MissionInput {
+                remaining: Some(m(30.0 - x)),
+                ..input(Some(pose(x - lag, 0.03, 0.0)), step, Hazard::Clear, false)
+            });
+            if o.phase != Phase::Running {
+                judged = Some((x, o.phase));
+                break;
+            }
+            x += 0.01;
+        }
+        let (x, phase) = judged.unwrap();
+        assert_eq!(phase, Phase::Done, "lag {lag}");
+        assert!(30.0 - x <= 0.05 + 1e-9 && 30.0 - x > 0.03, "lag {lag}: {x}");
+    }
+}
+
+//= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg
+//= type=test
+//# A leg whose goal is within the tolerance of the pose it is planned from,
+//# with a heading change below the planner threshold, MUST count as reached
+//# in the next tick, its path not followed.
+#[test]
+fn a_leg_planned_at_its_goal_is_reached_without_a_loop() {
+    let row = Row {
+        start: pose(10.0, 5.0, 0.0),
+        length: m(12.0),
+    };
+    // The robot stands 1 cm past, on, or 4 cm short of the row's start (where
+    // a road ended): the turn to it is reached at once, not a loop.
+    for past in [0.01, 0.0, -0.04] {
+        let task = Task::treatment(&[row]).unwrap();
+        let mut mission = Mission::new(MissionConfig::carob().unwrap(), &[task]).unwrap();
+        let here = Some(pose(10.0 + past, 5.0, 0.02));
+        let first = mission.tick(&input(here, still(), Hazard::Clear, true));
+        assert_eq!(mission.state().leg(), (0, 0), "{past}");
+        // The Dubins path to the row's start from 1 cm past it is a loop.
+        if past > 0.0 {
+            assert!(first.plan.unwrap().length().get() > 4.0, "{past}");
+        }
+        let second = mission.tick(&MissionInput {
+            remaining: first.plan.map(|p| p.length()),
+            ..input(here, still(), Hazard::Clear, true)
+        });
+        assert_eq!(mission.state().leg(), (0, 1), "{past}");
+        assert!(matches!(second.plan, Some(Plan::Line { .. })), "{past}");
+        assert!(second.command.tool_on(), "{past}");
+    }
+    // 0.5 m short, or facing across: the turn is driven.
+    for here in [pose(9.5, 5.0, 0.0), pose(10.0, 5.0, 1.0)] {
+        let task = Task::treatment(&[row]).unwrap();
+        let mut mission = Mission::new(MissionConfig::carob().unwrap(), &[task]).unwrap();
+        let first = mission.tick(&input(Some(here), still(), Hazard::Clear, true));
+        let _ = mission.tick(&MissionInput {
+            remaining: first.plan.map(|p| p.length()),
+            ..input(Some(here), still(), Hazard::Clear, true)
+        });
+        assert_eq!(mission.state().leg(), (0, 0));
+    }
+}
+
+//= spec/emmi2024.md#em-mission-monitor-malfunctions
+//= type=test
+//# The progress of a tick and the distance driven on a leg MUST be taken
+//# from the odometry increments, never from differences of localised poses,
+//# so that the noise of a standing robot's fix is neither progress nor
+//# distance.
+#[test]
+fn a_standing_robot_on_a_noisy_fix_neither_progresses_nor_drives() {
+    for seed in 0..8_u64 {
+        let mut rng = Rng(seed * 104_729 + 11);
+        // A short leg of 1 m, the robot 0.3 m from its goal, standing on a
+        // fix with 2 cm of noise: the sum of the fixes' jumps would pass
+        // 1 m + twice the tolerance in under 100 ticks.
+        let task = Task::approximation(&[pose(1.0, 0.0, 0.0)]).unwrap();
+        let mut mission = Mission::new(MissionConfig::carob().unwrap(), &[task]).unwrap();
+        let mut outs = Vec::new();
+        for _ in 0..120 {
+            let noisy = pose(
+                0.7 + rng.uniform(-0.02, 0.02),
+                rng.uniform(-0.02, 0.02),
+                0.0,
+            );
+            outs.push(mission.tick(&input(Some(noisy), still(), Hazard::Clear, false)));
+        }
+        // Never missed; no progress for the stall delay (100 ticks) aborts.
+        assert!(
+            outs[..99].iter().all(|o| o.phase == Phase::Running),
+            "seed {seed}"
+        );
+        assert_eq!(
+            outs[99].phase,
+            Phase::Aborted(StopReason::NoProgress),
+            "seed {seed}"
+        );
+        // The same robot held by a critical obstacle (no Follow, so no
+        // stall) waits as long as it must, and its leg is never missed.
+        let task = Task::approximation(&[pose(1.0, 0.0, 0.0)]).unwrap();
+        let mut mission = Mission::new(MissionConfig::carob().unwrap(), &[task]).unwrap();
+        for _ in 0..3000 {
+            let noisy = pose(
+                0.7 + rng.uniform(-0.02, 0.02),
+                rng.uniform(-0.02, 0.02),
+                0.0,
+            );
+            let o = mission.tick(&input(Some(noisy), still(), Hazard::Critical, false));
+            assert_eq!(o.command, Command::Stop(StopReason::Obstacle));
+            assert_eq!(o.phase, Phase::Running);
+        }
+        // Then it drives on by odometry and reaches the goal.
+        let mut x = 0.7;
+        let step = Pose2::<Robot>::new(0.05, 0.0, 0.0).unwrap();
+        let mut done = false;
+        for _ in 0..40 {
+            let o = mission.tick(&input(Some(pose(x, 0.0, 0.0)), step, Hazard::Clear, false));
+            if o.phase == Phase::Done {
+                done = true;
+                break;
+            }
+            x += 0.05;
+        }
+        assert!(done, "seed {seed}");
+    }
 }
 
 //= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg

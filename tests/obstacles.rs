@@ -793,7 +793,8 @@ fn inside_a_crop_field_there_is_no_detour() {
 //= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
 //= type=test
 //# An obstacle in the critical area MUST give `Critical`, whatever the other
-//# obstacles.
+//# obstacles, unless the footprint moving along the planned path for the
+//# critical area's length L_c(v) is clear of it (EM-OBST-CLEAR).
 #[test]
 fn an_obstacle_in_the_critical_area_or_under_the_robot_stops_it() {
     let (pose, goal) = (world(0.0, 0.0, 0.0), world(30.0, 0.0, 0.0));
@@ -809,6 +810,15 @@ fn an_obstacle_in_the_critical_area_or_under_the_robot_stops_it() {
             assert_eq!(a.reason, Reason::CriticalArea);
         }
     }
+    // A post in the critical area's front right corner, outside a path
+    // turning left at once (radius 1 m): the footprint swept along the path
+    // for L_c = 1 m is clear of it, so it is not critical; on a straight
+    // path it is.
+    let corner = circle(1.65, -1.1, 0.05);
+    let left = world(1.0, 3.0, PI / 2.0);
+    let a = run(&[corner], &pose, &left, false);
+    assert_ne!(a.hazard, Hazard::Critical, "{a:?}");
+    assert_eq!(run(&[corner], &pose, &goal, false).hazard, Hazard::Critical);
     // Nothing ahead: clear.
     assert_eq!(run(&[], &pose, &goal, false).reason, Reason::NoObstacle);
     assert_eq!(

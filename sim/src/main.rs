@@ -155,12 +155,13 @@ fn main() -> ExitCode {
             list();
             Ok(())
         }
-        Some(Command::Run { scenario }) if scenario == "welaser-mission" => {
-            run_welaser_mission(&cli.out).map(|row| print_missions(&[row]))
-        }
-        Some(Command::Run { scenario }) => match guiding_named(&scenario) {
-            Ok(Some(run)) => run_mission(&run, &cli.out).map(|row| print_missions(&[row])),
-            Ok(None) => run_scenario(&scenario, &cli.out),
+        Some(Command::Run { scenario }) => match mission_named(&scenario) {
+            Ok(Some(run)) => run_obstacle_mission(&run, &cli.out).map(|row| print_missions(&[row])),
+            Ok(None) => match guiding_named(&scenario) {
+                Ok(Some(run)) => run_mission(&run, &cli.out).map(|row| print_missions(&[row])),
+                Ok(None) => run_scenario(&scenario, &cli.out),
+                Err(e) => Err(e),
+            },
             Err(e) => Err(e),
         },
         Some(Command::Campaign { plan, runs }) => run_campaign(&plan, runs, &cli.out),
@@ -359,11 +360,12 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     print_drives(&drives);
     let mut missions = Vec::new();
     for (name, _) in guiding::file::BUILTIN {
-        if let Some(run) = guiding::file::builtin(name) {
+        if let Some(run) = guiding::file::builtin_mission(name) {
+            missions.push(run_obstacle_mission(&run?, out)?);
+        } else if let Some(run) = guiding::file::builtin(name) {
             missions.push(run_mission(&run?, out)?);
         }
     }
-    missions.push(run_welaser_mission(out)?);
     println!();
     print_missions(&missions);
     let mut rows = Vec::new();
@@ -373,6 +375,23 @@ fn run_all(out: &Path) -> Result<(), SimError> {
     println!();
     print_vineyards(&rows);
     Ok(())
+}
+
+/// The mission with obstacles `scenario` names: a built-in one, or a file
+/// with `[guiding]` and `[[obstacle]]` tables; `None` for any other.
+fn mission_named(scenario: &str) -> Result<Option<mission::MissionRun>, SimError> {
+    if let Some(run) = guiding::file::builtin_mission(scenario) {
+        return Ok(Some(run?));
+    }
+    if guiding::file::builtin(scenario).is_some() {
+        return Ok(None);
+    }
+    match std::fs::read_to_string(Path::new(scenario)) {
+        Ok(text) if guiding::file::is_guiding(&text) => {
+            Ok(GuidingFile::parse(&text, scenario)?.mission(scenario)?)
+        }
+        _ => Ok(None),
+    }
 }
 
 /// The guided mission `scenario` names: a built-in one, or a file with a
@@ -591,17 +610,17 @@ fn print_drives(rows: &[campaign::RunRow]) {
 }
 
 /// Runs the test plan `plan` with `runs` runs per variant and crop.
-/// The built-in `welaser-mission` (the supervisor on the farm with
-/// obstacles), seed 1: writes its folder and prints its stops.
-fn run_welaser_mission(out: &Path) -> Result<(String, guiding::Outcome), SimError> {
-    let run = mission::welaser_mission(1).ok_or_else(|| SimError::Setup {
-        what: "built-in scenario `welaser-mission`".to_owned(),
-        source: fieldguide::Precondition::new("EM-SIM-MISSION", "the built-in farm"),
-    })?;
-    let outcome = mission::drive_mission(&run);
-    let dir = mission::write(out, &run, &outcome)?;
+/// A mission with obstacles (the supervisor on a farm): writes its folder
+/// and prints its stops.
+fn run_obstacle_mission(
+    run: &mission::MissionRun,
+    out: &Path,
+) -> Result<(String, guiding::Outcome), SimError> {
+    let outcome = mission::drive_mission(run);
+    let dir = mission::write(out, run, &outcome)?;
     println!(
-        "welaser-mission: {}, stops {:?}, {} re-plans, {} collisions; wrote {}",
+        "{}: {}, stops {:?}, {} re-plans, {} collisions; wrote {}",
+        run.guiding.name,
         if outcome.complete() {
             "complete"
         } else {
@@ -612,7 +631,7 @@ fn run_welaser_mission(out: &Path) -> Result<(String, guiding::Outcome), SimErro
         outcome.collisions.len(),
         dir.display()
     );
-    Ok(("welaser-mission".to_owned(), outcome.drive))
+    Ok((run.guiding.name.clone(), outcome.drive))
 }
 
 /// The campaign `emmi2024`: `runs` farm missions with random obstacles.
@@ -625,7 +644,7 @@ fn run_emmi_campaign(runs: u32, out: &Path) -> Result<(), SimError> {
     let sum = |f: fn(&mission::CampaignRow) -> usize| rows.iter().map(f).sum::<usize>();
     println!(
         "emmi2024: {} missions, {} complete, {} stopped with a reason, {} without; \
-         collisions {}, a walking person into the robot's side {}, crop plants run over {}, unjustified stops {}, re-plans {} ({} in a field), stops {}",
+         collisions {}, a walking person into the robot's side {}, crop plants run over {}, unjustified stops {}, re-plans {} ({} in a field, {} detour plans), stops {}",
         rows.len(),
         complete,
         rows.iter().filter(|r| !r.complete && r.reason.is_some()).count(),
@@ -636,6 +655,7 @@ fn run_emmi_campaign(runs: u32, out: &Path) -> Result<(), SimError> {
         sum(|r| r.unjustified),
         sum(|r| r.replans),
         sum(|r| r.replans_in_field),
+        sum(|r| r.detour_plans),
         sum(|r| r.stops),
     );
     println!(

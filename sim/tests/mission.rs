@@ -2,14 +2,15 @@
 //! EM-SIM-MISSION-SAFE).
 
 use fieldguide::supervisor::mission::StopReason;
+use fieldguide_sim::guiding::file::{builtin_mission, GuidingFile, BUILTIN};
 use fieldguide_sim::guiding::mission::{
-    campaign, drive_mission, welaser_mission, Shape, WorldObstacle,
+    campaign, drive_mission, welaser_mission, Shape, WorldObstacle, BOUNDS,
 };
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
-const LATERAL_LINE_M: f64 = 0.038;
-const LATERAL_SPIRAL_M: f64 = 0.06;
-const REACH_M: f64 = 0.045;
+const LATERAL_LINE_M: f64 = BOUNDS.lateral_line_m;
+const LATERAL_SPIRAL_M: f64 = BOUNDS.lateral_spiral_m;
+const REACH_M: f64 = BOUNDS.reach_m;
 
 //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
 //= type=test
@@ -33,6 +34,10 @@ const REACH_M: f64 = 0.045;
 //= type=test
 //# The closed-loop figures MUST be measured over the paths
 //# followed to their end, detours left out.
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//= type=test
+//# On every tick of a detour on a road, the distance of the
+//# footprint's corners outside the road's edge MUST be measured.
 #[test]
 fn the_built_in_mission_is_safe_over_five_seeds() {
     for seed in SEEDS {
@@ -69,6 +74,14 @@ fn the_built_in_mission_is_safe_over_five_seeds() {
         // The scenario's three events: the box re-planned round, the
         // crossing person a stop, the person in the field a stop.
         assert!(!o.replans.is_empty(), "seed {seed}: no re-plan");
+        // Each detour planned once (EM-MISSION-OBSTACLE).
+        assert_eq!(o.detour_plans, o.replans.len(), "seed {seed}");
+        // Measured, not yet held: the core's detour does not know the road.
+        assert!(o.detour_off_road_m.is_finite(), "seed {seed}");
+        eprintln!(
+            "seed {seed}: footprint outside the road on the detour {:.3} m",
+            o.detour_off_road_m
+        );
         let reasons: Vec<StopReason> = o.stops.iter().map(|s| s.reason).collect();
         assert!(
             reasons.contains(&StopReason::Obstacle),
@@ -153,4 +166,146 @@ fn a_reduced_campaign_has_no_collision_and_no_crushed_plant() {
         assert!(r.complete || r.reason.is_some(), "{r:?}");
     }
     assert!(rows.iter().filter(|r| r.complete).count() >= 5);
+}
+
+//= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
+//= type=test
+//# A scenario file with `[guiding]`, `[farm]` and `[[obstacle]]` tables MUST be
+//# driven by the core's mission supervisor with those obstacles, and the
+//# built-in `welaser-mission` MUST be such a file.
+#[test]
+fn the_built_in_mission_is_a_file_with_its_obstacles() {
+    let run = builtin_mission("welaser-mission")
+        .expect("listed")
+        .expect("valid");
+    assert_eq!(run.guiding.name, "welaser-mission");
+    assert_eq!(run.obstacles.len(), 3);
+    let walker = &run.obstacles[1];
+    // 7 m at 1 m/s from 16 s.
+    assert_eq!(walker.walk, Some(((9.0, 0.5), 16.0, 23.0)));
+    assert_eq!(walker.centre(19.5), Some((9.0, -3.0)));
+    assert!(
+        matches!(run.obstacles[0].shape, Shape::Box { heading, .. } if (heading - 0.3).abs() < 1e-12)
+    );
+    assert_eq!(run.obstacles[2].present_s, (0.0, 400.0));
+    // The guided missions without obstacles are not missions of the supervisor.
+    for (name, _) in BUILTIN.iter().filter(|(n, _)| *n != "welaser-mission") {
+        assert!(builtin_mission(name).is_none(), "{name}");
+    }
+}
+
+//= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
+//= type=test
+//# A scenario file's `[[obstacle]]` tables MUST be refused, naming the file
+//# and the field, for an unknown kind, a size or radius out of range, a
+//# non-finite place, a walk that is not a person's or has no positive
+//# duration, or a presence that ends before it starts.
+#[test]
+fn bad_obstacle_tables_name_their_file_and_field() {
+    let good = BUILTIN
+        .iter()
+        .find(|(n, _)| *n == "welaser-mission")
+        .expect("listed")
+        .1;
+    let refused = |text: &str| {
+        let e = GuidingFile::parse(text, "my-mission.toml")
+            .and_then(|f| f.mission("my-mission.toml"))
+            .expect_err("refused");
+        assert!(e.to_string().contains("my-mission.toml"), "{e}");
+        e.field().map(str::to_owned)
+    };
+    let cases = [
+        (good.replace("kind = \"box\"", "kind = \"tree\""), "obstacle[0].kind"),
+        (good.replace("size_m = [0.6, 0.6]", "size_m = [0.6, 30.0]"), "obstacle[0].size_m"),
+        (good.replace("size_m = [0.6, 0.6]", "radius_m = 0.3"), "obstacle[0].radius_m"),
+        (good.replace("at = [50.0, -3.2]", "at = [nan, -3.2]"), "obstacle[0].at"),
+        (good.replace("radius_m = 0.25\n\n[obstacle.walk]", "radius_m = 3.0\n\n[obstacle.walk]"), "obstacle[1].radius_m"),
+        (good.replace("kind = \"person\"\nat = [9.0", "kind = \"post\"\nat = [9.0"), "obstacle[1].walk"),
+        (good.replace("speed_mps = 1.0", "speed_mps = 0.0"), "obstacle[1].walk.speed_mps"),
+        (good.replace("to = [9.0, 0.5]", "to = [9.0, -6.5]"), "obstacle[1].walk.to"),
+        (good.replace("start_s = 16.0", "start_s = -1.0"), "obstacle[1].walk.start_s"),
+        (good.replace("present_s = [0.0, 400.0]", "present_s = [400.0, 100.0]"), "obstacle[2].present_s"),
+        (good.replace("name = \"person in the field\"", "name = \" \""), "obstacle[2].name"),
+        (format!("{good}\n[[obstacle]]\nname = \"x\"\nkind = \"post\"\nat = [1.0, 1.0]\n"), "obstacle[3].radius_m"),
+        (format!("{good}\n[[obstacle]]\nname = \"x\"\nkind = \"post\"\nat = [1.0, 1.0]\nradius_m = 0.1\nheight_m = 2.0\n"), "obstacle[3].height_m"),
+    ];
+    for (text, field) in &cases {
+        assert_ne!(text.as_str(), good, "{field}: the case changed nothing");
+        assert_eq!(refused(text).as_deref(), Some(*field), "{field}");
+    }
+    // Obstacles need a farm.
+    let start = good.find("[farm]").expect("farm");
+    let end = good.find("# The mission's obstacles").expect("obstacles");
+    let no_farm = format!("{}{}", &good[..start], &good[end..]);
+    assert_eq!(refused(&no_farm).as_deref(), Some("obstacle"));
+    // `obstacle = []`: a supervised mission with no obstacle.
+    let none = good[..end].replacen("seed = 1\n", "seed = 1\nobstacle = []\n", 1);
+    let run = GuidingFile::parse(&none, "t")
+        .and_then(|f| f.mission("t"))
+        .expect("valid")
+        .expect("a mission");
+    assert!(run.obstacles.is_empty());
+}
+
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//= type=test
+//# A campaign of missions with obstacles placed at random along the roads
+//# and in the fields MUST end each mission complete or stopped with a reason,
+//# with no collision and no crop plant run over.
+/// Bad scenes end to end: a box on the first road's first goal (the goal
+/// covered), a box under the robot's front at the start: a stop with its
+/// reason, held, no collision, no later task started.
+#[test]
+fn blocked_roads_stop_with_a_reason_and_skip_nothing() {
+    let wall = |at: (f64, f64), length: f64, width: f64| WorldObstacle {
+        name: "blocking".to_owned(),
+        shape: Shape::Box {
+            length,
+            width,
+            heading: 0.0,
+        },
+        at,
+        walk: None,
+        present_s: (0.0, f64::INFINITY),
+    };
+    for (obstacle, reasons) in [
+        // The road's first goal: 0.5 m before the corner's tangent point.
+        (
+            wall((11.5, -3.0), 0.6, 0.6),
+            &[StopReason::NoDetour, StopReason::Obstacle][..],
+        ),
+        // Under the front of the footprint at the start.
+        (wall((0.75, -3.0), 0.4, 0.4), &[StopReason::Obstacle][..]),
+    ] {
+        for seed in 1..=3 {
+            let mut run = welaser_mission(seed).expect("built-in");
+            run.guiding.duration_s = 120.0;
+            run.obstacles = vec![obstacle.clone()];
+            let o = drive_mission(&run);
+            let last = o
+                .stops
+                .last()
+                .unwrap_or_else(|| panic!("{obstacle:?}: no stop"));
+            assert!(
+                reasons.contains(&last.reason),
+                "{obstacle:?}: {:?}",
+                o.stops
+            );
+            assert!(last.to_s >= 119.0, "{obstacle:?}: not held: {:?}", o.stops);
+            assert!(o.stops.iter().all(|s| s.justified), "{:?}", o.stops);
+            if obstacle.at.0 < 1.0 {
+                // Under the robot from the start: it never moves.
+                assert!(o.drive.ticks.iter().all(|t| t.command.0 == 0.0));
+            } else {
+                assert!(o.collisions.is_empty(), "{obstacle:?}: {:?}", o.collisions);
+            }
+            assert!(!o.complete());
+            assert_eq!(o.tasks[0].result, "running", "{:?}", o.tasks);
+            assert!(
+                o.tasks[1..].iter().all(|t| t.result == "not started"),
+                "{:?}",
+                o.tasks
+            );
+        }
+    }
 }

@@ -193,6 +193,10 @@ pub fn gather(out: &Path, seeds: Seeds) -> Result<ClosedLoop, SimError> {
         });
     }
     for (name, _) in guiding::file::BUILTIN {
+        if let Some(run) = guiding::file::builtin_mission(name) {
+            runs.push(obstacle_mission(&run?, out)?);
+            continue;
+        }
         let Some(run) = guiding::file::builtin(name) else {
             continue;
         };
@@ -461,4 +465,70 @@ fn plots(dir: &Path) -> Vec<Plot> {
         .collect();
     out.sort_by(|a, b| a.file.cmp(&b.file));
     out
+}
+
+/// A built-in mission with obstacles, against the bounds of
+/// EM-SIM-MISSION-SAFE (`guiding::mission::BOUNDS`).
+fn obstacle_mission(run: &guiding::mission::MissionRun, out: &Path) -> Result<Run, SimError> {
+    use guiding::mission::{drive_mission, write, BOUNDS};
+    let o = drive_mission(run);
+    let dir = write(out, run, &o)?;
+    let d = &o.drive;
+    let count = |n: usize| Some(n as f64);
+    let figures = vec![
+        Figure::new(
+            "tasks not done",
+            count(o.tasks.iter().filter(|t| t.result != "done").count()),
+            Some(0.0),
+        ),
+        Figure::none_allowed("footprint-obstacle overlaps, ticks", o.collisions.len()),
+        Figure::none_allowed(
+            "stops without their cause in the world",
+            o.stops.iter().filter(|s| !s.justified).count(),
+        ),
+        Figure::none_allowed(
+            "re-plans inside a field",
+            o.replans.iter().filter(|r| r.in_field).count(),
+        ),
+        Figure::none_allowed("crop plants run over", d.crushed.len()),
+        Figure::new("stops", count(o.stops.len()), None),
+        Figure::new("re-plans round obstacles", count(o.replans.len()), None),
+        Figure::new(
+            "mean reach error, m",
+            Some(d.reach_error().mean_abs),
+            Some(BOUNDS.reach_m),
+        ),
+        Figure::new(
+            "mean lateral error on lines, m",
+            Some(d.lateral_line().mean_abs),
+            Some(BOUNDS.lateral_line_m),
+        ),
+        Figure::new(
+            "mean lateral error on arcs, m",
+            Some(d.lateral_spiral().mean_abs),
+            Some(BOUNDS.lateral_spiral_m),
+        ),
+        Figure::new(
+            "mean angular error on arcs, rad",
+            Some(d.angular_spiral().mean_abs),
+            BOUNDS.angular_spiral_rad,
+        ),
+    ];
+    let mut failures: Vec<String> = figures
+        .iter()
+        .filter(|f| f.pass == Some(false))
+        .map(|f| format!("{}: {:?} > {:?}", f.name, f.value, f.bound))
+        .collect();
+    if !o.complete() {
+        failures.insert(0, format!("{:?}", o.phase));
+    }
+    Ok(Run {
+        name: run.guiding.name.clone(),
+        family: "mission with obstacles",
+        pass: failures.is_empty(),
+        figures,
+        failures,
+        expected: None,
+        plots: plots(&dir),
+    })
 }

@@ -13,6 +13,7 @@ use fieldguide::{Meters, MetersPerSecond, Pose2};
 
 use super::farm::{Farm, PlacedField, Road};
 use super::field::{FieldSpec, Layout};
+use super::mission::{MissionRun, Shape, WorldObstacle};
 use super::{ControlSpec, GuidingRun, RobotSpec};
 use crate::error::ScenarioError;
 use crate::scenario::check::Checker;
@@ -30,6 +31,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     (
         "welaser-farm",
         include_str!("../../scenarios/welaser-farm.toml"),
+    ),
+    (
+        "welaser-mission",
+        include_str!("../../scenarios/welaser-mission.toml"),
     ),
 ];
 
@@ -56,6 +61,44 @@ pub struct GuidingFile {
     pub gnss: GnssSection,
     /// A farm of such fields joined by roads (`[farm]`, optional).
     pub farm: Option<FarmSection>,
+    /// The obstacles of a mission driven by the core's supervisor
+    /// (`[[obstacle]]`, optional; with it the file is a mission with
+    /// obstacles, `obstacle = []` one with none).
+    pub obstacle: Option<Vec<ObstacleSection>>,
+}
+
+/// `[[obstacle]]`: a post, a box or a person on the farm.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSection {
+    /// A name for the reports.
+    pub name: String,
+    /// `post`, `box` or `person`.
+    pub kind: String,
+    /// Where it stands (a person: where it starts walking), m.
+    pub at: [f64; 2],
+    /// A post's or a person's radius, m.
+    pub radius_m: Option<f64>,
+    /// A box's length and width, m.
+    pub size_m: Option<[f64; 2]>,
+    /// The direction of a box's length, degrees.
+    pub heading_deg: Option<f64>,
+    /// A person walks in a straight line (`[obstacle.walk]`).
+    pub walk: Option<WalkSection>,
+    /// Present from the first time to the second, s (default: always).
+    pub present_s: Option<[f64; 2]>,
+}
+
+/// `[obstacle.walk]`: a person walking at a set time and speed.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WalkSection {
+    /// Where the walk ends, m.
+    pub to: [f64; 2],
+    /// When it starts, s.
+    pub start_s: f64,
+    /// Its speed, m/s.
+    pub speed_mps: f64,
 }
 
 /// `[farm]`: the yard, the fields (each the layout of `[guiding]` and
@@ -352,6 +395,139 @@ impl GuidingFile {
         }
         Ok(run)
     }
+}
+
+impl GuidingFile {
+    /// The mission with obstacles of a file with `[[obstacle]]` tables
+    /// (`None` without them), validated: the farm's run and its obstacles.
+    ///
+    /// # Errors
+    /// Those of [`GuidingFile::run`]; an obstacle without a `[farm]`, or a
+    /// value out of range, naming `obstacle[k].<field>`.
+    //= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
+    //# A scenario file's `[[obstacle]]` tables MUST be refused, naming the file
+    //# and the field, for an unknown kind, a size or radius out of range, a
+    //# non-finite place, a walk that is not a person's or has no positive
+    //# duration, or a presence that ends before it starts.
+    pub fn mission(&self, origin: &str) -> Result<Option<MissionRun>, ScenarioError> {
+        let Some(sections) = &self.obstacle else {
+            return Ok(None);
+        };
+        let guiding = self.run(origin)?;
+        let check = Checker::new(origin);
+        if guiding.farm.is_none() {
+            return Err(check.error("obstacle", "obstacles need a [farm]"));
+        }
+        if sections.len() > 64 {
+            return Err(check.error("obstacle", "at most 64 obstacles"));
+        }
+        let obstacles = sections
+            .iter()
+            .enumerate()
+            .map(|(k, o)| o.obstacle(&check, k))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Some(MissionRun { guiding, obstacles }))
+    }
+}
+
+impl ObstacleSection {
+    /// The validated obstacle `k` of the file.
+    fn obstacle(&self, check: &Checker, k: usize) -> Result<WorldObstacle, ScenarioError> {
+        let at = |f: &str| format!("obstacle[{k}].{f}");
+        if self.name.trim().is_empty() {
+            return Err(check.error(&at("name"), "must not be empty"));
+        }
+        let place = |f: &str, p: [f64; 2]| -> Result<(f64, f64), ScenarioError> {
+            Ok((check.finite(&at(f), p[0])?, check.finite(&at(f), p[1])?))
+        };
+        let circle = |what: &str| -> Result<Shape, ScenarioError> {
+            if self.size_m.is_some() || self.heading_deg.is_some() {
+                return Err(check.error(
+                    &at("size_m"),
+                    &format!("a {what} has a radius_m, not a size_m or heading_deg"),
+                ));
+            }
+            let r = self
+                .radius_m
+                .ok_or_else(|| check.error(&at("radius_m"), &format!("a {what} needs one")))?;
+            Ok(Shape::Circle {
+                radius: check.range(&at("radius_m"), r, 0.02, 2.0)?,
+            })
+        };
+        let shape = match self.kind.as_str() {
+            "post" => circle("post")?,
+            "person" => circle("person")?,
+            "box" => {
+                if self.radius_m.is_some() {
+                    return Err(check.error(&at("radius_m"), "a box has a size_m, not a radius_m"));
+                }
+                let [l, w] = self
+                    .size_m
+                    .ok_or_else(|| check.error(&at("size_m"), "a box needs [length, width]"))?;
+                Shape::Box {
+                    length: check.range(&at("size_m"), l, 0.05, 20.0)?,
+                    width: check.range(&at("size_m"), w, 0.05, 20.0)?,
+                    heading: check
+                        .finite(&at("heading_deg"), self.heading_deg.unwrap_or(0.0))?
+                        .to_radians(),
+                }
+            }
+            _ => {
+                return Err(check.error(&at("kind"), "must be `post`, `box` or `person`"));
+            }
+        };
+        let from = place("at", self.at)?;
+        let walk = match &self.walk {
+            None => None,
+            Some(_) if self.kind != "person" => {
+                return Err(check.error(&at("walk"), "only a person walks"));
+            }
+            Some(w) => {
+                let to = place("walk.to", w.to)?;
+                let start = check.non_negative(&at("walk.start_s"), w.start_s)?;
+                let speed = check.range(&at("walk.speed_mps"), w.speed_mps, 0.05, 5.0)?;
+                let length = (to.0 - from.0).hypot(to.1 - from.1);
+                if length <= 0.0 {
+                    return Err(check.error(&at("walk.to"), "must differ from `at`"));
+                }
+                Some((to, start, start + length / speed))
+            }
+        };
+        let present_s = match self.present_s {
+            None => (0.0, f64::INFINITY),
+            Some([a, b]) => {
+                let a = check.non_negative(&at("present_s"), a)?;
+                if !(b.is_finite() && b > a) {
+                    return Err(check.error(&at("present_s"), "must be [from, to] with to > from"));
+                }
+                (a, b)
+            }
+        };
+        Ok(WorldObstacle {
+            name: self.name.clone(),
+            shape,
+            at: from,
+            walk,
+            present_s,
+        })
+    }
+}
+
+/// The built-in mission with obstacles `name` (`None` for an unknown name or
+/// a built-in without `[[obstacle]]` tables), validated.
+///
+/// # Errors
+/// When the built-in file is not valid (a bug).
+//= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
+//# A scenario file with `[guiding]`, `[farm]` and `[[obstacle]]` tables MUST be
+//# driven by the core's mission supervisor with those obstacles, and the
+//# built-in `welaser-mission` MUST be such a file.
+pub fn builtin_mission(name: &str) -> Option<Result<MissionRun, ScenarioError>> {
+    let (n, text) = BUILTIN.iter().find(|(n, _)| *n == name)?;
+    let origin = format!("built-in scenario `{n}`");
+    GuidingFile::parse(text, &origin)
+        .and_then(|f| f.mission(&origin))
+        .transpose()
 }
 
 /// The built-in mission `name`, validated.

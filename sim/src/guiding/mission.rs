@@ -56,8 +56,33 @@ pub const MARGIN_M: f64 = 0.3;
 /// areas, m: the clusters' enclosing circles (up to 0.5 m, EM-OBST-SHAPE)
 /// over-approximate an obstacle, on the safe side.
 pub const REASON_SLACK_M: f64 = 0.5;
+/// A plan followed less than this far was not driven, m (not drawn).
+const UNDRIVEN_M: f64 = 0.05;
 /// Spacing of the points that stand for an obstacle's outline, m.
 const OUTLINE_STEP_M: f64 = 0.02;
+
+/// The bounds a mission with obstacles is held to (EM-SIM-MISSION-SAFE):
+/// half the paper's field figures for the lateral and reach errors
+/// (EM-SIM-FIGURES).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    /// Mean reach error, m.
+    pub reach_m: f64,
+    /// Mean lateral error on lines, m.
+    pub lateral_line_m: f64,
+    /// Mean lateral error on arcs, m.
+    pub lateral_spiral_m: f64,
+    /// Mean angular error on arcs, rad (`None`: reported, not held).
+    pub angular_spiral_rad: Option<f64>,
+}
+
+/// The bounds of the built-in missions with obstacles.
+pub const BOUNDS: Bounds = Bounds {
+    reach_m: 0.045,
+    lateral_line_m: 0.038,
+    lateral_spiral_m: 0.06,
+    angular_spiral_rad: None,
+};
 
 /// The shape of an obstacle of the world.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -419,6 +444,12 @@ pub struct MissionOutcome {
     pub stops: Vec<Stop>,
     /// Each detour started.
     pub replans: Vec<Replan>,
+    /// Detour plans followed: one per detour started, more when a detour was
+    /// re-planned (EM-MISSION-OBSTACLE: only when it became invalid).
+    pub detour_plans: usize,
+    /// The farthest the footprint's corners came outside the road's edge on
+    /// a detour, m (negative: inside by that much; `-inf` without a detour).
+    pub detour_off_road_m: f64,
     /// Ticks where the footprint overlapped an obstacle: (time, obstacle).
     pub collisions: Vec<(f64, usize)>,
     /// Ticks where a walking person overlapped the footprint only behind
@@ -505,6 +536,8 @@ pub fn drive_mission(run: &MissionRun) -> MissionOutcome {
         tasks: Vec::new(),
         stops: Vec::new(),
         replans: Vec::new(),
+        detour_plans: 0,
+        detour_off_road_m: f64::NEG_INFINITY,
         collisions: Vec::new(),
         walked_into: Vec::new(),
         legs: Vec::new(),
@@ -616,6 +649,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     let lidar = HorizontalLidar::new(FRONT_LIDAR)
         .map_err(|_| Precondition::new("EM-SIM-MISSION", "front LiDAR"))?;
     let outlines: Vec<_> = farm.fields.iter().map(|f| f.outline()).collect();
+    let roads = farm.road_polylines()?;
     let ctl = Controllers::of(g)?;
     let plant = g.robot.plant();
     let terrain = Terrain::default();
@@ -631,6 +665,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     let mut last_plan: Option<Plan> = None;
     let mut active_detour = false;
     let mut nominal = 0.0_f64;
+    let mut remaining: Option<f64> = None;
     let mut goal = farm.yard;
     let mut ranges = Vec::with_capacity(FRONT_LIDAR.rays);
     let mut task_runs: Vec<TaskRun> = tasks
@@ -722,11 +757,9 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
             odometry,
             hazard,
             in_field,
-            // Arrival by distance to the goal (the supervisor's rule without
-            // the pipeline's remaining distance): with this loop's distance
-            // along its path the first seed aborts with GoalMissed, not yet
-            // understood.
-            remaining: None,
+            // The pipeline's remaining distance along the plan it followed
+            // in the previous tick (its end is judged at the reach distance).
+            remaining: remaining.map(Meters::new).transpose()?,
         };
         let before = *mission.state();
         let answer = mission.tick(&input);
@@ -776,6 +809,21 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                 }
                 leg_key = Some(key);
                 last_plan = Some(plan);
+                //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+                //# On every tick of a detour on a road, the distance of the
+                //# footprint's corners outside the road's edge MUST be measured.
+                if leg.detour {
+                    if let Some((Task::Road(k), _)) = tasks.get(usize::from(leg.task)) {
+                        if let Some(line) = roads.get(*k) {
+                            out.detour_off_road_m = out.detour_off_road_m.max(off_road(
+                                &g.robot,
+                                &truth,
+                                line,
+                                farm.road_width_m,
+                            ));
+                        }
+                    }
+                }
                 goal = plan.goal();
                 nominal = answer.speed.get();
                 let same = active.as_ref().is_some_and(|(p, _)| *p == plan)
@@ -788,10 +836,18 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                         if !active_detour && a.s_fix >= a.path.length().get() - 2.0 * TOLERANCE_M {
                             close_manoeuvres(&a, &mut out.drive.manoeuvres);
                         }
+                        // A plan left before it was driven (a leg reached
+                        // where it was planned) is not drawn as followed.
+                        if a.s_true < UNDRIVEN_M && a.path.length().get() > 2.0 * UNDRIVEN_M {
+                            out.legs.pop();
+                            out.drive.paths.pop();
+                        }
                     }
                     active_detour = leg.detour;
+                    out.detour_plans += usize::from(leg.detour);
                     finished = None;
                     // A plan shorter than 1 mm is reached already.
+                    remaining = Some(plan.length().get());
                     if let Ok(a) = active_of(g, &plan, usize::from(leg.leg)) {
                         let kind = tasks
                             .get(usize::from(leg.task))
@@ -809,6 +865,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                 };
                 if let Some((p, a)) = active.as_mut() {
                     let (c, lateral, done) = steer(g, &ctl, a, &control_pose, &truth)?;
+                    remaining = Some(a.path.length().get() - a.s_fix);
                     command = c;
                     lateral_now = lateral;
                     if done {
@@ -918,6 +975,26 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
     Ok(())
 }
 
+/// How far the footprint's farthest corner at `pose` lies outside a road of
+/// `width` along `line`, m (negative inside).
+fn off_road(robot: &super::RobotSpec, pose: &Pose2<World>, line: &[(f64, f64)], width: f64) -> f64 {
+    let (hl, hw) = (
+        robot.length_m / 2.0,
+        (robot.track_m + robot.track_width_m) / 2.0,
+    );
+    let (s, c) = pose.heading.get().sin_cos();
+    [(hl, hw), (hl, -hw), (-hl, hw), (-hl, -hw)]
+        .iter()
+        .map(|(u, v)| {
+            let p = (
+                pose.position.x() + u * c - v * s,
+                pose.position.y() + u * s + v * c,
+            );
+            Farm::distance_to_road(line, p) - width / 2.0
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// `pose` moved by `step` of its own frame.
 fn pose_after(pose: &Pose2<World>, step: &Pose2<Robot>) -> Result<Pose2<World>, Precondition> {
     let (s, c) = pose.heading.get().sin_cos();
@@ -955,6 +1032,8 @@ pub fn summary_json(run: &MissionRun, o: &MissionOutcome) -> serde_json::Value {
         "stops_unjustified": o.stops.iter().filter(|s| !s.justified).count(),
         "replans": o.replans.len(),
         "replans_in_field": o.replans.iter().filter(|r| r.in_field).count(),
+        "detour_plans": o.detour_plans,
+        "detour_off_road_m": if o.detour_off_road_m.is_finite() { Some(o.detour_off_road_m) } else { None },
         "collisions": o.collisions.len(),
         "walked_into": o.walked_into.len(),
         "obstacles": run.obstacles.len(),
@@ -1234,47 +1313,15 @@ pub fn write(out: &Path, run: &MissionRun, outcome: &MissionOutcome) -> Result<P
     Ok(dir)
 }
 
-/// The built-in `welaser-mission`: the `welaser-farm` farm with a box on the
-/// road back to the yard (re-planned round), a person crossing the first
-/// road (a stop, then on) and a person standing on the second field's
-/// first pass for 20 s (a stop, no re-plan).
+/// The built-in `welaser-mission` (`sim/scenarios/welaser-mission.toml`)
+/// with the seed `seed`.
 ///
-/// `None` when the built-in farm is not valid (a bug).
+/// `None` when the built-in file is not valid (a bug).
+#[must_use]
 pub fn welaser_mission(seed: u64) -> Option<MissionRun> {
-    let mut guiding = super::file::builtin("welaser-farm")?.ok()?;
-    guiding.name = "welaser-mission".to_owned();
-    guiding.seed = seed;
-    guiding.duration_s = 1500.0;
-    Some(MissionRun {
-        guiding,
-        obstacles: vec![
-            WorldObstacle {
-                name: "box on the road".to_owned(),
-                shape: Shape::Box {
-                    length: 0.6,
-                    width: 0.6,
-                    heading: 0.3,
-                },
-                at: (50.0, -3.2),
-                walk: None,
-                present_s: (0.0, f64::INFINITY),
-            },
-            WorldObstacle {
-                name: "person crossing".to_owned(),
-                shape: Shape::Circle { radius: 0.25 },
-                at: (9.0, -6.5),
-                walk: Some(((9.0, 0.5), 16.0, 23.0)),
-                present_s: (0.0, f64::INFINITY),
-            },
-            WorldObstacle {
-                name: "person in the field".to_owned(),
-                shape: Shape::Circle { radius: 0.25 },
-                at: (70.0, 7.5),
-                walk: None,
-                present_s: (0.0, 400.0),
-            },
-        ],
-    })
+    let mut run = super::file::builtin_mission("welaser-mission")?.ok()?;
+    run.guiding.seed = seed;
+    Some(run)
 }
 
 /// A mission of the campaign: the `welaser-farm` farm with obstacles drawn
@@ -1402,6 +1449,10 @@ pub struct CampaignRow {
     pub replans: usize,
     /// Re-plans started inside a field.
     pub replans_in_field: usize,
+    /// Detour plans followed (one per detour unless one became invalid).
+    pub detour_plans: usize,
+    /// The farthest a footprint corner came outside the road on a detour, m.
+    pub detour_off_road_m: f64,
     /// Mission time, s.
     pub duration_s: f64,
 }
@@ -1426,6 +1477,8 @@ impl CampaignRow {
             unjustified: o.stops.iter().filter(|s| !s.justified).count(),
             replans: o.replans.len(),
             replans_in_field: o.replans.iter().filter(|r| r.in_field).count(),
+            detour_plans: o.detour_plans,
+            detour_off_road_m: o.detour_off_road_m,
             duration_s: o.drive.ticks.last().map_or(0.0, |t| t.t_s),
         }
     }
@@ -1453,12 +1506,12 @@ pub fn campaign(runs: u32) -> Vec<CampaignRow> {
 #[must_use]
 pub fn campaign_csv(rows: &[CampaignRow]) -> String {
     let mut csv = String::from(
-        "seed,complete,reason,collisions,walked_into,crushed,stops,unjustified_stops,replans,replans_in_field,duration_s\n",
+        "seed,complete,reason,collisions,walked_into,crushed,stops,unjustified_stops,replans,replans_in_field,detour_plans,detour_off_road_m,duration_s\n",
     );
     for r in rows {
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{:.1}",
+            "{},{},{},{},{},{},{},{},{},{},{},{:.3},{:.1}",
             r.seed,
             r.complete,
             r.reason.as_deref().unwrap_or(""),
@@ -1469,6 +1522,8 @@ pub fn campaign_csv(rows: &[CampaignRow]) -> String {
             r.unjustified,
             r.replans,
             r.replans_in_field,
+            r.detour_plans,
+            r.detour_off_road_m,
             r.duration_s
         );
     }

@@ -116,7 +116,8 @@ impl Assessment {
 /// Dubins planner for `pose` or `goal` beyond 1e7 m (`EM-DUBINS-RANGE`).
 //= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
 //# An obstacle in the critical area MUST give `Critical`, whatever the other
-//# obstacles.
+//# obstacles, unless the footprint moving along the planned path for the
+//# critical area's length L_c(v) is clear of it (EM-OBST-CLEAR).
 //= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
 //# Otherwise, an obstacle in the warning area on which the footprint moving
 //# along the planned path up to the warning area's far edge is not clear
@@ -149,8 +150,17 @@ pub fn assess<const N: usize>(
         return Ok(Assessment::new(Hazard::Critical, Reason::Unseen));
     }
     let all = obstacles.as_slice();
-    if all.iter().any(|o| areas.in_critical(o)) {
-        return Ok(Assessment::new(Hazard::Critical, Reason::CriticalArea));
+    let mut critical = all.iter().filter(|o| areas.in_critical(o)).peekable();
+    if critical.peek().is_some() {
+        // The critical area along the path: a rectangle ahead sweeps up to
+        // L²/2r outside an arc the robot follows. No path: Critical.
+        let length = areas.critical_end().get() - config.footprint().front().get();
+        let hit = shortest(pose, goal, config.radius()).map_or(true, |path| {
+            critical.any(|o| detour::on_path(o, pose, &path, length, config))
+        });
+        if hit {
+            return Ok(Assessment::new(Hazard::Critical, Reason::CriticalArea));
+        }
     }
     let mut warned = all.iter().filter(|o| areas.in_warning(o)).peekable();
     if warned.peek().is_none() {

@@ -1,6 +1,7 @@
 //! The mission's configuration (EM-MISSION-MONITOR, EM-MISSION-LEGS,
 //! EM-LOC-CHOICE).
 
+use crate::control::speed_profile::REACH_DISTANCE;
 use crate::error::Precondition;
 use crate::geometry::units::{Meters, MetersPerSecond, Seconds};
 use crate::planning::dubins::TurningRadius;
@@ -104,7 +105,8 @@ pub struct MissionConfig {
     /// The distance within which a goal counts as reached, metres (> 0).
     pub tolerance: Meters,
     /// The remaining distance along a leg at which its end counts as passed
-    /// (EM-SPEED-REACH), metres; [`MissionConfig::new`] sets the tolerance.
+    /// (EM-SPEED-REACH), metres; [`MissionConfig::new`] sets the speed
+    /// profile's [`REACH_DISTANCE`], below the tolerance.
     pub reach_distance: Meters,
     /// The longest leg that may be planned, metres (> 0).
     pub longest_leg: Meters,
@@ -141,6 +143,17 @@ impl MissionConfig {
                 "tolerance and longest leg must be positive",
             ));
         }
+        //= spec/emmi2024.md#em-mission-monitor-malfunctions
+        //# The end of a leg MUST count as passed when the pipeline's remaining
+        //# distance along it is at most the speed profile's reach distance
+        //# (EM-SPEED-REACH), and a tolerance not above that reach distance MUST be
+        //# refused with the `EM-MISSION-CONFIG` error.
+        if tolerance.get() <= REACH_DISTANCE {
+            return Err(Precondition::new(
+                "EM-MISSION-CONFIG",
+                "the tolerance must exceed the reach distance (0.05 m)",
+            ));
+        }
         if odometry_distance.get() < 0.0 || cruise_speed.get() < 0.0 || turn_speed.get() < 0.0 {
             return Err(Precondition::new(
                 "EM-MISSION-CONFIG",
@@ -150,7 +163,7 @@ impl MissionConfig {
         Ok(Self {
             machine,
             tolerance,
-            reach_distance: tolerance,
+            reach_distance: Meters::new(REACH_DISTANCE)?,
             longest_leg,
             odometry_distance,
             threshold: PlannerThreshold::DEFAULT,
@@ -175,17 +188,13 @@ impl MissionConfig {
             Seconds::new(10.0)?,
             Seconds::new(600.0)?,
         )?;
-        let config = Self::new(
+        Self::new(
             machine,
             Meters::new(0.25)?,
             Meters::new(500.0)?,
             Meters::new(5.0)?,
             TurningRadius::new(Meters::new(1.5)?)?,
             (MetersPerSecond::new(0.5)?, MetersPerSecond::new(0.2)?),
-        )?;
-        Ok(Self {
-            reach_distance: Meters::new(0.05)?,
-            ..config
-        })
+        )
     }
 }

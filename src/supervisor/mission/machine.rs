@@ -240,9 +240,13 @@ pub fn step(
             }
         },
     };
-    let replan = matches!(command, Command::Follow(_))
-        && ((next.task, next.leg, next.detour) != before
-            || matches!(events.hazard, HazardLevel::Warning { detour: true }));
+    //= spec/emmi2024.md#em-mission-obstacle-obstacles
+    //# A detour MUST be planned once per obstacle: the machine MUST ask for a
+    //# plan only when the leg or the detour changes, and while a detour is
+    //# followed a further warning MUST NOT re-plan it unless its waypoint lies
+    //# farther than the tolerance from the one followed.
+    let replan =
+        matches!(command, Command::Follow(_)) && (next.task, next.leg, next.detour) != before;
     let output = Output {
         command,
         phase: next.phase,

@@ -160,8 +160,8 @@ pub struct Mission {
     localiser: Localiser,
     plan: Option<(LegKey, Plan)>,
     plan_failed: bool,
+    at_goal: bool,
     detour_goal: Option<Pose2<World>>,
-    previous: Option<Pose2<World>>,
     driven: f64,
 }
 
@@ -183,8 +183,8 @@ impl Mission {
             localiser: Localiser::new(config.odometry_distance),
             plan: None,
             plan_failed: false,
+            at_goal: false,
             detour_goal: None,
-            previous: None,
             driven: 0.0,
         })
     }
@@ -200,14 +200,12 @@ impl Mission {
     pub fn tick(&mut self, input: &MissionInput) -> MissionOutput {
         let fix = self.localiser.update(input.gnss, &input.odometry);
         let pose = fix.pose();
-        let moved = match (pose, self.previous) {
-            (Some(p), Some(q)) => libm::hypot(
-                p.position.x() - q.position.x(),
-                p.position.y() - q.position.y(),
-            ),
-            _ => 0.0,
-        };
-        self.previous = pose;
+        //= spec/emmi2024.md#em-mission-monitor-malfunctions
+        //# The progress of a tick and the distance driven on a leg MUST be taken
+        //# from the odometry increments, never from differences of localised poses,
+        //# so that the noise of a standing robot's fix is neither progress nor
+        //# distance.
+        let moved = libm::hypot(input.odometry.position.x(), input.odometry.position.y());
         self.driven += moved;
         let arrival = match (pose, &self.plan) {
             (Some(p), Some((key, plan))) if *key == self.key() => {
@@ -218,6 +216,8 @@ impl Mission {
                 let tolerance = self.config.tolerance.get();
                 let close = to_goal <= tolerance;
                 match input.remaining {
+                    // Planned where it ends: reached without a path.
+                    _ if self.at_goal => Arrival::Reached,
                     // The end is passed along the path: reached or missed.
                     Some(r) if r.get() <= self.config.reach_distance.get() => {
                         if close {
@@ -236,12 +236,28 @@ impl Mission {
             }
             _ => Arrival::EnRoute,
         };
+        // A new detour's waypoint is kept; one followed is replaced (and
+        // re-planned) only when the new waypoint moved beyond the tolerance.
+        let mut invalid = false;
         let hazard = match input.hazard {
             Hazard::Clear => HazardLevel::Clear,
             Hazard::Critical => HazardLevel::Critical,
             Hazard::Warning { detour } => {
-                if detour.is_some() {
-                    self.detour_goal = detour;
+                if let Some(w) = detour {
+                    let followed = self.detour_goal.filter(|_| self.state.detour());
+                    match followed {
+                        None => self.detour_goal = Some(w),
+                        Some(g) => {
+                            let apart = libm::hypot(
+                                w.position.x() - g.position.x(),
+                                w.position.y() - g.position.y(),
+                            );
+                            if apart > self.config.tolerance.get() {
+                                self.detour_goal = Some(w);
+                                invalid = true;
+                            }
+                        }
+                    }
                 }
                 HazardLevel::Warning {
                     detour: detour.is_some(),
@@ -262,9 +278,10 @@ impl Mission {
         if let (Command::Follow(leg), Some(pose)) = (command, pose) {
             let key = (leg.task, leg.leg, leg.detour);
             let stale = self.plan.as_ref().is_none_or(|(k, _)| *k != key);
-            if out.replan || stale {
+            if out.replan || stale || (invalid && leg.detour) {
                 match self.plan_leg(&leg, &pose) {
                     Ok(plan) => {
+                        self.at_goal = self.starts_at_goal(&pose, &plan.goal());
                         self.plan = Some((key, plan));
                         self.driven = 0.0;
                     }
@@ -293,6 +310,23 @@ impl Mission {
             fix,
             speed,
         }
+    }
+
+    /// Whether a leg planned from `pose` to `goal` starts at its goal: within
+    /// the tolerance, heading within the planner threshold.
+    //= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg
+    //# A leg whose goal is within the tolerance of the pose it is planned from,
+    //# with a heading change below the planner threshold, MUST count as reached
+    //# in the next tick, its path not followed.
+    fn starts_at_goal(&self, pose: &Pose2<World>, goal: &Pose2<World>) -> bool {
+        let near = libm::hypot(
+            goal.position.x() - pose.position.x(),
+            goal.position.y() - pose.position.y(),
+        ) <= self.config.tolerance.get();
+        let turn = libm::fabs(crate::geometry::units::wrap_raw(
+            goal.heading.get() - pose.heading.get(),
+        ));
+        near && turn < self.config.threshold.get().get()
     }
 
     /// The key of the machine's current leg.
