@@ -283,7 +283,7 @@ struct Slot<D: Detector> {
     detector: D,
     held: Option<Held<D::Line>>,
     /// The latest valid line, for the bridge (GD-BRIDGE).
-    last_valid: Option<bridge::LastValid<D::Line>>,
+    last_valid: Option<bridge::LastValid>,
 }
 
 /// A behaviour's estimate in the current tick, before plan and law.

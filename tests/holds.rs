@@ -120,12 +120,12 @@ fn ends_at_4(x: f64) -> bool {
 //= type=test
 //# When a bridge length is configured, a tick in which the behaviour of the
 //# active specialised mode has no valid estimate MUST report Hold with the
-//# tracking error to the line of that behaviour's latest scan with an Enter or
-//# Hold verdict, moved to the current pose through odometry (GD-ODOMETRY), as
-//# long as the odometry distance summed over the ticks since that scan is at
-//# most the bridge length and no scan of that behaviour was refused since;
-//# otherwise, and for a behaviour that is not active, the estimate MUST be that
-//# of GD-SCAN-AGE.
+//# tracking error of that behaviour's latest scan with an Enter or Hold verdict,
+//# moved to the current pose through odometry as the error to a straight line
+//# (GD-ODOMETRY), as long as the odometry distance summed over the ticks since
+//# that scan is at most the bridge length and no scan of that behaviour was
+//# refused since; otherwise, and for a behaviour that is not active, the
+//# estimate MUST be that of GD-SCAN-AGE.
 #[test]
 fn a_gap_shorter_than_the_bridge_is_held_and_a_longer_one_is_left() {
     let path = straight_path();

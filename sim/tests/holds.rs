@@ -18,10 +18,12 @@
     clippy::panic
 )]
 
+mod common;
+
 use std::path::PathBuf;
 
 use fieldguide::guidance::Mode;
-use fieldguide_sim::guidance::pipeline::FURROW;
+use fieldguide_sim::guidance::pipeline::{EDGE, FURROW};
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
 use fieldguide_sim::scenario::{Setup, Source};
 
@@ -226,4 +228,189 @@ fn outage_in_a_fast_maize_plot_rejects_the_volunteers() {
     let f = outage_figures(&setup, &out);
     eprintln!("outage-maize-fast seed 1 rolling off at once: {f:?}");
     assert!(f.stops == 1 && f.resume_swing_m > RESUME_SWING_M, "{f:?}");
+}
+
+/// The edge-following configuration of the hedge and trunk fields: D, m,
+/// and the rolling circle's radius r, m (Table 1).
+const OFFSET_M: f64 = 1.4;
+const CIRCLE_M: f64 = 1.0;
+
+/// What one pass along a hedge or a row of trunks did.
+#[derive(Debug)]
+struct PassFigures {
+    /// Changes of the machine's mode over the run.
+    switches: usize,
+    /// Ticks in edge following with path tracking steering.
+    path_in_edge: usize,
+    /// Mean and max |error| to the reference line (below) once settled, m.
+    mean_m: f64,
+    max_m: f64,
+    /// The same to the nominal face's offset line, m.
+    nominal_mean_m: f64,
+    nominal_max_m: f64,
+}
+
+/// (along, across) of a world point in the frame of hedge 0.
+fn hedge_frame(setup: &Setup, x: f64, y: f64) -> (f64, f64) {
+    let h = &setup.world.hedges[0].spec;
+    let (c, s) = (h.heading.cos(), h.heading.sin());
+    let (dx, dy) = (x - h.start[0], y - h.start[1]);
+    (dx * c + dy * s, -dx * s + dy * c)
+}
+
+/// The envelope of the hedge's near (right) face: at along-hedge distance
+/// `u`, how far the face a rolling circle of radius r touches stands out
+/// towards the robot beyond the nominal face, max over the face's vertices v
+/// within r of `u` of p_v − (r − √(r² − d²)), p_v the vertex's protrusion;
+/// `None` with no vertex within r.
+fn envelope(face: &[(f64, f64)], u: f64) -> Option<f64> {
+    face.iter()
+        .filter(|(a, _)| (a - u).abs() < CIRCLE_M)
+        .map(|(a, p)| p - (CIRCLE_M - (CIRCLE_M * CIRCLE_M - (a - u).powi(2)).sqrt()))
+        .reduce(f64::max)
+}
+
+/// The figures of a pass; `envelope_line`: measured against the offset line
+/// of the face's envelope where the hedge is present (a ragged hedge), else
+/// against the nominal face's offset line all along the structure, gaps
+/// included (a row of trunks).
+fn pass_figures(setup: &Setup, out: &RunOutput, envelope_line: bool) -> PassFigures {
+    let t = &out.trace;
+    let spec = &setup.world.hedges[0].spec;
+    let half = 0.5 * spec.thickness;
+    // The near face's vertices: (along, protrusion beyond the nominal face).
+    let face: Vec<(f64, f64)> = setup
+        .world
+        .obstacles
+        .segments
+        .iter()
+        .flat_map(|s| [s.a, s.b])
+        .map(|p| hedge_frame(setup, p[0], p[1]))
+        .filter(|(_, across)| *across < 0.0)
+        .map(|(along, across)| (along, -across - half))
+        .collect();
+    let switches = t
+        .windows(2)
+        .filter(|w| w[0].command.switching_mode != w[1].command.switching_mode)
+        .count();
+    let path_in_edge = t
+        .iter()
+        .filter(|r| {
+            r.command.switching_mode == Mode::Behaviour(EDGE) && r.mode() != Mode::Behaviour(EDGE)
+        })
+        .count();
+    let mut errors = Vec::new();
+    for r in common::settled_in(t, Mode::Behaviour(EDGE), 3.0) {
+        let (u, across) = hedge_frame(setup, r.truth.position.x(), r.truth.position.y());
+        if !(0.0..=spec.length).contains(&u) {
+            continue;
+        }
+        let nominal = (-half - across) - OFFSET_M;
+        if envelope_line {
+            if !spec.is_present(u) {
+                continue;
+            }
+            if let Some(e) = envelope(&face, u) {
+                errors.push((nominal - e, nominal));
+            }
+        } else {
+            errors.push((nominal, nominal));
+        }
+    }
+    assert!(errors.len() > 1000, "{}", errors.len());
+    let n = errors.len() as f64;
+    PassFigures {
+        switches,
+        path_in_edge,
+        mean_m: errors.iter().map(|e| e.0.abs()).sum::<f64>() / n,
+        max_m: errors.iter().map(|e| e.0.abs()).fold(0.0, f64::max),
+        nominal_mean_m: errors.iter().map(|e| e.1.abs()).sum::<f64>() / n,
+        nominal_max_m: errors.iter().map(|e| e.1.abs()).fold(0.0, f64::max),
+    }
+}
+
+/// The worst figures of a sweep of `name`, with or without its bridge.
+fn sweep_pass(name: &str, bridge: bool, envelope_line: bool) -> PassFigures {
+    let seeds: Vec<u64> = SEEDS.collect();
+    let mut worst = PassFigures {
+        switches: 0,
+        path_in_edge: 0,
+        mean_m: 0.0,
+        max_m: 0.0,
+        nominal_mean_m: 0.0,
+        nominal_max_m: 0.0,
+    };
+    for pair in seeds.chunks(2) {
+        let runs: Vec<_> = std::thread::scope(|s| {
+            let handles: Vec<_> = pair
+                .iter()
+                .map(|&seed| {
+                    s.spawn(move || {
+                        let (setup, out) = run_stress_edited(name, seed, |t| {
+                            if bridge {
+                                t
+                            } else {
+                                t.lines()
+                                    .filter(|l| !l.starts_with("bridge_m"))
+                                    .collect::<Vec<_>>()
+                                    .join("\n")
+                            }
+                        });
+                        (
+                            seed,
+                            pass_figures(&setup, &out, envelope_line),
+                            out.plants_crushed,
+                        )
+                    })
+                })
+                .collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        for (seed, f, _) in runs {
+            eprintln!("{name} seed {seed}, bridge {bridge}: {f:?}");
+            worst.switches = worst.switches.max(f.switches);
+            worst.path_in_edge = worst.path_in_edge.max(f.path_in_edge);
+            worst.mean_m = worst.mean_m.max(f.mean_m);
+            worst.max_m = worst.max_m.max(f.max_m);
+            worst.nominal_mean_m = worst.nominal_mean_m.max(f.nominal_mean_m);
+            worst.nominal_max_m = worst.nominal_max_m.max(f.nominal_max_m);
+        }
+    }
+    eprintln!("{name}, seeds {SEEDS:?}, bridge {bridge}, worst: {worst:?}");
+    worst
+}
+
+//= spec/guidance.md#gd-bridge-regular-gaps-bridged-by-the-held-line
+//= type=test
+//# When a bridge length is configured, a tick in which the behaviour of the
+//# active specialised mode has no valid estimate MUST report Hold with the
+//# tracking error of that behaviour's latest scan with an Enter or Hold verdict,
+//# moved to the current pose through odometry as the error to a straight line
+//# (GD-ODOMETRY), as long as the odometry distance summed over the ticks since
+//# that scan is at most the bridge length and no scan of that behaviour was
+//# refused since; otherwise, and for a behaviour that is not active, the
+//# estimate MUST be that of GD-SCAN-AGE.
+#[test]
+fn a_row_of_trunks_is_one_structure() {
+    let with = sweep_pass("trunks-row", true, false);
+    let without = sweep_pass("trunks-row", false, false);
+    assert!(with.switches <= 2, "{with:?}");
+    assert!(with.max_m < 0.1 && with.mean_m < 0.05, "{with:?}");
+    assert!(without.path_in_edge > with.path_in_edge, "{without:?}");
+}
+
+/// The true line of a ragged hedge is its envelope's offset line: the face
+/// the robot must keep clear of, and the one the rolling circle (radius r)
+/// of the detector traces. Against it the robot keeps far closer than
+/// against the nominal face's offset line. The bridge is off on this field
+/// (`hedge-ragged.toml` says why); the switches are those of the gaps.
+#[test]
+fn a_ragged_hedge_with_gaps_is_followed_on_its_envelope() {
+    let f = sweep_pass("hedge-ragged", false, true);
+    assert!(f.mean_m < 0.05 && f.max_m < 0.2, "{f:?}");
+    assert!(f.nominal_mean_m > 2.0 * f.mean_m, "{f:?}");
+    // Five gaps of 1-3 m: measured 12-14 switches (seeds 1-10), one exit
+    // and one entry at most gaps and at a plan rejection or two; not yet the
+    // two per structure a bridge aims at (README, "Choices beyond the papers").
+    assert!(f.switches <= 14, "{f:?}");
 }
