@@ -137,6 +137,7 @@ pub fn pierre2022_path() -> Result<Pierre2022Params, Precondition> {
         plan_delay: None,
         max_scan_age: Seconds::new(0.1)?,
         plan_dead_reckoning: None,
+        handover: None,
     })
 }
 

@@ -1425,6 +1425,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
         let p = GuidanceParams {
             max_scan_age: s(age),
             plan_dead_reckoning: None,
+            handover: None,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1656,6 +1657,7 @@ fn declared(
         plan_delay: params.plan_delay,
         max_scan_age: params.max_scan_age,
         plan_dead_reckoning: params.plan_dead_reckoning,
+        handover: params.handover,
     }
 }
 

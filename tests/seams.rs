@@ -599,6 +599,7 @@ fn a_pipeline_without_behaviour_slots_is_refused() {
         plan_delay: None,
         max_scan_age: two.max_scan_age,
         plan_dead_reckoning: None,
+        handover: None,
     };
     let e = GuidanceConfig::new(&none).unwrap_err();
     assert_eq!(e.requirement, "SW-MODES");

@@ -4,6 +4,7 @@
 
 use heapless::Vec;
 
+use super::handover::{Handover, HandoverParams};
 use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
 use crate::geometry::units::{Meters, MetersPerSecond, Seconds};
@@ -97,6 +98,9 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// the fix is lost, m, > 0 (GD-PLAN-DEAD-RECKONING); `None`: the plan is
     /// checked only in ticks with a fix.
     pub plan_dead_reckoning: Option<Meters>,
+    /// How path tracking takes over from a behaviour (GD-HANDOVER); `None`:
+    /// straight back to the path, as Pierre 2022 does.
+    pub handover: Option<HandoverParams>,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -107,6 +111,7 @@ pub struct GuidanceConfig<C, L, const K: usize> {
     switching: SwitchingConfig<K>,
     lookahead: Meters,
     max_scan_age_ticks: u16,
+    handover: Option<Handover>,
 }
 
 fn positive_speed(speed: MetersPerSecond, violated: &'static str) -> Result<(), Precondition> {
@@ -225,7 +230,9 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     /// - `GD-SCAN-AGE` when the maximal scan age is negative or longer than
     ///   65 534 ticks;
     /// - `GD-PLAN-DEAD-RECKONING` when the dead-reckoning distance is not
-    ///   positive.
+    ///   positive;
+    /// - `GD-HANDOVER` when the hand-over's hold distance is negative or its
+    ///   slope outside (0, 1].
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -316,6 +323,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
                 "plan_dead_reckoning must be > 0",
             ));
         }
+        let handover = params.handover.as_ref().map(Handover::new).transpose()?;
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,
@@ -325,6 +333,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             switching,
             lookahead,
             max_scan_age_ticks,
+            handover,
         })
     }
 }
@@ -362,5 +371,11 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
     #[must_use]
     pub const fn max_scan_age_ticks(&self) -> u16 {
         self.max_scan_age_ticks
+    }
+
+    /// The validated hand-over rule, if one is configured (GD-HANDOVER).
+    #[must_use]
+    pub const fn handover(&self) -> Option<&Handover> {
+        self.handover.as_ref()
     }
 }

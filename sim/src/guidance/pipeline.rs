@@ -113,6 +113,7 @@ pub fn params(
         plan_delay: sw.plan.map(|p| p.delay),
         max_scan_age: Seconds::new(sw.max_scan_age_s)?,
         plan_dead_reckoning: sw.plan.and_then(|p| p.dead_reckoning),
+        handover: sw.handover,
     })
 }
 

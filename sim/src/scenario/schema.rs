@@ -97,6 +97,13 @@ pub struct SwitchingSection {
     /// last fix for the check, m, in (0, 1000] (default: not carried;
     /// GD-PLAN-DEAD-RECKONING).
     pub plan_dead_reckoning_m: Option<f64>,
+    /// Hand-over to path tracking (GD-HANDOVER): the reference stays on the
+    /// behaviour's last line for this odometry distance, m, in [0, 1000]
+    /// [off when absent].
+    pub handover_hold_m: Option<f64>,
+    /// Hand-over: the reference's shift then shrinks by this many metres per
+    /// metre, in (0, 1] (default 0.1).
+    pub handover_slope: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

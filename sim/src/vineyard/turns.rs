@@ -147,6 +147,7 @@ pub fn drive_in(
         plan_delay: Some(Seconds::new(0.5).map_err(s)?),
         max_scan_age: Seconds::new(0.2).map_err(s)?,
         plan_dead_reckoning: None,
+        handover: None,
     };
     let config = GuidanceConfig::new(&params).map_err(s)?;
     let mut core: Box<Guidance<'_, PATH_VERTICES, VineDetector<RAYS, POINTS>, Strategy1, 1>> =

@@ -1,7 +1,7 @@
 //! Validates `[switching]`: the transit delays of the switching machine and
 //! its plan consistency check.
 
-use fieldguide::guidance::{BehaviourId, MAX_SCAN_AGE_TICKS};
+use fieldguide::guidance::{BehaviourId, Handover, HandoverParams, MAX_SCAN_AGE_TICKS};
 use fieldguide::supervisor::switching::{PlanTolerance, MAX_DELAY_TICKS};
 use fieldguide::{Meters, Radians, Seconds};
 
@@ -48,6 +48,8 @@ pub struct SwitchingSetup {
     pub max_scan_age_s: f64,
     /// Plan consistency, when on.
     pub plan: Option<PlanSetup>,
+    /// The hand-over rule, when on (GD-HANDOVER).
+    pub handover: Option<HandoverParams>,
 }
 
 /// The switching settings of `[switching]`, each default taken when a field is absent.
@@ -130,6 +132,29 @@ pub(super) fn switching(
             })
         }
     };
+    let handover = match s.handover_hold_m {
+        None => {
+            if s.handover_slope.is_some() {
+                return Err(check.error(
+                    "switching.handover_hold_m",
+                    "the hand-over needs its hold distance when its slope is set",
+                ));
+            }
+            None
+        }
+        Some(hold) => {
+            let field = "switching.handover_hold_m";
+            let hold = check.range(field, hold, 0.0, 1000.0)?;
+            let slope = s.handover_slope.unwrap_or(0.1);
+            let params = HandoverParams {
+                hold: Meters::new(hold).map_err(|e| check.error(field, &e.to_string()))?,
+                slope,
+            };
+            Handover::new(&params)
+                .map_err(|e| check.error("switching.handover_slope", &e.to_string()))?;
+            Some(params)
+        }
+    };
     Ok(SwitchingSetup {
         priority: priority(s.priority.as_deref(), configured, check)?,
         edge_enter_s: pos("edge_enter_s", s.edge_enter_s, 0.4)?,
@@ -139,6 +164,7 @@ pub(super) fn switching(
         stop_delay_s: pos("stop_delay_s", s.stop_delay_s, 0.5)?,
         max_scan_age_s: pos("max_scan_age_s", s.max_scan_age_s, 0.1)?,
         plan,
+        handover,
     })
 }
 
