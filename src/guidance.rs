@@ -707,7 +707,7 @@ where
             behaviours: reports,
             localisation_valid,
         });
-        self.track_handover(before, &switching, &behaviours);
+        self.track_handover(before, &switching, &behaviours, travelled);
 
         // 6. The command of the selected source.
         //= spec/guidance.md#gd-command-the-command-of-the-selected-source

@@ -130,6 +130,7 @@ fn path_tracking_takes_over_on_the_line_then_blends_to_the_path() {
     let rule = HandoverParams {
         hold: m(4.0),
         slope: 0.1,
+        averaging: m(1.0),
     };
     let mut g: Pierre2022<'_, PATH_N> =
         Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();
@@ -201,6 +202,7 @@ fn a_replaced_path_ends_the_hand_over() {
     let rule = HandoverParams {
         hold: m(50.0),
         slope: 0.1,
+        averaging: m(1.0),
     };
     let mut g: Pierre2022<'_, PATH_N> =
         Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();

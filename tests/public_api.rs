@@ -2493,11 +2493,13 @@ pub fn after() {}
 
 proptest! {
     #[test]
-    fn handover(hold in meters(), slope in raw(), start in meters(), travelled in meters(), path in tracking()) {
-        let params = HandoverParams { hold, slope };
+    fn handover(hold in meters(), slope in raw(), averaging in meters(), start in meters(), travelled in meters(), path in tracking()) {
+        let params = HandoverParams { hold, slope, averaging };
         check!("guidance::handover::Handover::new", Handover::new(&params));
         let rule = Handover::new(&params)
-            .unwrap_or(Handover::new(&HandoverParams { hold: m(4.0), slope: 0.1 }).unwrap());
+            .unwrap_or(Handover::new(&HandoverParams { hold: m(4.0), slope: 0.1, averaging: m(1.0) }).unwrap());
+        check!("guidance::handover::Handover::averaged", rule.averaged(Some(start), hold, travelled));
+        check!("guidance::handover::Handover::averaged", rule.averaged(None, start, travelled));
         check!("guidance::handover::Handover::params", rule.params());
         check!("guidance::handover::Handover::offset", rule.offset(start, travelled));
         check!("guidance::handover::Handover::is_over", rule.is_over(start, travelled));

@@ -30,6 +30,10 @@ pub struct HandoverParams {
     /// k: how fast the shift then goes to zero, metres of lateral change per
     /// metre travelled, in (0, 1].
     pub slope: f64,
+    /// λ: the line's offset is averaged over the odometry distance with
+    /// this length, m, > 0 (the weight of a new offset after Δd metres is
+    /// 1 − exp(−Δd / λ)): a single noisy line does not move the reference.
+    pub averaging: Meters,
 }
 
 /// A validated hand-over rule (GD-HANDOVER).
@@ -42,16 +46,23 @@ impl Handover {
     /// Validates `params` once.
     ///
     /// # Errors
-    /// `GD-HANDOVER` when the hold distance is negative or the slope is not
-    /// in (0, 1] (NaN included).
+    /// `GD-HANDOVER` when the hold distance is negative, the averaging
+    /// length not positive or the slope not in (0, 1] (NaN included).
     //= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
-    //# A hand-over rule whose hold distance is negative or whose slope is not in
-    //# (0, 1] MUST be refused with `GD-HANDOVER`.
+    //# A hand-over rule whose hold distance is negative, whose averaging length is
+    //# not positive or whose slope is not in (0, 1] MUST be refused with
+    //# `GD-HANDOVER`.
     pub fn new(params: &HandoverParams) -> Result<Self, Precondition> {
         if params.hold.get() < 0.0 {
             return Err(Precondition::new(
                 "GD-HANDOVER",
                 "handover hold distance must not be negative",
+            ));
+        }
+        if params.averaging.get() <= 0.0 {
+            return Err(Precondition::new(
+                "GD-HANDOVER",
+                "handover averaging length must be > 0",
             ));
         }
         if !(params.slope > 0.0 && params.slope <= 1.0) {
@@ -91,6 +102,31 @@ impl Handover {
         } else {
             Meters::new(libm::copysign(left, start.get())).unwrap_or(Meters::ZERO)
         }
+    }
+
+    /// The line's averaged offset after a tick that measured `measured`
+    /// having travelled `travelled` metres: `previous` moved toward
+    /// `measured` by the weight 1 − exp(−Δd / λ), or `measured` without a
+    /// previous one (a negative distance counts as 0).
+    //= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+    //# The offset MUST be averaged over the odometry distance: each tick the
+    //# behaviour commands moves it toward that tick's offset by the weight
+    //# 1 − exp(−Δd / λ), Δd the tick's odometry distance and λ the averaging
+    //# length; the first such tick after the behaviour was entered sets it.
+    #[must_use]
+    pub fn averaged(
+        &self,
+        previous: Option<Meters>,
+        measured: Meters,
+        travelled: Meters,
+    ) -> Meters {
+        let Some(previous) = previous else {
+            return measured;
+        };
+        let weight = 1.0 - libm::exp(-travelled.get().max(0.0) / self.params.averaging.get());
+        // Both finite; a weight in [0, 1] keeps the result between them.
+        let moved = previous.get() + weight * (measured.get() - previous.get());
+        Meters::new(moved).unwrap_or(measured)
     }
 
     /// Whether the shift started at `start` has reached zero after
@@ -216,6 +252,7 @@ where
         before: MachineMode,
         switching: &Output,
         behaviours: &[BehaviourStatus],
+        travelled: f64,
     ) {
         let Some(rule) = self.config.handover().copied() else {
             return;
@@ -225,8 +262,13 @@ where
                 self.handing_over = None;
                 let commanding = switching.source == CommandSource::Behaviour(i);
                 let offset = behaviours.get(i).and_then(|b| b.plan).map(|p| p.offset);
-                if commanding && offset.is_some() {
-                    self.line_offset = offset;
+                if before != switching.mode {
+                    // Another behaviour's line, or none: start afresh.
+                    self.line_offset = None;
+                }
+                if let (true, Some(offset)) = (commanding, offset) {
+                    let travelled = Meters::new(travelled.min(f64::MAX)).unwrap_or(Meters::ZERO);
+                    self.line_offset = Some(rule.averaged(self.line_offset, offset, travelled));
                 }
             }
             MachineMode::PathTracking | MachineMode::Stop => {
@@ -260,34 +302,40 @@ mod tests {
         Handover::new(&HandoverParams {
             hold: m(hold),
             slope,
+            averaging: m(1.0),
         })
         .unwrap()
     }
 
     //= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
     //= type=test
-    //# A hand-over rule whose hold distance is negative or whose slope is not in
-    //# (0, 1] MUST be refused with `GD-HANDOVER`.
+    //# A hand-over rule whose hold distance is negative, whose averaging length is
+    //# not positive or whose slope is not in (0, 1] MUST be refused with
+    //# `GD-HANDOVER`.
     #[test]
     fn bad_rules_are_refused() {
-        for (hold, slope) in [
-            (-0.1, 0.1),
-            (1.0, 0.0),
-            (1.0, -0.1),
-            (1.0, 1.01),
-            (1.0, f64::NAN),
-            (1.0, f64::INFINITY),
+        for (hold, slope, averaging) in [
+            (-0.1, 0.1, 1.0),
+            (1.0, 0.0, 1.0),
+            (1.0, -0.1, 1.0),
+            (1.0, 1.01, 1.0),
+            (1.0, f64::NAN, 1.0),
+            (1.0, f64::INFINITY, 1.0),
+            (1.0, 0.1, 0.0),
+            (1.0, 0.1, -1.0),
         ] {
             let e = Handover::new(&HandoverParams {
                 hold: m(hold),
                 slope,
+                averaging: m(averaging),
             })
             .unwrap_err();
             assert_eq!(e.requirement, "GD-HANDOVER");
         }
         assert!(Handover::new(&HandoverParams {
             hold: m(0.0),
-            slope: 1.0
+            slope: 1.0,
+            averaging: m(1e-9),
         })
         .is_ok());
     }
@@ -312,6 +360,26 @@ mod tests {
         assert!(!h.is_over(m(0.45), m(9.4)));
         assert!(h.is_over(m(0.45), m(9.5)));
         assert!(h.is_over(m(0.0), m(0.0)));
+    }
+
+    //= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+    //= type=test
+    //# The offset MUST be averaged over the odometry distance: each tick the
+    //# behaviour commands moves it toward that tick's offset by the weight
+    //# 1 − exp(−Δd / λ), Δd the tick's odometry distance and λ the averaging
+    //# length; the first such tick after the behaviour was entered sets it.
+    #[test]
+    fn the_offset_is_averaged_over_distance() {
+        let h = rule(5.0, 0.1);
+        assert_eq!(h.averaged(None, m(0.3), m(0.0)).get(), 0.3);
+        assert_eq!(h.averaged(Some(m(0.2)), m(0.3), m(0.0)).get(), 0.2);
+        assert_eq!(h.averaged(Some(m(0.2)), m(0.3), m(-1.0)).get(), 0.2);
+        let one = h.averaged(Some(m(0.2)), m(0.3), m(1.0)).get();
+        assert!((one - (0.2 + 0.1 * (1.0 - (-1.0_f64).exp()))).abs() < 1e-12);
+        // A jump of 0.1 m seen for 8 mm moves the average by less than 1 mm.
+        let tick = h.averaged(Some(m(0.4)), m(0.3), m(0.008)).get();
+        assert!((0.4 - tick) < 1e-3 && tick < 0.4);
+        assert_eq!(h.averaged(Some(m(0.2)), m(0.3), m(1e300)).get(), 0.3);
     }
 
     //= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt

@@ -209,6 +209,7 @@ impl Guidance for Pipeline<'_> {
             sideslip_used,
             detector,
             plan_pose: out.path.plan_pose,
+            reference_offset: out.path.reference_offset.map(fieldguide::Meters::get),
         };
         self.last = Some(out);
         Ok(command)

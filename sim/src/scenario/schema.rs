@@ -104,6 +104,9 @@ pub struct SwitchingSection {
     /// Hand-over: the reference's shift then shrinks by this many metres per
     /// metre, in (0, 1] (default 0.1).
     pub handover_slope: Option<f64>,
+    /// Hand-over: the line's offset is averaged over this odometry length,
+    /// m, > 0 (default 1).
+    pub handover_averaging_m: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

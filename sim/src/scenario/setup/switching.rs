@@ -134,10 +134,10 @@ pub(super) fn switching(
     };
     let handover = match s.handover_hold_m {
         None => {
-            if s.handover_slope.is_some() {
+            if s.handover_slope.is_some() || s.handover_averaging_m.is_some() {
                 return Err(check.error(
                     "switching.handover_hold_m",
-                    "the hand-over needs its hold distance when its slope is set",
+                    "the hand-over needs its hold distance when its slope or averaging is set",
                 ));
             }
             None
@@ -146,12 +146,26 @@ pub(super) fn switching(
             let field = "switching.handover_hold_m";
             let hold = check.range(field, hold, 0.0, 1000.0)?;
             let slope = s.handover_slope.unwrap_or(0.1);
+            let averaging = check.range(
+                "switching.handover_averaging_m",
+                s.handover_averaging_m.unwrap_or(1.0),
+                0.0,
+                1000.0,
+            )?;
             let params = HandoverParams {
                 hold: Meters::new(hold).map_err(|e| check.error(field, &e.to_string()))?,
                 slope,
+                averaging: Meters::new(averaging)
+                    .map_err(|e| check.error("switching.handover_averaging_m", &e.to_string()))?,
             };
-            Handover::new(&params)
-                .map_err(|e| check.error("switching.handover_slope", &e.to_string()))?;
+            Handover::new(&params).map_err(|e| {
+                let field = if averaging <= 0.0 {
+                    "switching.handover_averaging_m"
+                } else {
+                    "switching.handover_slope"
+                };
+                check.error(field, &e.to_string())
+            })?;
             Some(params)
         }
     };
