@@ -2506,3 +2506,21 @@ proptest! {
         check!("guidance::handover::Handover::reference_error", rule.reference_error(&path, start, travelled));
     }
 }
+
+proptest! {
+    #[test]
+    fn furrow_reach(increment in radians(), half in radians(), height in meters(), pitch in radians(), mount_y in meters()) {
+        let params = FurrowParams {
+            window_half_angle: half,
+            mount_height: height,
+            mount_pitch: pitch,
+            mount_y,
+            ..FurrowParams::table2()
+        };
+        if let Ok(config) = FurrowConfig::new(&params) {
+            check!("perception::furrow::FurrowConfig::lateral_reach", config.lateral_reach(increment));
+        }
+        let config = FurrowConfig::new(&FurrowParams::table2()).unwrap();
+        check!("perception::furrow::FurrowConfig::lateral_reach", config.lateral_reach(increment));
+    }
+}

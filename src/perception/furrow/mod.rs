@@ -40,7 +40,7 @@ use self::scan::{scan_to_points, MountPose, ScanPoint, ScanWindow, WindowRays};
 use self::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing, MAX_MAXIMA,
 };
-use crate::error::Precondition;
+use crate::error::{finite, Precondition};
 use crate::geometry::carry::{moved_lateral, moved_line_error, straight};
 use crate::geometry::frame::{Odom, Point2, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
@@ -258,6 +258,48 @@ impl FurrowConfig {
     #[must_use]
     pub const fn thresholds(&self) -> &QualityThresholds {
         &self.thresholds
+    }
+
+    /// How far beside O, on flat ground, a row can stand and still be matched
+    /// by the whole plant model with its margins inside the window, for a
+    /// LiDAR whose rays are `increment` apart (FUR-REACH): the ground y of
+    /// the ray at a_w − (w_ref / 2 + margin) increments, h tan α / sin p,
+    /// from the mount's y, on the nearer side; 0 when no shift fits.
+    ///
+    /// # Errors
+    /// `FUR-REACH` when `increment` is not positive; `LIB-FINITE` on overflow.
+    //= spec/pierre2022.md#fur-reach-lateral-reach-of-the-window
+    //# The lateral reach of a furrow configuration for a ray increment Δ MUST be
+    //# min(h tan α / sin p − m_y, h tan α / sin p + m_y), at least 0, with α = a_w −
+    //# (⌊w_ref / 2⌋ + margin) Δ, h the mount height, p its pitch and m_y its
+    //# lateral position; 0 when α ≤ 0.
+    pub fn lateral_reach(&self, increment: Radians) -> Result<Meters, Precondition> {
+        if increment.get() <= 0.0 {
+            return Err(Precondition::new(
+                "FUR-REACH",
+                "the ray increment must be > 0",
+            ));
+        }
+        let rays = self
+            .template
+            .half_width()
+            .saturating_add(self.template.margin());
+        let inset = finite(
+            increment.get() * f64::from(u32::try_from(rays).unwrap_or(u32::MAX)),
+            "template inset overflows",
+        )?;
+        let alpha = self.params.window_half_angle.get() - inset;
+        if alpha <= 0.0 {
+            return Ok(Meters::ZERO);
+        }
+        let p = &self.params;
+        let side = finite(
+            p.mount_height.get() * libm::tan(alpha) / libm::sin(p.mount_pitch.get()),
+            "lateral reach overflows",
+        )?;
+        let m_y = p.mount_y.get();
+        let reach = (side - m_y).min(side + m_y).max(0.0);
+        Meters::new(finite(reach, "lateral reach overflows")?)
     }
 }
 
@@ -505,5 +547,52 @@ impl<const RAYS: usize, const SCANS: usize> Detector for FurrowDetector<RAYS, SC
             quality: d.quality,
             line: d.lines,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    //= spec/pierre2022.md#fur-reach-lateral-reach-of-the-window
+    //= type=test
+    //# The lateral reach of a furrow configuration for a ray increment Δ MUST be
+    //# min(h tan α / sin p − m_y, h tan α / sin p + m_y), at least 0, with α = a_w −
+    //# (⌊w_ref / 2⌋ + margin) Δ, h the mount height, p its pitch and m_y its
+    //# lateral position; 0 when α ≤ 0.
+    #[test]
+    fn the_reach_is_the_outermost_whole_template_on_the_ground() {
+        let quarter_degree = Radians::new(0.25_f64.to_radians()).unwrap();
+        let at = |half_angle_deg: f64, mount_y: f64| {
+            let params = FurrowParams {
+                window_half_angle: Radians::new(half_angle_deg.to_radians()).unwrap(),
+                mount_pitch: Radians::new(21.8_f64.to_radians()).unwrap(),
+                mount_y: Meters::new(mount_y).unwrap(),
+                ..FurrowParams::table2()
+            };
+            FurrowConfig::new(&params)
+                .unwrap()
+                .lateral_reach(quarter_degree)
+                .unwrap()
+                .get()
+        };
+        // ±20°: 7 + 7 rays of 0.25° inset, α = 16.5°, 1 m high, pitched 21.8°.
+        let expected = 16.5_f64.to_radians().tan() / 21.8_f64.to_radians().sin();
+        assert!((at(20.0, 0.0) - expected).abs() < 1e-12);
+        assert!((at(20.0, 0.0) - 0.7975).abs() < 1e-3);
+        assert!((at(30.0, 0.0) - 1.3425).abs() < 1e-3);
+        // A mount 0.1 m left of O reaches 0.1 m less to the right.
+        assert!((at(20.0, 0.1) - (expected - 0.1)).abs() < 1e-12);
+        // A window no wider than the template's inset reaches nothing.
+        assert!(at(3.5, 0.0).abs() < f64::MIN_POSITIVE);
+        let config = FurrowConfig::new(&FurrowParams::table2()).unwrap();
+        for bad in [0.0, -0.01] {
+            let e = config
+                .lateral_reach(Radians::new(bad).unwrap())
+                .unwrap_err();
+            assert_eq!(e.requirement, "FUR-REACH");
+        }
     }
 }
