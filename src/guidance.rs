@@ -63,12 +63,14 @@
 
 mod bridge;
 mod config;
+pub mod handover;
 mod resume;
 
 pub use config::{
     BehaviourId, BehaviourParams, GuidanceConfig, GuidanceParams, PathTrackingParams,
     MAX_SCAN_AGE_TICKS,
 };
+pub use handover::{Handover, HandoverParams};
 
 use heapless::Vec;
 
@@ -182,6 +184,9 @@ pub struct PathStatus<X> {
     pub extra_used: X,
     /// The pose the plan check judged the lines from (GD-PLAN-DEAD-RECKONING).
     pub plan_pose: PlanPose,
+    /// The shift of path tracking's reference from the path in this tick,
+    /// when a hand-over rule is configured and one applies (GD-HANDOVER).
+    pub reference_offset: Option<Meters>,
 }
 
 /// The pose a tick's plan check judged the behaviours' lines from.
@@ -455,6 +460,10 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     last_command: Command,
     /// The wheels turning at standstill after a Stop (GD-RESUME).
     turning: Option<resume::Turning>,
+    /// The commanding behaviour's line offset from the path, last known, m.
+    line_offset: Option<Meters>,
+    /// The hand-over in progress (GD-HANDOVER).
+    handing_over: Option<handover::Active>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -506,6 +515,8 @@ where
             last_odometry: None,
             last_fix: None,
             turning: None,
+            line_offset: None,
+            handing_over: None,
         })
     }
 
@@ -532,6 +543,8 @@ where
         self.path = path;
         self.s_hint = None;
         self.since_projection = 0.0;
+        self.line_offset = None;
+        self.handing_over = None;
     }
 
     /// Replaces the desired speed of path tracking between ticks (a path
@@ -704,14 +717,21 @@ where
         //# configured, and the curvature c(s + vT) with v its desired speed and T the
         //# prediction horizon; every other behaviour MUST use its law's neutral input
         //# and a straight line, c = c(s + vT) = 0.
+        if let Some(active) = self.handing_over.as_mut() {
+            active.travelled += travelled;
+        }
+        let reference_offset = self.reference_offset();
         let path_law = match &frenet {
-            Some(f) => LawOutcome::run(
-                &params.path.law,
-                &params.vehicle,
-                &f.tracking_error(),
-                &extra_used,
-                params.path.speed,
-            ),
+            Some(f) => match self.path_error(f, reference_offset) {
+                Ok(error) => LawOutcome::run(
+                    &params.path.law,
+                    &params.vehicle,
+                    &error,
+                    &extra_used,
+                    params.path.speed,
+                ),
+                Err(e) => LawOutcome::Refused(e),
+            },
             None => LawOutcome::NotRun,
         };
         //= spec/guidance.md#gd-localisation-localisation-for-path-tracking
@@ -734,6 +754,7 @@ where
             localisation_valid,
             extra_used,
             plan_pose,
+            reference_offset: self.shift(reference_offset),
         };
         let mut behaviours = Vec::<BehaviourStatus, K>::new();
         let mut ahead = None;
@@ -769,10 +790,12 @@ where
                 plan_consistent: status.plan_consistent,
             };
         }
+        let before = self.machine.mode();
         let switching = self.machine.step(&Input {
             behaviours: reports,
             localisation_valid,
         });
+        self.track_handover(before, &switching, &behaviours, travelled);
 
         // 6. The command of the selected source.
         //= spec/guidance.md#gd-command-the-command-of-the-selected-source

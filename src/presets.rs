@@ -139,6 +139,7 @@ pub fn pierre2022_path() -> Result<Pierre2022Params, Precondition> {
         plan_dead_reckoning: None,
         bridge: None,
         steer_before_resuming: false,
+        handover: None,
     })
 }
 

@@ -1499,6 +1499,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
             plan_dead_reckoning: None,
             bridge: None,
             steer_before_resuming: false,
+            handover: None,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1736,6 +1737,7 @@ fn declared(
         plan_dead_reckoning: params.plan_dead_reckoning,
         bridge: params.bridge,
         steer_before_resuming: params.steer_before_resuming,
+        handover: params.handover,
     }
 }
 

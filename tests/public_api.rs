@@ -56,6 +56,7 @@ use fieldguide::guidance::{
     BehaviourId, Guidance, GuidanceConfig, GuidanceParams, Mode as GuidanceMode, RoutedScan,
     TickInput,
 };
+use fieldguide::guidance::{Handover, HandoverParams};
 use fieldguide::model::bicycle::{
     frenet_rates, world_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
 };
@@ -1876,6 +1877,7 @@ proptest! {
         check!("guidance::config::GuidanceConfig::lookahead", config.lookahead());
         check!("guidance::config::GuidanceConfig::max_scan_age_ticks", config.max_scan_age_ticks());
         check!("guidance::config::GuidanceConfig::settle_ticks", config.settle_ticks());
+        check!("guidance::config::GuidanceConfig::handover", config.handover());
         let (path, replacement) = (path_of(&points), path_of(&other));
         let mut guidance: Pipeline<'_> = check!("guidance::Guidance::new", Guidance::new(config, &path)).unwrap();
         check!("guidance::Guidance::config", guidance.config());
@@ -2491,4 +2493,40 @@ pub fn after() {}
     .map(ToString::to_string)
     .collect();
     assert_eq!(keys, expected);
+}
+
+// ---------------------------------------------------------------- hand-over (GD-HANDOVER)
+
+proptest! {
+    #[test]
+    fn handover(hold in meters(), slope in raw(), averaging in meters(), start in meters(), travelled in meters(), path in tracking()) {
+        let params = HandoverParams { hold, slope, averaging };
+        check!("guidance::handover::Handover::new", Handover::new(&params));
+        let rule = Handover::new(&params)
+            .unwrap_or(Handover::new(&HandoverParams { hold: m(4.0), slope: 0.1, averaging: m(1.0) }).unwrap());
+        check!("guidance::handover::Handover::averaged", rule.averaged(Some(start), hold, travelled));
+        check!("guidance::handover::Handover::averaged", rule.averaged(None, start, travelled));
+        check!("guidance::handover::Handover::params", rule.params());
+        check!("guidance::handover::Handover::offset", rule.offset(start, travelled));
+        check!("guidance::handover::Handover::is_over", rule.is_over(start, travelled));
+        check!("guidance::handover::Handover::reference_error", rule.reference_error(&path, start, travelled));
+    }
+}
+
+proptest! {
+    #[test]
+    fn furrow_reach(increment in radians(), half in radians(), height in meters(), pitch in radians(), mount_y in meters()) {
+        let params = FurrowParams {
+            window_half_angle: half,
+            mount_height: height,
+            mount_pitch: pitch,
+            mount_y,
+            ..FurrowParams::table2()
+        };
+        if let Ok(config) = FurrowConfig::new(&params) {
+            check!("perception::furrow::FurrowConfig::lateral_reach", config.lateral_reach(increment));
+        }
+        let config = FurrowConfig::new(&FurrowParams::table2()).unwrap();
+        check!("perception::furrow::FurrowConfig::lateral_reach", config.lateral_reach(increment));
+    }
 }

@@ -601,6 +601,7 @@ fn a_pipeline_without_behaviour_slots_is_refused() {
         plan_dead_reckoning: None,
         bridge: None,
         steer_before_resuming: false,
+        handover: None,
     };
     let e = GuidanceConfig::new(&none).unwrap_err();
     assert_eq!(e.requirement, "SW-MODES");

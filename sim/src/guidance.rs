@@ -51,6 +51,9 @@ pub struct Command {
     pub detector: Option<DetectorStatus>,
     /// The pose the plan check judged the lines from (GD-PLAN-DEAD-RECKONING).
     pub plan_pose: PlanPose,
+    /// The shift of path tracking's reference from the path during a
+    /// hand-over, m, positive to the left (GD-HANDOVER); `None` without one.
+    pub reference_offset: Option<f64>,
 }
 
 impl Command {

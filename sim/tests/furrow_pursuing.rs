@@ -419,6 +419,7 @@ impl Guidance for Straight {
             sideslip_used: fieldguide::model::bicycle::Sideslip::ZERO,
             detector: None,
             plan_pose: fieldguide::guidance::PlanPose::Unjudged,
+            reference_offset: None,
         })
     }
 }

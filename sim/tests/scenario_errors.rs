@@ -1023,6 +1023,27 @@ fn switching_fields_are_checked_and_named() {
         });
         assert_field(&e, "switching.plan_dead_reckoning_m", "");
     }
+    // The hand-over (GD-HANDOVER): its slope and averaging need its hold.
+    let e = error_of(with("handover_slope = 0.2"));
+    assert_field(&e, "switching.handover_hold_m", "hold distance");
+    for (text, field) in [
+        ("handover_hold_m = -1.0", "switching.handover_hold_m"),
+        (
+            "handover_hold_m = 5.0\nhandover_slope = 0.0",
+            "switching.handover_slope",
+        ),
+        (
+            "handover_hold_m = 5.0\nhandover_slope = 1.5",
+            "switching.handover_slope",
+        ),
+        (
+            "handover_hold_m = 5.0\nhandover_averaging_m = 0.0",
+            "switching.handover_averaging_m",
+        ),
+    ] {
+        let e = error_of(move |t: String| format!("{t}\n[switching]\n{text}\n"));
+        assert_field(&e, field, "");
+    }
     // Defaults: Tables 1-2 and no plan check.
     let source = Source {
         origin: "edited.toml".into(),

@@ -4,6 +4,7 @@
 
 use heapless::Vec;
 
+use super::handover::{Handover, HandoverParams};
 use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
 use crate::geometry::units::{Meters, MetersPerSecond, Seconds};
@@ -104,6 +105,9 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// Whether, after a Stop, the wheels are steered to the first command
     /// at standstill before the vehicle moves (GD-RESUME).
     pub steer_before_resuming: bool,
+    /// How path tracking takes over from a behaviour (GD-HANDOVER); `None`:
+    /// straight back to the path, as Pierre 2022 does.
+    pub handover: Option<HandoverParams>,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -115,6 +119,7 @@ pub struct GuidanceConfig<C, L, const K: usize> {
     lookahead: Meters,
     max_scan_age_ticks: u16,
     settle_ticks: u16,
+    handover: Option<Handover>,
 }
 
 fn positive_speed(speed: MetersPerSecond, violated: &'static str) -> Result<(), Precondition> {
@@ -249,6 +254,8 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     ///   positive;
     /// - `GD-BRIDGE` when the bridge length is not positive;
     /// - `GD-RESUME` when 3 τ is longer than 65 535 ticks.
+    /// - `GD-HANDOVER` when the hand-over's hold distance is negative or its
+    ///   slope outside (0, 1].
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -338,6 +345,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             return Err(Precondition::new("GD-BRIDGE", "bridge must be > 0"));
         }
         let settle_ticks = settle_ticks(params.path.steering_lag, params.period)?;
+        let handover = params.handover.as_ref().map(Handover::new).transpose()?;
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,
@@ -348,6 +356,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             lookahead,
             max_scan_age_ticks,
             settle_ticks,
+            handover,
         })
     }
 }
@@ -426,5 +435,11 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
     #[must_use]
     pub const fn settle_ticks(&self) -> u16 {
         self.settle_ticks
+    }
+
+    /// The validated hand-over rule, if one is configured (GD-HANDOVER).
+    #[must_use]
+    pub const fn handover(&self) -> Option<&Handover> {
+        self.handover.as_ref()
     }
 }

@@ -119,6 +119,7 @@ pub fn params(
         plan_dead_reckoning: sw.plan.and_then(|p| p.dead_reckoning),
         bridge: sw.bridge,
         steer_before_resuming: sw.steer_before_resuming,
+        handover: sw.handover,
     })
 }
 
@@ -232,6 +233,7 @@ impl Guidance for Pipeline<'_> {
             sideslip_used,
             detector,
             plan_pose: out.path.plan_pose,
+            reference_offset: out.path.reference_offset.map(fieldguide::Meters::get),
         };
         self.last = Some(out);
         Ok(command)

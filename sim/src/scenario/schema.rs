@@ -156,6 +156,16 @@ pub struct SwitchingSection {
     /// After a Stop, steer the wheels to the first command at standstill
     /// before moving (default false; GD-RESUME).
     pub steer_before_resuming: Option<bool>,
+    /// Hand-over to path tracking (GD-HANDOVER): the reference stays on the
+    /// behaviour's last line for this odometry distance, m, in [0, 1000]
+    /// [off when absent].
+    pub handover_hold_m: Option<f64>,
+    /// Hand-over: the reference's shift then shrinks by this many metres per
+    /// metre, in (0, 1] (default 0.1).
+    pub handover_slope: Option<f64>,
+    /// Hand-over: the line's offset is averaged over this odometry length,
+    /// m, > 0 (default 1).
+    pub handover_averaging_m: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

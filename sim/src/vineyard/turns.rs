@@ -149,6 +149,7 @@ pub fn drive_in(
         plan_dead_reckoning: None,
         bridge: None,
         steer_before_resuming: false,
+        handover: None,
     };
     let config = GuidanceConfig::new(&params).map_err(s)?;
     let mut core: Box<Guidance<'_, PATH_VERTICES, VineDetector<RAYS, POINTS>, Strategy1, 1>> =

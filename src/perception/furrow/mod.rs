@@ -40,7 +40,7 @@ use self::scan::{scan_to_points, MountPose, ScanPoint, ScanWindow, WindowRays};
 use self::selection::{
     local_maxima, locate, select_one, select_pair, Maximum, Pair, Spacing, MAX_MAXIMA,
 };
-use crate::error::Precondition;
+use crate::error::{finite, Precondition};
 use crate::geometry::carry::{moved_lateral, moved_line_error, straight};
 use crate::geometry::frame::{Odom, Point2, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
@@ -258,6 +258,48 @@ impl FurrowConfig {
     #[must_use]
     pub const fn thresholds(&self) -> &QualityThresholds {
         &self.thresholds
+    }
+
+    /// How far beside O, on flat ground, a row can stand and still be matched
+    /// by the whole plant model with its margins inside the window, for a
+    /// LiDAR whose rays are `increment` apart (FUR-REACH): the ground y of
+    /// the ray at a_w − (w_ref / 2 + margin) increments, h tan α / sin p,
+    /// from the mount's y, on the nearer side; 0 when no shift fits.
+    ///
+    /// # Errors
+    /// `FUR-REACH` when `increment` is not positive; `LIB-FINITE` on overflow.
+    //= spec/pierre2022.md#fur-reach-lateral-reach-of-the-window
+    //# The lateral reach of a furrow configuration for a ray increment Δ MUST be
+    //# min(h tan α / sin p − m_y, h tan α / sin p + m_y), at least 0, with α = a_w −
+    //# (⌊w_ref / 2⌋ + margin) Δ, h the mount height, p its pitch and m_y its
+    //# lateral position; 0 when α ≤ 0.
+    pub fn lateral_reach(&self, increment: Radians) -> Result<Meters, Precondition> {
+        if increment.get() <= 0.0 {
+            return Err(Precondition::new(
+                "FUR-REACH",
+                "the ray increment must be > 0",
+            ));
+        }
+        let rays = self
+            .template
+            .half_width()
+            .saturating_add(self.template.margin());
+        let inset = finite(
+            increment.get() * f64::from(u32::try_from(rays).unwrap_or(u32::MAX)),
+            "template inset overflows",
+        )?;
+        let alpha = self.params.window_half_angle.get() - inset;
+        if alpha <= 0.0 {
+            return Ok(Meters::ZERO);
+        }
+        let p = &self.params;
+        let side = finite(
+            p.mount_height.get() * libm::tan(alpha) / libm::sin(p.mount_pitch.get()),
+            "lateral reach overflows",
+        )?;
+        let m_y = p.mount_y.get();
+        let reach = (side - m_y).min(side + m_y).max(0.0);
+        Meters::new(finite(reach, "lateral reach overflows")?)
     }
 }
 

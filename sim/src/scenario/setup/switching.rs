@@ -1,7 +1,7 @@
 //! Validates `[switching]`: the transit delays of the switching machine and
 //! its plan consistency check.
 
-use fieldguide::guidance::{BehaviourId, MAX_SCAN_AGE_TICKS};
+use fieldguide::guidance::{BehaviourId, Handover, HandoverParams, MAX_SCAN_AGE_TICKS};
 use fieldguide::supervisor::switching::{PlanTolerance, MAX_DELAY_TICKS};
 use fieldguide::{Meters, Radians, Seconds};
 
@@ -52,6 +52,8 @@ pub struct SwitchingSetup {
     pub bridge: Option<Meters>,
     /// Whether the wheels are steered at standstill after a Stop (GD-RESUME).
     pub steer_before_resuming: bool,
+    /// The hand-over rule, when on (GD-HANDOVER).
+    pub handover: Option<HandoverParams>,
 }
 
 /// The switching settings of `[switching]`, each default taken when a field is absent.
@@ -134,6 +136,43 @@ pub(super) fn switching(
             })
         }
     };
+    let handover = match s.handover_hold_m {
+        None => {
+            if s.handover_slope.is_some() || s.handover_averaging_m.is_some() {
+                return Err(check.error(
+                    "switching.handover_hold_m",
+                    "the hand-over needs its hold distance when its slope or averaging is set",
+                ));
+            }
+            None
+        }
+        Some(hold) => {
+            let field = "switching.handover_hold_m";
+            let hold = check.range(field, hold, 0.0, 1000.0)?;
+            let slope = s.handover_slope.unwrap_or(0.1);
+            let averaging = check.range(
+                "switching.handover_averaging_m",
+                s.handover_averaging_m.unwrap_or(1.0),
+                0.0,
+                1000.0,
+            )?;
+            let params = HandoverParams {
+                hold: Meters::new(hold).map_err(|e| check.error(field, &e.to_string()))?,
+                slope,
+                averaging: Meters::new(averaging)
+                    .map_err(|e| check.error("switching.handover_averaging_m", &e.to_string()))?,
+            };
+            Handover::new(&params).map_err(|e| {
+                let field = if averaging <= 0.0 {
+                    "switching.handover_averaging_m"
+                } else {
+                    "switching.handover_slope"
+                };
+                check.error(field, &e.to_string())
+            })?;
+            Some(params)
+        }
+    };
     Ok(SwitchingSetup {
         priority: priority(s.priority.as_deref(), configured, check)?,
         edge_enter_s: pos("edge_enter_s", s.edge_enter_s, 0.4)?,
@@ -155,6 +194,7 @@ pub(super) fn switching(
             })
             .transpose()?,
         steer_before_resuming: s.steer_before_resuming.unwrap_or(false),
+        handover,
     })
 }
 

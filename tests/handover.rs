@@ -1,0 +1,390 @@
+//! Hand-overs without a jolt (`spec/guidance.md`, GD-HANDOVER) on the whole
+//! pipeline: edge following along a wall 0.3 m beside its offset line on the
+//! path, the wall ending; path tracking takes over on the line's offset,
+//! holds it for the hold distance, then brings it to the path at the slope;
+//! the rule's functions alone; the furrow window's lateral reach (FUR-REACH).
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic,
+    clippy::as_conversions,
+    clippy::arithmetic_side_effects,
+    clippy::float_cmp,
+    clippy::cast_precision_loss
+)]
+
+use core::f64::consts::{PI, TAU};
+
+use fieldguide::geometry::path::{PathConfig, ReferencePath};
+use fieldguide::guidance::{
+    Guidance, GuidanceConfig, Handover, HandoverParams, Mode, RoutedScan, TickInput, TickOutput,
+};
+use fieldguide::model::bicycle::Sideslip;
+use fieldguide::perception::edge::Side;
+use fieldguide::perception::furrow::{FurrowConfig, FurrowParams};
+use fieldguide::perception::{RangeLimits, Scan};
+use fieldguide::presets::{pierre2022_edge, Pierre2022, Pierre2022Params, EDGE};
+use fieldguide::{Curvature, TrackingError};
+use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Robot, Sensor, Transform2, World};
+
+const PATH_N: usize = 256;
+const MOUNT_X: f64 = 1.2;
+const RAYS: usize = 360;
+/// The wall's near face: the edge line (1.4 m to its right) lies 0.3 m left of the path.
+const WALL_Y: f64 = 1.7;
+const WALL_END: f64 = 20.0;
+const LINE_OFFSET: f64 = 0.3;
+
+fn m(v: f64) -> Meters {
+    Meters::new(v).unwrap()
+}
+
+fn mount() -> Transform2<Sensor, Robot> {
+    Transform2::new(MOUNT_X, 0.0, 0.0).unwrap()
+}
+
+/// Exact ranges to the wall (y = `WALL_Y`, x ≤ `WALL_END`) from the robot at `pose`.
+fn ranges(pose: (f64, f64, f64)) -> Vec<f64> {
+    let (x, y, psi) = pose;
+    let (sx, sy) = (x + MOUNT_X * psi.cos(), y + MOUNT_X * psi.sin());
+    (0..RAYS)
+        .map(|k| {
+            let a = psi - PI + TAU * k as f64 / RAYS as f64;
+            let (c, s) = (a.cos(), a.sin());
+            let t = if s.abs() < 1e-9 {
+                f64::INFINITY
+            } else {
+                (WALL_Y - sy) / s
+            };
+            let hit = sx + t * c;
+            if t > 0.0 && t <= 30.0 && hit <= WALL_END {
+                t
+            } else {
+                f64::INFINITY
+            }
+        })
+        .collect()
+}
+
+fn straight_path() -> ReferencePath<PATH_N> {
+    let points: Vec<Point2<World>> = (0..=64)
+        .map(|i| Point2::new(-20.0 + 5.0 * f64::from(i), 0.0).unwrap())
+        .collect();
+    ReferencePath::from_waypoints(&points, PathConfig::default()).unwrap()
+}
+
+fn params(handover: Option<HandoverParams>) -> Pierre2022Params {
+    let mut p = pierre2022_edge(Side::Left, mount()).unwrap();
+    p.handover = handover;
+    p
+}
+
+/// Drives straight along the edge's offset line (y = 0.3 m) from x = 0 to
+/// `to`, 8 mm per tick, a scan every tenth tick; the output of every tick,
+/// with the x it was taken at.
+fn drive(g: &mut Pierre2022<'_, PATH_N>, to: f64) -> Vec<(f64, TickOutput<Sideslip, 2>)> {
+    let mut outs = Vec::new();
+    let mut k = 0_u32;
+    loop {
+        let x = 0.008 * f64::from(k);
+        if x > to {
+            return outs;
+        }
+        let pose = (x, LINE_OFFSET, 0.0);
+        let r = ranges(pose);
+        let scan = [RoutedScan {
+            behaviour: EDGE,
+            scan: Scan {
+                start: Radians::new(-PI).unwrap(),
+                increment: Radians::new(TAU / RAYS as f64).unwrap(),
+                ranges: &r,
+                limits: RangeLimits::new(m(0.05), m(30.0)).unwrap(),
+            },
+        }];
+        let out = g
+            .step(&TickInput {
+                scans: if k % 10 == 0 { &scan } else { &[] },
+                gnss: Some(Pose2::<World>::new(pose.0, pose.1, pose.2).unwrap()),
+                odometry: Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap(),
+                extra: Sideslip::ZERO,
+            })
+            .unwrap();
+        outs.push((x, out));
+        k += 1;
+    }
+}
+
+//= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+//= type=test
+//# When a hand-over rule is configured and the machine leaves a behaviour, a
+//# hand-over MUST start from the offset from the path of that behaviour's line
+//# in the last tick the behaviour commanded; it MUST end when the shift reaches
+//# zero, when a behaviour is entered or when the path is replaced.
+//= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+//= type=test
+//# During a hand-over, path tracking's error MUST be the error to the path
+//# shifted sideways by the hand-over's shift: the lateral error less the
+//# shift, the angular deviation less the angle of the shift's change per metre
+//# travelled, and the curvatures c / (1 − o c) of the shifted path.
+#[test]
+fn path_tracking_takes_over_on_the_line_then_blends_to_the_path() {
+    let path = straight_path();
+    let rule = HandoverParams {
+        hold: m(4.0),
+        slope: 0.1,
+        averaging: m(1.0),
+    };
+    let mut g: Pierre2022<'_, PATH_N> =
+        Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();
+    let outs = drive(&mut g, 40.0);
+    // Edge following steers beside the wall, then hands back after its end.
+    let last_edge = outs
+        .iter()
+        .rposition(|(_, o)| o.mode == Mode::Behaviour(EDGE))
+        .expect("edge following entered");
+    let (x0, _) = outs[last_edge + 1];
+    assert!(x0 > 10.0 && x0 < WALL_END + 3.0, "handed back at {x0}");
+    let offset = outs[last_edge]
+        .1
+        .behaviour(EDGE)
+        .unwrap()
+        .plan
+        .unwrap()
+        .offset;
+    assert!((offset.get() - LINE_OFFSET).abs() < 0.05, "{offset:?}");
+    for (x, out) in &outs[last_edge + 1..] {
+        assert_eq!(out.mode, Mode::PathTracking, "x = {x}");
+        let d = x - x0;
+        let shift = out.path.reference_offset.map_or(0.0, Meters::get);
+        let expected = if d <= 4.0 - 1e-9 {
+            offset.get()
+        } else {
+            (offset.get() - 0.1 * (d - 4.0)).max(0.0)
+        };
+        assert!(
+            (shift - expected).abs() < 1e-6,
+            "x = {x}: {shift} != {expected}"
+        );
+        // The law's error is to the shifted path: at the line the robot
+        // drives on, 0 during the hold.
+        let frenet = out.path.frenet.unwrap();
+        if d < 4.0 {
+            assert!((frenet.y.get() - shift - (LINE_OFFSET - offset.get())).abs() < 1e-9);
+            let c = out.command.unwrap().command.steering().unwrap().get();
+            assert!(c.abs() < 0.05, "x = {x}: steering {c}");
+        }
+    }
+    // Over: the shift reached zero after 4 m + offset / slope, and stays unset.
+    let (x_end, last) = outs.last().unwrap();
+    assert!(x_end - x0 > 4.0 + offset.get() / 0.1 + 0.1);
+    assert_eq!(last.path.reference_offset, None);
+    // Without the rule, the first tick of path tracking steers hard to the path.
+    let mut plain: Pierre2022<'_, PATH_N> =
+        Guidance::new(GuidanceConfig::new(&params(None)).unwrap(), &path).unwrap();
+    let outs = drive(&mut plain, 25.0);
+    let first_pt = outs
+        .iter()
+        .position(|(x, o)| *x > 10.0 && o.mode == Mode::PathTracking)
+        .unwrap();
+    let c = outs[first_pt]
+        .1
+        .command
+        .unwrap()
+        .command
+        .steering()
+        .unwrap()
+        .get();
+    assert!(c < -0.1, "steering {c}");
+    assert_eq!(outs[first_pt].1.path.reference_offset, None);
+}
+
+#[test]
+fn a_replaced_path_ends_the_hand_over() {
+    let path = straight_path();
+    let rule = HandoverParams {
+        hold: m(50.0),
+        slope: 0.1,
+        averaging: m(1.0),
+    };
+    let mut g: Pierre2022<'_, PATH_N> =
+        Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();
+    let outs = drive(&mut g, 25.0);
+    assert!(outs.last().unwrap().1.path.reference_offset.is_some());
+    let other = straight_path();
+    g.set_path(&other);
+    let out = g
+        .step(&TickInput {
+            scans: &[],
+            gnss: Some(Pose2::<World>::new(25.0, LINE_OFFSET, 0.0).unwrap()),
+            odometry: Pose2::<Odom>::new(25.0, LINE_OFFSET, 0.0).unwrap(),
+            extra: Sideslip::ZERO,
+        })
+        .unwrap();
+    assert_eq!(out.path.reference_offset, None);
+}
+
+// ---------------------------------------------------------------- the rule alone
+
+fn rule(hold: f64, slope: f64) -> Handover {
+    Handover::new(&HandoverParams {
+        hold: m(hold),
+        slope,
+        averaging: m(1.0),
+    })
+    .unwrap()
+}
+
+//= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+//= type=test
+//# A hand-over rule whose hold distance is negative, whose averaging length is
+//# not positive or whose slope is not in (0, 1] MUST be refused with
+//# `GD-HANDOVER`.
+#[test]
+fn bad_rules_are_refused() {
+    for (hold, slope, averaging) in [
+        (-0.1, 0.1, 1.0),
+        (1.0, 0.0, 1.0),
+        (1.0, -0.1, 1.0),
+        (1.0, 1.01, 1.0),
+        (1.0, f64::NAN, 1.0),
+        (1.0, f64::INFINITY, 1.0),
+        (1.0, 0.1, 0.0),
+        (1.0, 0.1, -1.0),
+    ] {
+        let e = Handover::new(&HandoverParams {
+            hold: m(hold),
+            slope,
+            averaging: m(averaging),
+        })
+        .unwrap_err();
+        assert_eq!(e.requirement, "GD-HANDOVER");
+    }
+    assert!(Handover::new(&HandoverParams {
+        hold: m(0.0),
+        slope: 1.0,
+        averaging: m(1e-9),
+    })
+    .is_ok());
+}
+
+//= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+//= type=test
+//# The shift MUST equal the line's offset from the path while the odometry
+//# distance since the hand-over is at most the hold distance, and MUST then
+//# shrink toward zero by the slope times the distance past the hold, never
+//# changing sign.
+#[test]
+fn the_shift_is_held_then_shrinks_at_the_slope() {
+    let h = rule(5.0, 0.1);
+    for d in [-1.0, 0.0, 2.5, 5.0] {
+        assert_eq!(h.offset(m(0.45), m(d)).get(), 0.45);
+        assert_eq!(h.offset(m(-0.3), m(d)).get(), -0.3);
+    }
+    assert!((h.offset(m(0.45), m(6.0)).get() - 0.35).abs() < 1e-12);
+    assert!((h.offset(m(-0.45), m(7.0)).get() + 0.25).abs() < 1e-12);
+    assert_eq!(h.offset(m(0.45), m(9.5)).get(), 0.0);
+    assert_eq!(h.offset(m(-0.45), m(100.0)).get(), 0.0);
+    assert!(!h.is_over(m(0.45), m(9.4)));
+    assert!(h.is_over(m(0.45), m(9.5)));
+    assert!(h.is_over(m(0.0), m(0.0)));
+}
+
+//= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+//= type=test
+//# The offset MUST be averaged over the odometry distance: each tick the
+//# behaviour commands moves it toward that tick's offset by the weight
+//# 1 − exp(−Δd / λ), Δd the tick's odometry distance and λ the averaging
+//# length; the first such tick after the behaviour was entered sets it.
+#[test]
+fn the_offset_is_averaged_over_distance() {
+    let h = rule(5.0, 0.1);
+    assert_eq!(h.averaged(None, m(0.3), m(0.0)).get(), 0.3);
+    assert_eq!(h.averaged(Some(m(0.2)), m(0.3), m(0.0)).get(), 0.2);
+    assert_eq!(h.averaged(Some(m(0.2)), m(0.3), m(-1.0)).get(), 0.2);
+    let one = h.averaged(Some(m(0.2)), m(0.3), m(1.0)).get();
+    assert!((one - (0.2 + 0.1 * (1.0 - (-1.0_f64).exp()))).abs() < 1e-12);
+    // A jump of 0.1 m seen for 8 mm moves the average by less than 1 mm.
+    let tick = h.averaged(Some(m(0.4)), m(0.3), m(0.008)).get();
+    assert!((0.4 - tick) < 1e-3 && tick < 0.4);
+    assert_eq!(h.averaged(Some(m(0.2)), m(0.3), m(1e300)).get(), 0.3);
+}
+
+//= spec/guidance.md#gd-handover-hand-over-to-path-tracking-without-a-jolt
+//= type=test
+//# During a hand-over, path tracking's error MUST be the error to the path
+//# shifted sideways by the hand-over's shift: the lateral error less the
+//# shift, the angular deviation less the angle of the shift's change per metre
+//# travelled, and the curvatures c / (1 − o c) of the shifted path.
+#[test]
+fn the_error_is_to_the_shifted_path() {
+    let h = rule(5.0, 0.1);
+    let path = TrackingError {
+        y: m(0.4),
+        angular_deviation: Radians::new(0.02).unwrap(),
+        curvature: Curvature::new(0.1).unwrap(),
+        curvature_ahead: Curvature::new(-0.2).unwrap(),
+    };
+    // Held: on the line 0.45 m left of the path, 5 cm right of the line.
+    let e = h.reference_error(&path, m(0.45), m(1.0)).unwrap();
+    assert!((e.y.get() + 0.05).abs() < 1e-12);
+    assert!((e.angular_deviation.get() - 0.02).abs() < 1e-12);
+    assert!((e.curvature.get() - 0.1 / (1.0 - 0.045)).abs() < 1e-12);
+    assert!((e.curvature_ahead.get() + 0.2 / (1.0 + 0.09)).abs() < 1e-12);
+    // Shrinking: the reference heads toward the path at atan(0.1).
+    let e = h.reference_error(&path, m(0.45), m(6.0)).unwrap();
+    assert!((e.y.get() - 0.05).abs() < 1e-12);
+    assert!((e.angular_deviation.get() - (0.02 + 0.1_f64.atan())).abs() < 1e-12);
+    // Over: the path's own error.
+    let e = h.reference_error(&path, m(0.45), m(50.0)).unwrap();
+    assert_eq!(e, path);
+    // A shift past the centre of curvature (radius 2 m) is refused.
+    let tight = TrackingError {
+        curvature: Curvature::new(0.5).unwrap(),
+        ..path
+    };
+    let e = h.reference_error(&tight, m(2.0), m(0.0)).unwrap_err();
+    assert_eq!(e.requirement, "GD-HANDOVER");
+}
+
+// ---------------------------------------------------------------- the furrow window's reach (FUR-REACH)
+
+//= spec/pierre2022.md#fur-reach-lateral-reach-of-the-window
+//= type=test
+//# The lateral reach of a furrow configuration for a ray increment Δ MUST be
+//# min(h tan α / sin p − m_y, h tan α / sin p + m_y), at least 0, with α = a_w −
+//# (⌊w_ref / 2⌋ + margin) Δ, h the mount height, p its pitch and m_y its
+//# lateral position; 0 when α ≤ 0.
+#[test]
+fn the_reach_is_the_outermost_whole_template_on_the_ground() {
+    let quarter_degree = Radians::new(0.25_f64.to_radians()).unwrap();
+    let at = |half_angle_deg: f64, mount_y: f64| {
+        let params = FurrowParams {
+            window_half_angle: Radians::new(half_angle_deg.to_radians()).unwrap(),
+            mount_pitch: Radians::new(21.8_f64.to_radians()).unwrap(),
+            mount_y: Meters::new(mount_y).unwrap(),
+            ..FurrowParams::table2()
+        };
+        FurrowConfig::new(&params)
+            .unwrap()
+            .lateral_reach(quarter_degree)
+            .unwrap()
+            .get()
+    };
+    // ±20°: 7 + 7 rays of 0.25° inset, α = 16.5°, 1 m high, pitched 21.8°.
+    let expected = 16.5_f64.to_radians().tan() / 21.8_f64.to_radians().sin();
+    assert!((at(20.0, 0.0) - expected).abs() < 1e-12);
+    assert!((at(20.0, 0.0) - 0.7975).abs() < 1e-3);
+    assert!((at(30.0, 0.0) - 1.3425).abs() < 1e-3);
+    // A mount 0.1 m left of O reaches 0.1 m less to the right.
+    assert!((at(20.0, 0.1) - (expected - 0.1)).abs() < 1e-12);
+    // A window no wider than the template's inset reaches nothing.
+    assert!(at(3.5, 0.0).abs() < f64::MIN_POSITIVE);
+    let config = FurrowConfig::new(&FurrowParams::table2()).unwrap();
+    for bad in [0.0, -0.01] {
+        let e = config
+            .lateral_reach(Radians::new(bad).unwrap())
+            .unwrap_err();
+        assert_eq!(e.requirement, "FUR-REACH");
+    }
+}
