@@ -30,12 +30,14 @@ fn every_stress_class_holds_its_bounds_over_the_seeds() {
     eprintln!("{}", stress::table_md(&results));
     let cases: usize = stress::CLASSES.iter().map(|c| c.cases.len()).sum();
     assert_eq!(results.len(), cases);
-    let failing: Vec<_> = results
+    // Every case holds, except the known failures, which must still fail
+    // (a fix must update the list and the README).
+    let unexpected: Vec<_> = results
         .iter()
-        .filter(|r| !r.pass())
-        .map(|r| (r.scenario, &r.bounds))
+        .filter(|r| !r.as_expected())
+        .map(|r| (r.scenario, r.known_failure, &r.bounds))
         .collect();
-    assert!(failing.is_empty(), "{failing:#?}");
+    assert!(unexpected.is_empty(), "{unexpected:#?}");
 }
 
 /// No run can keep |y| at exactly 0 from its first tick: the bound breaks
@@ -43,6 +45,7 @@ fn every_stress_class_holds_its_bounds_over_the_seeds() {
 const IMPOSSIBLE: Case = Case {
     scenario: "tracking-v1-offset",
     bounds: &[Bound::MaxFrom(0.0, 0.0), Bound::NoPlantCrushed],
+    known_failure: None,
 };
 
 #[test]

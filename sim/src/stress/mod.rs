@@ -32,6 +32,10 @@ pub struct Case {
     pub scenario: &'static str,
     /// The bounds of every seed's run.
     pub bounds: &'static [Bound],
+    /// Why the case is known to break a bound (an open finding the README
+    /// states); `None` for a case that must hold. A known failure that
+    /// starts to hold fails the campaign's test until this is updated.
+    pub known_failure: Option<&'static str>,
 }
 
 /// A class of stress fields: what it stresses and its cases.
@@ -46,13 +50,16 @@ pub struct Class {
 }
 
 use Bound::{
-    ConvergesInTime, CurvatureStep, MaxFrom, NoPlantCrushed, Overshoot, ScenarioChecks,
-    SettledBefore, SettledInBand, SlipStep,
+    ConvergesInTime, CurvatureStep, InPlotMax, MaxFrom, NoPlantCrushed, Overshoot, ScenarioChecks,
+    SettledBefore, SettledInBand, SlipStep, SwitchesAtMost,
 };
 
 const STRAIGHT_FROM_0_8: &[Bound] = &[ConvergesInTime, Overshoot(0.10), SettledInBand];
 const STRAIGHT_FROM_1_5: &[Bound] = &[ConvergesInTime, Overshoot(0.12), SettledInBand];
 const CROPS: &[Bound] = &[ScenarioChecks, NoPlantCrushed];
+/// Rows off the recorded path: the error to the path is the offset, by
+/// design; the rows' centre line is what the robot must hold.
+const ROWS_OFF: &[Bound] = &[NoPlantCrushed, InPlotMax(0.1)];
 
 /// Every class of the campaign, in the order of the README's table.
 pub const CLASSES: &[Class] = &[
@@ -63,18 +70,22 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "tracking-v0_3-offset",
                 bounds: STRAIGHT_FROM_0_8,
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-v1-offset",
                 bounds: STRAIGHT_FROM_0_8,
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-v2-offset",
                 bounds: STRAIGHT_FROM_0_8,
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-v3-offset",
                 bounds: STRAIGHT_FROM_0_8,
+                known_failure: None,
             },
         ],
     },
@@ -85,18 +96,22 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "tracking-v0_3-heading",
                 bounds: STRAIGHT_FROM_1_5,
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-v1-heading",
                 bounds: STRAIGHT_FROM_1_5,
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-v2-heading",
                 bounds: STRAIGHT_FROM_1_5,
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-v3-heading",
                 bounds: STRAIGHT_FROM_1_5,
+                known_failure: None,
             },
         ],
     },
@@ -107,10 +122,12 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "tracking-sbend-v1_5",
                 bounds: &[CurvatureStep(0.25)],
+                known_failure: None,
             },
             Case {
                 scenario: "tracking-sbend-v3",
                 bounds: &[CurvatureStep(0.25)],
+                known_failure: None,
             },
         ],
     },
@@ -120,6 +137,7 @@ pub const CLASSES: &[Class] = &[
         cases: &[Case {
             scenario: "tracking-uturn",
             bounds: &[CurvatureStep(1.0 / 4.5)],
+            known_failure: None,
         }],
     },
     Class {
@@ -128,6 +146,7 @@ pub const CLASSES: &[Class] = &[
         cases: &[Case {
             scenario: "tracking-slip",
             bounds: &[SlipStep(6.0, 0.5)],
+            known_failure: None,
         }],
     },
     Class {
@@ -137,6 +156,7 @@ pub const CLASSES: &[Class] = &[
         cases: &[Case {
             scenario: "tracking-lag-2s",
             bounds: &[SettledBefore(40.0), MaxFrom(40.0, 0.15)],
+            known_failure: None,
         }],
     },
     Class {
@@ -146,22 +166,27 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "furrow-pursuing",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "exp1-hedge-maize",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "exp2-acre",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "exp3-acre-curved",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "gnss-outage",
                 bounds: CROPS,
+                known_failure: None,
             },
         ],
     },
@@ -172,19 +197,62 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "outage-1s.toml",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "outage-2_6s.toml",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "outage-5s.toml",
                 bounds: CROPS,
+                known_failure: None,
             },
             Case {
                 scenario: "outage-maize-fast.toml",
                 bounds: CROPS,
+                known_failure: None,
             },
+        ],
+    },
+    Class {
+        name: "rows-off-the-path",
+        stresses: "crop rows 0.1-0.3 m beside a straight path and bending 0.25-0.3 m from it, hand-over rule on",
+        cases: &[
+            Case { scenario: "rows-offset-handover.toml", bounds: ROWS_OFF, known_failure: None },
+            Case {
+                scenario: "rows-offset-maize-beans.toml",
+                bounds: ROWS_OFF,
+                known_failure: Some("entering rows 0.2 m off, the front axle swings across the near row"),
+            },
+            Case {
+                scenario: "rows-offset-entry.toml",
+                bounds: ROWS_OFF,
+                known_failure: Some("entering rows 0.3 m off, the front axle swings across the near row"),
+            },
+        ],
+    },
+    Class {
+        name: "hedges-and-trunks",
+        stresses: "a row of 0.1 m trunks every metre, posts along a bent hedge, a hedge ragged by 0.15 m with 1-3 m gaps",
+        cases: &[
+            Case { scenario: "trunks-row.toml", bounds: &[ScenarioChecks, SwitchesAtMost(2)], known_failure: None },
+            Case { scenario: "trunks-posts-hedge.toml", bounds: &[ScenarioChecks], known_failure: None },
+            Case {
+                scenario: "hedge-ragged.toml",
+                bounds: &[ScenarioChecks, SwitchesAtMost(2)],
+                known_failure: Some("the gaps still switch modes 12-14 times a pass: the bridge drifts across them"),
+            },
+        ],
+    },
+    Class {
+        name: "field-shapes",
+        stresses: "rows along polylines, plots joined by Dubins paths, a field read from CSV",
+        cases: &[
+            Case { scenario: "rows-polyline-maize.toml", bounds: CROPS, known_failure: None },
+            Case { scenario: "rows-polyline-dubins.toml", bounds: CROPS, known_failure: None },
+            Case { scenario: "field-csv-maize.toml", bounds: CROPS, known_failure: None },
         ],
     },
     Class {
@@ -193,6 +261,7 @@ pub const CLASSES: &[Class] = &[
         cases: &[Case {
             scenario: "speed-segments-uturn.toml",
             bounds: &[ScenarioChecks],
+            known_failure: None,
         }],
     },
 ];
@@ -230,6 +299,8 @@ pub struct Worst {
 /// The outcome of one case over the seeds.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CaseResult {
+    /// Why the case is known to break a bound, if it is.
+    pub known_failure: Option<&'static str>,
     /// The class's name.
     pub class: &'static str,
     /// The scenario.
@@ -249,17 +320,23 @@ impl CaseResult {
     pub fn pass(&self) -> bool {
         self.bounds.iter().all(|w| w.failed_seeds.is_empty())
     }
+
+    /// Whether the case came out as expected: holding, or breaking a bound
+    /// when it is a known failure.
+    #[must_use]
+    pub fn as_expected(&self) -> bool {
+        self.pass() != self.known_failure.is_some()
+    }
 }
 
-/// How far a figure is into its limit: value / limit (a zero limit gives 0
-/// for a zero value, else infinity).
+/// How far a figure is into its limit: value / limit; against a zero
+/// limit, the value itself scaled far above any ratio (so the worst of
+/// several broken counts is the largest).
 fn ratio(j: &Judged) -> f64 {
     if j.limit > 0.0 {
         j.value / j.limit
-    } else if j.value <= 0.0 {
-        0.0
     } else {
-        f64::INFINITY
+        j.value * 1e9
     }
 }
 
@@ -322,6 +399,7 @@ pub fn run_case(
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map_or(seeds.first(), |(seed, _)| seed);
     Ok(CaseResult {
+        known_failure: case.known_failure,
         class,
         scenario: case.scenario,
         seeds: seeds.to_string(),

@@ -28,11 +28,16 @@ pub fn table_md(results: &[CaseResult]) -> String {
     );
     for r in results {
         for w in &r.bounds {
+            let known = if r.known_failure.is_some() {
+                "known "
+            } else {
+                ""
+            };
             let result = if w.failed_seeds.is_empty() {
                 "pass".to_owned()
             } else {
                 format!(
-                    "FAIL (seeds {})",
+                    "{known}FAIL (seeds {})",
                     w.failed_seeds
                         .iter()
                         .map(u64::to_string)
