@@ -523,6 +523,20 @@ impl Stats {
 }
 
 impl<const N: usize> ModelSet<N> {
+    /// No model, no point attached.
+    const EMPTY: Self = Self {
+        alive: 0,
+        fitted: 0,
+        moved: 0,
+        lines: [Line::NONE; MAX_MODELS],
+        masks: [0; N],
+        fit_masks: [0; N],
+        dist: [0.0; N],
+        rank: [NO_RANK; N],
+        seeded: 0,
+        seeds: [[0; SEED_POINTS]; MAX_MODELS],
+    };
+
     fn line(&self, k: usize) -> Line {
         self.lines.get(k).copied().unwrap_or(Line::NONE)
     }
@@ -654,18 +668,7 @@ impl<const N: usize> Ruby<N> {
     //# scans give the same lines, bit for bit.
     #[must_use]
     pub fn new(config: RubyConfig) -> Self {
-        let empty = ModelSet {
-            alive: 0,
-            fitted: 0,
-            moved: 0,
-            lines: [Line::NONE; MAX_MODELS],
-            masks: [0; N],
-            fit_masks: [0; N],
-            dist: [0.0; N],
-            rank: [NO_RANK; N],
-            seeded: 0,
-            seeds: [[0; SEED_POINTS]; MAX_MODELS],
-        };
+        let empty = ModelSet::EMPTY;
         Self {
             config,
             rng: Xoshiro128PlusPlus::seed_from_u64(config.params.seed),
@@ -1393,7 +1396,7 @@ mod tests {
     /// point (4, 0) included, which lies on row B (y = x/2 − 2, slot 0,
     /// moved) as well; B's own points; with `third`, a moved model in
     /// slot 2 far from every point, so that B is re-attached in a pair.
-    fn reattached(third: bool) -> (ModelSet<N>, [(f64, f64); 9]) {
+    fn reattached(third: bool) -> Result<(ModelSet<N>, [(f64, f64); 9]), Precondition> {
         let pts = [
             (1.0, 0.0),
             (2.0, 0.0),
@@ -1406,24 +1409,21 @@ mod tests {
             (6.0, 1.0),
         ];
         let p = RubyParams::authors(Variant::Rgop);
-        let flat = Line::new(0.0, 0.0).unwrap();
-        let slanted = Line::new(0.5, -2.0).unwrap();
+        let flat =
+            Line::new(0.0, 0.0).ok_or(Precondition::new("RUBY-REATTACH", "a finite line"))?;
+        let slanted =
+            Line::new(0.5, -2.0).ok_or(Precondition::new("RUBY-REATTACH", "a finite line"))?;
         let mut set = ModelSet::<N> {
             alive: 0b11,
             fitted: 0b11,
             moved: 0b01,
-            lines: [Line::NONE; MAX_MODELS],
-            masks: [0; N],
-            fit_masks: [0; N],
-            dist: [0.0; N],
-            rank: [NO_RANK; N],
-            seeded: 0,
-            seeds: [[0; SEED_POINTS]; MAX_MODELS],
+            ..ModelSet::EMPTY
         };
         set.lines[0] = slanted;
         set.lines[1] = flat;
         if third {
-            set.lines[2] = Line::new(0.0, 3.0).unwrap();
+            set.lines[2] =
+                Line::new(0.0, 3.0).ok_or(Precondition::new("RUBY-REATTACH", "a finite line"))?;
             set.alive |= 0b100;
             set.moved |= 0b100;
         }
@@ -1438,7 +1438,7 @@ mod tests {
         for (i, &(x, y)) in pts.iter().enumerate() {
             cols.xs[i] = x;
             cols.ys[i] = y;
-            points[i].position = Point2::new(x, y).unwrap();
+            points[i].position = Point2::new(x, y)?;
             // The flat row's points are attached to it, the others to B.
             if y == 0.0 {
                 set.masks[i] = bit(1);
@@ -1449,7 +1449,7 @@ mod tests {
             }
         }
         let _ = reattach(&mut set, &points, &mut cols, &p);
-        (set, pts)
+        Ok((set, pts))
     }
 
     /// Every point on the model of least (distance, slot) within the
@@ -1474,12 +1474,13 @@ mod tests {
     //# a model left with fewer than three points MUST then be removed and its
     //# points re-attached to the models left.
     #[test]
-    fn a_tie_goes_to_the_lower_slot_alone_and_in_a_pair() {
+    fn a_tie_goes_to_the_lower_slot_alone_and_in_a_pair() -> Result<(), Precondition> {
         for third in [false, true] {
-            let (set, pts) = reattached(third);
+            let (set, pts) = reattached(third)?;
             // (4, 0) lies on both rows: slot 0 takes it from slot 1.
             assert_eq!(set.masks[3], bit(0), "third model: {third}");
             assert_closest(&set, &pts);
         }
+        Ok(())
     }
 }
