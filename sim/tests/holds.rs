@@ -180,10 +180,14 @@ fn check_outage_field(name: &str, lead_s: f64) {
 fn outage_2_6_s_before_the_plot_end_rejects_the_volunteers() {
     check_outage_field("outage-2_6s", 2.6);
     // Without the fix carried by odometry nothing can judge the weeds' line:
-    // furrow pursuing follows it into the turn (the failure the check removes).
+    // furrow pursuing follows it into the turn (the failure the check removes;
+    // rolling off at once after the Stop, as before GD-RESUME).
     for seed in [1, 2, 3] {
         let (setup, out) = run_stress_edited("outage-2_6s", seed, |t| {
-            t.replace("plan_dead_reckoning_m = 20.0\n", "")
+            t.replace("plan_dead_reckoning_m = 20.0\n", "").replace(
+                "steer_before_resuming = true",
+                "steer_before_resuming = false",
+            )
         });
         let f = outage_figures(&setup, &out);
         eprintln!("outage-2_6s seed {seed} without dead reckoning: {f:?}");
@@ -197,6 +201,37 @@ fn outage_2_6_s_before_the_plot_end_rejects_the_volunteers() {
 #[test]
 fn outage_1_s_before_the_plot_end_rejects_the_volunteers() {
     check_outage_field("outage-1s", 1.0);
+}
+
+/// Seed 19 of the 1 s and 2.6 s fields (beyond `SEEDS`): the robot stops
+/// where the turn begins with its wheels held 9.4° right, the turn going
+/// left; steering first keeps it within the resume bound, rolling off at
+/// once swings it beyond (the failure `steer_before_resuming` removes there).
+#[test]
+fn outage_at_the_plot_end_seed_19_steers_before_resuming() {
+    for name in ["outage-1s", "outage-2_6s"] {
+        let (setup, out) = run_stress(name, 19);
+        let f = outage_figures(&setup, &out);
+        eprintln!("{name} seed 19: {f:?}");
+        assert!(
+            f.stops == 1
+                && f.resume_swing_m <= RESUME_SWING_M
+                && f.turn_excursion_m <= RESUME_SWING_M,
+            "{name}: {f:?}"
+        );
+        let (setup, out) = run_stress_edited(name, 19, |t| {
+            t.replace(
+                "steer_before_resuming = true",
+                "steer_before_resuming = false",
+            )
+        });
+        let f = outage_figures(&setup, &out);
+        eprintln!("{name} seed 19 rolling off at once: {f:?}");
+        assert!(
+            f.stops == 1 && f.resume_swing_m > RESUME_SWING_M,
+            "{name}: {f:?}"
+        );
+    }
 }
 
 #[test]
