@@ -1058,7 +1058,7 @@ fn closed_loop(sigma: f64) -> (usize, f64) {
             let obs = cluster::<16>(&scan(&ranges), &identity(), &ClusterConfig::emmi2024());
             let a = assess(&obs, &pose, &target, speed(0.5), false, &config()).unwrap();
             match a.hazard {
-                Hazard::Critical | Hazard::Warning { detour: None } => {
+                Hazard::Critical | Hazard::Warning { detour: None } | Hazard::NoDetourOnRoad => {
                     outcome = Some(a.reason);
                     break;
                 }

@@ -84,8 +84,8 @@ use fieldguide::perception::furrow::selection::{
 };
 use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams, RowLines, Rows};
 use fieldguide::perception::obstacles::{
-    assess, cluster, detour, AreaLength, ClusterConfig, Footprint, Hazard, Obstacle,
-    ObstacleConfig, Obstacles,
+    assess, assess_within, cluster, detour, detour_within, AreaLength, ClusterConfig, Corridor,
+    Footprint, Hazard, Obstacle, ObstacleConfig, Obstacles,
 };
 use fieldguide::perception::rows::filter::{
     seen_from, side_indices, side_rows, tracking_error as rows_tracking_error, FilterConfig,
@@ -1645,6 +1645,7 @@ fn hazard() -> BoxedStrategy<Hazard> {
     prop_oneof![
         Just(Hazard::Clear),
         Just(Hazard::Critical),
+        Just(Hazard::NoDetourOnRoad),
         prop::option::of(pose::<World>()).prop_map(|detour| Hazard::Warning { detour }),
     ]
     .boxed()
@@ -2192,6 +2193,19 @@ proptest! {
         for o in list.as_slice() {
             let plan = check!("perception::obstacles::detour::detour", detour(o, list.as_slice(), &a, &b, lengths[3], &config));
             names_a_requirement("detour", &plan);
+        }
+        let corridor = check!("perception::obstacles::corridor::Corridor::new", Corridor::new(&[a.position, b.position], lengths[2]));
+        names_a_requirement("Corridor::new", &corridor);
+        if let Ok(corridor) = &corridor {
+            check!("perception::obstacles::corridor::Corridor::half_width", corridor.half_width());
+            for o in list.as_slice() {
+                let plan = check!("perception::obstacles::detour::detour_within", detour_within(o, list.as_slice(), &a, &b, lengths[3], Some(corridor), &config));
+                names_a_requirement("detour_within", &plan);
+            }
+            for l in [&list, &found] {
+                let verdict = check!("perception::obstacles::assess_within", assess_within(l, &a, &b, speed, in_field, Some(corridor), &config));
+                names_a_requirement("assess_within", &verdict);
+            }
         }
         for l in [&list, &found] {
             let verdict = check!("perception::obstacles::assess", assess(l, &a, &b, speed, in_field, &config));

@@ -221,7 +221,7 @@ fn the_supervisor_never_reverses_and_stops_when_it_must() {
             }
             .unwrap();
             truth = truth.body_to_frame::<Robot>().apply_pose(odometry).unwrap();
-            let hazard = match tick.hazard % 4 {
+            let hazard = match tick.hazard % 5 {
                 0 => Hazard::Clear,
                 1 => Hazard::Critical,
                 2 => Hazard::Warning {
@@ -231,7 +231,8 @@ fn the_supervisor_never_reverses_and_stops_when_it_must() {
                         0.0,
                     )),
                 },
-                _ => Hazard::Warning { detour: None },
+                3 => Hazard::Warning { detour: None },
+                _ => Hazard::NoDetourOnRoad,
             };
             let input = MissionInput {
                 gnss: tick.gnss.then_some(truth),
@@ -252,7 +253,7 @@ fn the_supervisor_never_reverses_and_stops_when_it_must() {
                     assert!((leg.task, leg.leg) >= latest);
                     latest = (leg.task, leg.leg);
                     assert!(!(tick.in_field && leg.detour));
-                    assert!(hazard != Hazard::Critical);
+                    assert!(hazard != Hazard::Critical && hazard != Hazard::NoDetourOnRoad);
                     assert!(out.fix.pose().is_some());
                 }
             }

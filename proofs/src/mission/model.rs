@@ -12,7 +12,7 @@ use stateright::{Model, Property as StaterightProperty};
 use super::{Monitor, Property};
 
 /// Every abstract tick: each hazard (Clear, Warning with and without a
-/// detour, Critical), in a field or on a road, each localisation, the plan
+/// detour, Critical, no detour on the road), in a field or on a road, each localisation, the plan
 /// ready or not, progress or not, and each arrival.
 #[must_use]
 pub fn all_events() -> Vec<Events> {
@@ -21,6 +21,7 @@ pub fn all_events() -> Vec<Events> {
         HazardLevel::Warning { detour: true },
         HazardLevel::Warning { detour: false },
         HazardLevel::Critical,
+        HazardLevel::NoDetourOnRoad,
     ];
     let locs = [
         LocalisationStatus::Gnss,

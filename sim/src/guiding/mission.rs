@@ -17,7 +17,8 @@ use std::path::{Path, PathBuf};
 use fieldguide::geometry::path::ReferencePath;
 use fieldguide::model::Command as Drive;
 use fieldguide::perception::obstacles::{
-    assess, cluster, AreaLength, ClusterConfig, Footprint, Hazard, ObstacleConfig, Obstacles,
+    assess_within, cluster, AreaLength, ClusterConfig, Corridor, Footprint, Hazard, ObstacleConfig,
+    Obstacles,
 };
 use fieldguide::planning::dubins::TurningRadius;
 use fieldguide::planning::manager::{Planner, Tracker};
@@ -52,6 +53,10 @@ pub const FIX_GAIN: f64 = 0.1;
 pub const STANDING_M: f64 = 1e-4;
 /// The safety margin round the footprint, m (EM-OBST-CONFIG).
 pub const MARGIN_M: f64 = 0.3;
+/// How much of each side of a road a detour leaves unused for the
+/// tracking error, m (EM-OBST-ROAD: the corridor's half-width is the
+/// road's less this).
+pub const ROAD_EDGE_M: f64 = 0.15;
 /// How far the ground-truth check of a stop's reason looks beyond the
 /// areas, m: the clusters' enclosing circles (up to 0.5 m, EM-OBST-SHAPE)
 /// over-approximate an obstacle, on the safe side.
@@ -650,6 +655,7 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
         .map_err(|_| Precondition::new("EM-SIM-MISSION", "front LiDAR"))?;
     let outlines: Vec<_> = farm.fields.iter().map(|f| f.outline()).collect();
     let roads = farm.road_polylines()?;
+    let corridors = road_corridors(&roads, farm.road_width_m)?;
     let ctl = Controllers::of(g)?;
     let plant = g.robot.plant();
     let terrain = Terrain::default();
@@ -743,12 +749,18 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
         let seen: Obstacles<16> = cluster(&scan, &lidar.mount(), &ClusterConfig::emmi2024());
         let xy = (estimate.position.x(), estimate.position.y());
         let in_field = outlines.iter().any(|b| b.contains(xy));
-        let hazard = assess(
+        // On a road, a detour must keep the footprint on it.
+        let corridor = match tasks.get(usize::from(mission.state().leg().0)) {
+            Some((Task::Road(k), _)) => corridors.get(*k),
+            _ => None,
+        };
+        let hazard = assess_within(
             &seen,
             &estimate,
             &goal,
             MetersPerSecond::new(nominal)?,
             in_field,
+            corridor,
             &obstacle_config,
         )
         .map_or(Hazard::Critical, |a| a.hazard);
@@ -892,7 +904,9 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
                         StopReason::Obstacle => {
                             obstacle_in_areas(run, &obstacle_config, &truth, t, speed, false)
                         }
-                        StopReason::ObstacleInField | StopReason::NoDetour => {
+                        StopReason::ObstacleInField
+                        | StopReason::NoDetour
+                        | StopReason::NoDetourOnRoad => {
                             obstacle_in_areas(run, &obstacle_config, &truth, t, speed, true)
                         }
                         StopReason::LocalisationLost => !gnss_valid,
@@ -973,6 +987,26 @@ fn drive_in(run: &MissionRun, out: &mut MissionOutcome) -> Result<(), Preconditi
         .filter_map(|(i, c)| c.then_some(i))
         .collect();
     Ok(())
+}
+
+/// The drivable corridor of each road: its centreline and half its width
+/// less [`ROAD_EDGE_M`].
+//= spec/emmi2024.md#em-sim-mission-the-supervisor-drives-the-farm
+//# On a road's Approximation task the hazard MUST be assessed with the road's
+//# corridor (its centreline and half its width less an allowance for the
+//# tracking error), so that a detour keeps the footprint on the road or the
+//# robot stops.
+fn road_corridors(roads: &[Vec<(f64, f64)>], width: f64) -> Result<Vec<Corridor>, Precondition> {
+    roads
+        .iter()
+        .map(|line| {
+            let points = line
+                .iter()
+                .map(|&(x, y)| fieldguide::Point2::new(x, y))
+                .collect::<Result<Vec<_>, _>>()?;
+            Corridor::new(&points, Meters::new(width / 2.0 - ROAD_EDGE_M)?)
+        })
+        .collect()
 }
 
 /// How far the footprint's farthest corner at `pose` lies outside a road of

@@ -10,6 +10,7 @@
 use heapless::Vec;
 
 use super::areas::{above, at_least, ObstacleConfig, Shape, Xy};
+use super::corridor::Corridor;
 use super::Obstacle;
 use crate::error::Precondition;
 use crate::geometry::frame::{Pose2, World};
@@ -38,6 +39,9 @@ pub enum DetourPlan {
     GoalBlocked,
     /// No waypoint on either side gives two clear legs.
     NoClearSide,
+    /// Waypoints give two clear legs, but none keeps the footprint inside
+    /// the road's corridor by the margin (EM-OBST-ROAD).
+    NoDetourOnRoad,
 }
 
 /// `(x, y, θ)` of a pose.
@@ -45,12 +49,14 @@ fn raw(p: &Pose2<World>) -> (f64, f64, f64) {
     (p.position.x(), p.position.y(), p.heading.get())
 }
 
-/// The obstacles of the robot frame at `seen_from`, as seen in the world.
+/// The obstacles of the robot frame at `seen_from`, as seen in the world,
+/// and the road's corridor when one bounds the footprint.
 struct Scene<'o> {
     obstacles: &'o [Obstacle],
     cos: f64,
     sin: f64,
     origin: Xy,
+    corridor: Option<&'o Corridor>,
 }
 
 impl<'o> Scene<'o> {
@@ -61,7 +67,13 @@ impl<'o> Scene<'o> {
             cos: libm::cos(h),
             sin: libm::sin(h),
             origin: (x, y),
+            corridor: None,
         }
+    }
+
+    /// The same scene, the footprint also bounded by `corridor`.
+    const fn within(self, corridor: Option<&'o Corridor>) -> Self {
+        Self { corridor, ..self }
     }
 
     /// An obstacle in the world frame.
@@ -70,9 +82,18 @@ impl<'o> Scene<'o> {
     }
 
     /// The least distance between the footprint at `pose` and an obstacle,
-    /// metres (infinite without obstacles, NaN only from non-finite input).
+    /// or the corridor's edge plus the margin, metres (infinite without
+    /// obstacles and corridor, NaN only from non-finite input).
+    //= spec/emmi2024.md#em-obst-road-detours-inside-the-road
+    //# With a corridor, the clearance of EM-OBST-CLEAR MUST be the lesser of
+    //# the clearance to the obstacles and the room of the pose plus the
+    //# margin, so that a clear path keeps the whole footprint inside the
+    //# corridor.
     fn clearance(&self, pose: (f64, f64, f64), config: &ObstacleConfig) -> f64 {
         let body = config.footprint().body_box();
+        let room = self.corridor.map_or(f64::INFINITY, |c| {
+            c.room(pose, &config.footprint()) + config.margin().get()
+        });
         self.obstacles
             .iter()
             .map(|o| {
@@ -80,10 +101,13 @@ impl<'o> Scene<'o> {
                     .into_body(pose.0, pose.1, pose.2)
                     .box_distance(&body)
             })
-            .fold(
-                f64::INFINITY,
-                |m, d| if d.is_nan() || d < m { d } else { m },
-            )
+            .fold(room, |m, d| {
+                if m.is_nan() || !(d.is_nan() || d < m) {
+                    m
+                } else {
+                    d
+                }
+            })
     }
 }
 
@@ -171,6 +195,23 @@ fn heading_beside(nominal: &DubinsPath, from: Xy, point: Xy, r: f64) -> Option<f
 /// # Errors
 /// The errors of [`shortest`] for the planned path `pose` → `goal`
 /// (`EM-DUBINS-RANGE` beyond 1e7 m).
+pub fn detour(
+    target: &Obstacle,
+    obstacles: &[Obstacle],
+    pose: &Pose2<World>,
+    goal: &Pose2<World>,
+    horizon: Meters,
+    config: &ObstacleConfig,
+) -> Result<DetourPlan, Precondition> {
+    detour_within(target, obstacles, pose, goal, horizon, None, config)
+}
+
+/// [`detour`] on a road whose `corridor` (when known) bounds the footprint
+/// along both legs by the margin (EM-OBST-ROAD); without one, the paper's
+/// behaviour.
+///
+/// # Errors
+/// As [`detour`].
 //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
 //# The waypoint of a circle of radius ρ MUST lie beside its centre, at
 //# ρ + width/2 + margin + k · step (plus, in turn, 0, 0.5, 1 and 2 times
@@ -190,12 +231,13 @@ fn heading_beside(nominal: &DubinsPath, from: Xy, point: Xy, r: f64) -> Option<f
 //# whose first leg is clear and whose second leg is clear of the obstacle
 //# gone round, and of every obstacle over its first `horizon` metres, MUST
 //# be chosen.
-pub fn detour(
+pub fn detour_within(
     target: &Obstacle,
     obstacles: &[Obstacle],
     pose: &Pose2<World>,
     goal: &Pose2<World>,
     horizon: Meters,
+    corridor: Option<&Corridor>,
     config: &ObstacleConfig,
 ) -> Result<DetourPlan, Precondition> {
     let radius = config.radius();
@@ -276,7 +318,7 @@ pub fn detour(
             }
         }
     };
-    let mut candidates: Vec<(f64, usize, Pose2<World>, DubinsPath, DubinsPath), 24> = Vec::new();
+    let mut candidates: Vec<Candidate, 24> = Vec::new();
     for (anchor, dir) in anchors.into_iter().take(count) {
         for extra in EXTRA {
             let offset = own + base + extra * unit;
@@ -299,21 +341,55 @@ pub fn detour(
     }
     candidates.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let alone = Scene::new(core::slice::from_ref(target), pose);
-    for strict in [true, false] {
-        for (_, _, waypoint, first, second) in &candidates {
-            let second_clear = if strict {
-                clear_along(second, f64::INFINITY, &scene, config)
-            } else {
-                clear_along(second, horizon.get(), &scene, config)
-                    && clear_along(second, f64::INFINITY, &alone, config)
-            };
-            if second_clear && clear_along(first, f64::INFINITY, &scene, config) {
-                return Ok(DetourPlan::Waypoint(*waypoint));
-            }
-        }
+    let on_road = |corridor| {
+        choose(
+            &candidates,
+            &Scene::new(obstacles, pose).within(corridor),
+            &Scene::new(core::slice::from_ref(target), pose).within(corridor),
+            horizon,
+            config,
+        )
+    };
+    if let Some(waypoint) = on_road(corridor) {
+        return Ok(DetourPlan::Waypoint(waypoint));
+    }
+    //= spec/emmi2024.md#em-obst-road-detours-inside-the-road
+    //# When no candidate qualifies inside the corridor but one would without
+    //# it, re-planning MUST report that no detour fits on the road.
+    if corridor.is_some() && choose(&candidates, &scene, &alone, horizon, config).is_some() {
+        return Ok(DetourPlan::NoDetourOnRoad);
     }
     //= spec/emmi2024.md#em-obst-no-detour-no-way-round
     //# When no candidate waypoint qualifies, re-planning MUST report that no
     //# side is clear.
     Ok(DetourPlan::NoClearSide)
+}
+
+/// A candidate `(total, order, waypoint, first leg, second leg)`.
+type Candidate = (f64, usize, Pose2<World>, DubinsPath, DubinsPath);
+
+/// The first of the sorted `candidates` whose two legs are clear in
+/// `scene`, or else the first whose first leg is and whose second leg is
+/// clear over `horizon` and of the obstacle gone round (`alone`).
+fn choose(
+    candidates: &[Candidate],
+    scene: &Scene<'_>,
+    alone: &Scene<'_>,
+    horizon: Meters,
+    config: &ObstacleConfig,
+) -> Option<Pose2<World>> {
+    for strict in [true, false] {
+        for (_, _, waypoint, first, second) in candidates {
+            let second_clear = if strict {
+                clear_along(second, f64::INFINITY, scene, config)
+            } else {
+                clear_along(second, horizon.get(), scene, config)
+                    && clear_along(second, f64::INFINITY, alone, config)
+            };
+            if second_clear && clear_along(first, f64::INFINITY, scene, config) {
+                return Some(*waypoint);
+            }
+        }
+    }
+    None
 }

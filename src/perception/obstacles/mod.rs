@@ -9,11 +9,13 @@
 
 pub mod areas;
 pub mod cluster;
+pub mod corridor;
 pub mod detour;
 
 pub use areas::{AreaLength, Footprint, ObstacleConfig, SafetyAreas};
 pub use cluster::{cluster, ClusterConfig, Obstacles};
-pub use detour::{detour, DetourPlan};
+pub use corridor::{Corridor, MAX_CORRIDOR_POINTS};
+pub use detour::{detour, detour_within, DetourPlan};
 
 use crate::error::Precondition;
 use crate::geometry::frame::{Point2, Pose2, Robot, World};
@@ -54,6 +56,10 @@ pub enum Hazard {
     },
     /// An obstacle in the critical area: stop for as long as it is there.
     Critical,
+    /// An obstacle in the warning area and on the planned path on a road,
+    /// and no detour keeps the footprint inside the road's corridor: stop
+    /// for as long as it is there (EM-OBST-ROAD).
+    NoDetourOnRoad,
 }
 
 /// Why the safety areas said what they said (EM-OBST-HAZARD): the named
@@ -79,6 +85,9 @@ pub enum Reason {
     GoalBlocked,
     /// An obstacle on the path, and no side is clear: stop.
     NoClearSide,
+    /// An obstacle on the path on a road, and no detour keeps the footprint
+    /// inside the road's corridor by the margin: stop.
+    NoDetourOnRoad,
 }
 
 /// The hazard of one tick and its reason (EM-OBST-HAZARD).
@@ -95,13 +104,13 @@ impl Assessment {
         Self { hazard, reason }
     }
 
-    /// Whether the robot must stop this tick: a critical hazard, or a
-    /// warning without a detour.
+    /// Whether the robot must stop this tick: a critical hazard, a warning
+    /// without a detour, or no detour on the road.
     #[must_use]
     pub const fn stops(&self) -> bool {
         matches!(
             self.hazard,
-            Hazard::Critical | Hazard::Warning { detour: None }
+            Hazard::Critical | Hazard::Warning { detour: None } | Hazard::NoDetourOnRoad
         )
     }
 }
@@ -114,6 +123,24 @@ impl Assessment {
 /// # Errors
 /// `EM-OBST-AREAS` for a speed outside [0, 100] m/s; the errors of the
 /// Dubins planner for `pose` or `goal` beyond 1e7 m (`EM-DUBINS-RANGE`).
+pub fn assess<const N: usize>(
+    obstacles: &Obstacles<N>,
+    pose: &Pose2<World>,
+    goal: &Pose2<World>,
+    speed: MetersPerSecond,
+    in_field: bool,
+    config: &ObstacleConfig,
+) -> Result<Assessment, Precondition> {
+    assess_within(obstacles, pose, goal, speed, in_field, None, config)
+}
+
+/// [`assess`] on a leg whose drivable `corridor` is known (a road's,
+/// EM-OBST-ROAD): a detour must keep the footprint inside it by the margin,
+/// or the hazard is [`Hazard::NoDetourOnRoad`]; without one, the paper's
+/// behaviour.
+///
+/// # Errors
+/// As [`assess`].
 //= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
 //# An obstacle in the critical area MUST give `Critical`, whatever the other
 //# obstacles, unless the footprint moving along the planned path for the
@@ -129,12 +156,13 @@ impl Assessment {
 //# there is none.
 //= spec/emmi2024.md#em-obst-hazard-the-hazard-of-one-tick
 //# The horizon of the second leg MUST be the warning area's far edge.
-pub fn assess<const N: usize>(
+pub fn assess_within<const N: usize>(
     obstacles: &Obstacles<N>,
     pose: &Pose2<World>,
     goal: &Pose2<World>,
     speed: MetersPerSecond,
     in_field: bool,
+    corridor: Option<&Corridor>,
     config: &ObstacleConfig,
 ) -> Result<Assessment, Precondition> {
     let areas = config.areas(speed)?;
@@ -188,7 +216,15 @@ pub fn assess<const N: usize>(
         ));
     }
     Ok(
-        match detour(target, all, pose, goal, areas.warning_end(), config)? {
+        match detour_within(
+            target,
+            all,
+            pose,
+            goal,
+            areas.warning_end(),
+            corridor,
+            config,
+        )? {
             DetourPlan::Waypoint(w) => {
                 Assessment::new(Hazard::Warning { detour: Some(w) }, Reason::Detour)
             }
@@ -197,6 +233,13 @@ pub fn assess<const N: usize>(
             }
             DetourPlan::NoClearSide => {
                 Assessment::new(Hazard::Warning { detour: None }, Reason::NoClearSide)
+            }
+            //= spec/emmi2024.md#em-obst-road-detours-inside-the-road
+            //# When re-planning reports that no detour fits on the road, the
+            //# hazard MUST be `NoDetourOnRoad`, with the reason
+            //# `NoDetourOnRoad`.
+            DetourPlan::NoDetourOnRoad => {
+                Assessment::new(Hazard::NoDetourOnRoad, Reason::NoDetourOnRoad)
             }
         },
     )

@@ -135,6 +135,11 @@ fn hold(config: &MachineConfig, events: &Events) -> Result<bool, StopReason> {
         }
         HazardLevel::Warning { detour: true } => Ok(true),
         HazardLevel::Warning { detour: false } => Err(StopReason::NoDetour),
+        //= spec/emmi2024.md#em-mission-obstacle-obstacles
+        //# With the hazard NoDetourOnRoad the command MUST be Stop with the
+        //# reason NoDetourOnRoad, for as long as the hazard lasts, without
+        //# re-planning.
+        HazardLevel::NoDetourOnRoad => Err(StopReason::NoDetourOnRoad),
         HazardLevel::Clear | HazardLevel::Critical => Ok(false),
     }
 }

@@ -74,6 +74,9 @@ pub enum StopReason {
     Obstacle,
     /// An obstacle in the warning area on a road with no detour (held).
     NoDetour,
+    /// An obstacle in the warning area on a road, and no detour keeps the
+    /// footprint inside the road's corridor (held while it is there).
+    NoDetourOnRoad,
     /// An obstacle in the warning area inside a field (held; no re-planning).
     ObstacleInField,
     /// No GNSS fix and odometry beyond its distance (held until a fix).
@@ -103,6 +106,9 @@ pub enum HazardLevel {
     },
     /// An obstacle in the critical area.
     Critical,
+    /// An obstacle in the warning area on the planned path on a road, and no
+    /// detour inside the road's corridor.
+    NoDetourOnRoad,
 }
 
 /// The localisation in one tick (EM-LOC-CHOICE).

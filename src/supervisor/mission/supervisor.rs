@@ -242,6 +242,7 @@ impl Mission {
         let hazard = match input.hazard {
             Hazard::Clear => HazardLevel::Clear,
             Hazard::Critical => HazardLevel::Critical,
+            Hazard::NoDetourOnRoad => HazardLevel::NoDetourOnRoad,
             Hazard::Warning { detour } => {
                 if let Some(w) = detour {
                     let followed = self.detour_goal.filter(|_| self.state.detour());
