@@ -822,7 +822,7 @@ where
         let command = match command {
             Some(c) => {
                 let params = self.config.params();
-                let c = if params.steer_before_resuming {
+                let c = if params.steer_before_resuming && source == Some(Mode::PathTracking) {
                     resume::command(
                         &mut self.turning,
                         was_stopped,
@@ -833,6 +833,8 @@ where
                         self.config.settle_ticks(),
                     )
                 } else {
+                    // A behaviour's command, at once (GD-RESUME).
+                    self.turning = None;
                     c
                 };
                 self.last_command = c.command;

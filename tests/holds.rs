@@ -269,6 +269,56 @@ fn a_bad_bridge_or_settling_time_is_refused() {
     assert_eq!(GuidanceConfig::new(&params()).unwrap().settle_ticks(), 0);
 }
 
+/// A behaviour selected after a Stop commands at once: the robot stopped
+/// without a fix beside no wall, its wheels held; a wall 1.5 m to its left
+/// appears and edge following, entered at standstill, steers towards its
+/// line (0.1 m off the 1.4 m offset) and moves in the same tick, where path
+/// tracking would have turned the wheels first.
+#[test]
+fn after_a_stop_a_behaviour_commands_at_once() {
+    let p = rate_limited(params(), 0.1);
+    let path = straight_path();
+    let mut g = pipeline(&p, &path);
+    let limits = RangeLimits::new(m(0.05), m(30.0)).unwrap();
+    let mut held = None;
+    for _ in 0..10 {
+        let out = g.step(&tick(0.0, &[], true)).unwrap();
+        held = out.command.and_then(|c| c.command.steering());
+    }
+    for _ in 0..60 {
+        g.step(&tick(0.0, &[], false)).unwrap();
+    }
+    assert_eq!(g.mode(), Mode::Stop);
+    let held = held.unwrap().get();
+    let ranges = wall_ranges(0.0, |_| true);
+    let scans = [RoutedScan {
+        behaviour: EDGE,
+        scan: Scan {
+            start: Radians::new(-PI).unwrap(),
+            increment: Radians::new(TAU / RAYS as f64).unwrap(),
+            ranges: &ranges,
+            limits,
+        },
+    }];
+    for k in 0..2000 {
+        let scans: &[RoutedScan<'_>] = if k % 10 == 0 { &scans } else { &[] };
+        let out = g.step(&tick(0.0, scans, false)).unwrap();
+        if out.mode == Mode::Stop {
+            continue;
+        }
+        assert_eq!(out.source, Some(Mode::Behaviour(EDGE)));
+        let c = out.command.unwrap().command;
+        let steering = c.steering().unwrap().get();
+        assert!(
+            (steering - held).abs() > PI / 6.0 * 0.01,
+            "{held} {steering}"
+        );
+        assert!(c.speed().get() > 0.0, "{c:?}");
+        return;
+    }
+    panic!("edge following never entered");
+}
+
 /// The preset's tractor with a 30°/s steering rate limit.
 fn rate_limited(mut p: Pierre2022Params, tau: f64) -> Pierre2022Params {
     p.vehicle = Vehicle::Bicycle(
@@ -331,12 +381,12 @@ fn resume(p: &Pierre2022Params) -> (usize, f64, f64) {
 //= spec/guidance.md#gd-resume-steering-before-moving-after-a-stop
 //= type=test
 //# When steering before resuming is configured and the vehicle is a bicycle
-//# with a known steering rate limit, the commands of the sources after a Stop
-//# MUST keep the speed zero, with the source's steering angle, while an angle
+//# with a known steering rate limit, the commands of path tracking after a Stop
+//# MUST keep the speed zero, with path tracking's steering angle, while an angle
 //# moved from the held one towards each tick's commanded angle by the rate
 //# limit times the period per tick is farther than that step from the
-//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command MUST
-//# be the source's as it is.
+//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command, and
+//# every command of a behaviour, MUST be the source's as it is.
 #[test]
 fn after_a_stop_the_wheels_turn_at_standstill_first() {
     let step = PI / 6.0 * 0.01;

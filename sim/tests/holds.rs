@@ -279,12 +279,12 @@ fn outages_by_distance_in_the_plots_crush_nothing_of_their_own() {
 //= spec/guidance.md#gd-resume-steering-before-moving-after-a-stop
 //= type=test
 //# When steering before resuming is configured and the vehicle is a bicycle
-//# with a known steering rate limit, the commands of the sources after a Stop
-//# MUST keep the speed zero, with the source's steering angle, while an angle
+//# with a known steering rate limit, the commands of path tracking after a Stop
+//# MUST keep the speed zero, with path tracking's steering angle, while an angle
 //# moved from the held one towards each tick's commanded angle by the rate
 //# limit times the period per tick is farther than that step from the
-//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command MUST
-//# be the source's as it is.
+//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command, and
+//# every command of a behaviour, MUST be the source's as it is.
 #[test]
 fn outage_in_a_fast_maize_plot_rejects_the_volunteers() {
     check_outage_field("outage-maize-fast", 2.6);

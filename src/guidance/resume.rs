@@ -3,7 +3,9 @@
 //! In Stop the steering is held (GD-STOP). The first command after it may
 //! want another angle: a robot stopped where the path turns, its wheels
 //! straight, would roll on while a rate-limited actuator turns them, and
-//! swing off the turn. Instead the wheels turn at standstill first.
+//! swing off the turn. Instead the wheels turn at standstill first, for path
+//! tracking only: a behaviour's line, fitted from scans taken at standstill,
+//! is not steered to before moving.
 
 use crate::geometry::units::Seconds;
 use crate::model::{Command, Saturated, Vehicle};
@@ -17,18 +19,18 @@ pub(super) struct Turning {
     settle: u16,
 }
 
-/// The command of a tick with a source, `command`, after the tick's mode
-/// changes: while turning, the command stopped (every speed zero, the
+/// The command of a tick with path tracking as its source, `command`, after
+/// the tick's mode changes: while turning, the command stopped (every speed zero, the
 /// source's steering); `turning` starts when the previous tick was in Stop
 /// and ends once the modelled steering has reached the command and settled.
 //= spec/guidance.md#gd-resume-steering-before-moving-after-a-stop
 //# When steering before resuming is configured and the vehicle is a bicycle
-//# with a known steering rate limit, the commands of the sources after a Stop
-//# MUST keep the speed zero, with the source's steering angle, while an angle
+//# with a known steering rate limit, the commands of path tracking after a Stop
+//# MUST keep the speed zero, with path tracking's steering angle, while an angle
 //# moved from the held one towards each tick's commanded angle by the rate
 //# limit times the period per tick is farther than that step from the
-//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command MUST
-//# be the source's as it is.
+//# commanded angle, and for ⌈3 τ / period⌉ ticks more; the next command, and
+//# every command of a behaviour, MUST be the source's as it is.
 pub(super) fn command(
     turning: &mut Option<Turning>,
     was_stopped: bool,

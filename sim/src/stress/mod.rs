@@ -237,9 +237,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "outage-entry-beans.toml",
                 bounds: CROPS,
-                known_failure: Some(
-                    "seed 5: stopped blind at the plot's edge, the furrow line fitted from there is 0.12 m off and the wheels turn full lock towards it",
-                ),
+                known_failure: None,
             },
         ],
     },
