@@ -1018,8 +1018,7 @@ fn search_side<const N: usize>(
                 set.seeds.get_mut(slot),
             ) {
                 *l = line;
-                *points = seed;
-                points.sort_unstable();
+                *points = sorted(seed);
                 set.seeded |= bit(slot);
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
@@ -1035,6 +1034,14 @@ fn search_side<const N: usize>(
             }
         }
     }
+}
+
+/// Three indices in ascending order, by minima and maxima (no branch on
+/// the draws, which a sort's comparisons would mispredict at random).
+fn sorted([a, b, c]: [usize; SEED_POINTS]) -> [usize; SEED_POINTS] {
+    let (low, high) = (a.min(b), a.max(b));
+    let (middle, high) = (high.min(c), high.max(c));
+    [low.min(middle), low.max(middle), high]
 }
 
 /// Whether two models are one (Alg. 1, line 13); both tests made, without
