@@ -4,7 +4,7 @@
 use fieldguide::supervisor::mission::StopReason;
 use fieldguide_sim::guiding::file::{builtin_mission, GuidingFile, BUILTIN};
 use fieldguide_sim::guiding::mission::{
-    campaign, drive_mission, welaser_mission, Shape, WorldObstacle, BOUNDS,
+    campaign, drive_mission, welaser_mission, PathClass, Shape, WorldObstacle, BOUNDS,
 };
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
@@ -38,6 +38,12 @@ const REACH_M: f64 = BOUNDS.reach_m;
 //= type=test
 //# On every tick of a detour on a road, the distance of the
 //# footprint's corners outside the road's edge MUST be measured.
+//= spec/emmi2024.md#em-sim-mission-the-supervisor-drives-the-farm
+//= type=test
+//# On a road's Approximation task the hazard MUST be assessed with the road's
+//# corridor (its centreline and half its width less an allowance for the
+//# tracking error), so that a detour keeps the footprint on the road or the
+//# robot stops.
 #[test]
 fn the_built_in_mission_is_safe_over_five_seeds() {
     for seed in SEEDS {
@@ -76,8 +82,13 @@ fn the_built_in_mission_is_safe_over_five_seeds() {
         assert!(!o.replans.is_empty(), "seed {seed}: no re-plan");
         // Each detour planned once (EM-MISSION-OBSTACLE).
         assert_eq!(o.detour_plans, o.replans.len(), "seed {seed}");
-        // Measured, not yet held: the core's detour does not know the road.
+        // The detour keeps the footprint on the road (EM-OBST-ROAD).
         assert!(o.detour_off_road_m.is_finite(), "seed {seed}");
+        assert!(
+            o.detour_off_road_m <= 0.0,
+            "seed {seed}: {}",
+            o.detour_off_road_m
+        );
         eprintln!(
             "seed {seed}: footprint outside the road on the detour {:.3} m",
             o.detour_off_road_m
@@ -164,8 +175,13 @@ fn a_reduced_campaign_has_no_collision_and_no_crushed_plant() {
         assert_eq!(r.replans_in_field, 0, "{r:?}");
         assert_eq!(r.unjustified, 0, "{r:?}");
         assert!(r.complete || r.reason.is_some(), "{r:?}");
+        // Every detour on the road (EM-OBST-ROAD): -inf without one.
+        assert!(r.detour_off_road_m <= 0.0, "{r:?}");
     }
-    assert!(rows.iter().filter(|r| r.complete).count() >= 5);
+    // Obstacles left in the middle of a 4 m road stop some missions for
+    // good (NoDetourOnRoad, or a box held in the critical area).
+    assert!(rows.iter().filter(|r| r.complete).count() >= 3);
+    assert!(rows.iter().any(|r| r.detour_plans > 0));
 }
 
 //= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
@@ -308,4 +324,73 @@ fn blocked_roads_stop_with_a_reason_and_skip_nothing() {
             );
         }
     }
+}
+
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//= type=test
+//# The arcs' angular error MUST be reported per kind of arc (the fields'
+//# U-turns, the roads' corners, detours and the legs re-planned after
+//# them), and its mean over every arc of the missions of seeds 1 to 5, as
+//# the paper pools every spiral followed, MUST be at most 0.0103 rad, for
+//# all arcs and for the fields' U-turns.
+/// The arcs' angular error split by kind, against ground truth: each seed
+/// of 1-10 reported, the pooled means of seeds 1-5 held.
+#[test]
+fn arcs_angular_error_by_kind() {
+    let bound = 0.0103;
+    let mut pooled: Vec<(PathClass, f64)> = Vec::new();
+    for seed in 1..=10_u64 {
+        let run = welaser_mission(seed).expect("built-in");
+        let o = drive_mission(&run);
+        let k = |c| o.angular_spiral_of(c);
+        let (f, r, d) = (
+            k(PathClass::Field),
+            k(PathClass::Road),
+            k(PathClass::Detour),
+        );
+        eprintln!(
+            "seed {seed}: arcs' angular error, mrad: all {:.1} ({} arcs), field U-turns {:.1} ({}), road corners {:.1} ({}), detours {:.1} ({})",
+            1e3 * o.drive.angular_spiral().mean_abs,
+            o.drive.angular_spiral().count,
+            1e3 * f.mean_abs,
+            f.count,
+            1e3 * r.mean_abs,
+            r.count,
+            1e3 * d.mean_abs,
+            d.count
+        );
+        assert!(f.count >= 4 && r.count >= 4, "seed {seed}");
+        if seed <= 5 {
+            pooled.extend(
+                o.classified
+                    .iter()
+                    .filter(|(c, m)| {
+                        *c != PathClass::Detour
+                            && matches!(m.kind, fieldguide_sim::guiding::Kind::Spiral(_))
+                    })
+                    .map(|(c, m)| (*c, m.angular_rad)),
+            );
+        }
+    }
+    let mean = |keep: &dyn Fn(PathClass) -> bool| {
+        let v: Vec<f64> = pooled
+            .iter()
+            .filter(|(c, _)| keep(*c))
+            .map(|p| p.1)
+            .collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let (all, field, road) = (
+        mean(&|_| true),
+        mean(&|c| c == PathClass::Field),
+        mean(&|c| c == PathClass::Road),
+    );
+    eprintln!(
+        "seeds 1-5 pooled, mrad: all arcs {:.2}, field U-turns {:.2}, road corners {:.2} (reported)",
+        1e3 * all,
+        1e3 * field,
+        1e3 * road
+    );
+    assert!(all <= bound, "{all}");
+    assert!(field <= bound, "{field}");
 }
