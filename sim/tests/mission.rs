@@ -326,6 +326,90 @@ fn blocked_roads_stop_with_a_reason_and_skip_nothing() {
     }
 }
 
+/// More bad scenes end to end: the robot boxed in on the first road (a box
+/// across it ahead, walls along both edges, a box behind) stops with a
+/// named reason and stays stopped, hitting nothing and starting no later
+/// task; a burst of spurious returns (200 specks of 5 mm over 2 s ahead on
+/// the road) neither panics nor hits anything, and the mission completes.
+#[test]
+fn boxed_in_and_a_burst_of_specks_end_to_end() {
+    let boxed = |at: (f64, f64), length: f64, width: f64| WorldObstacle {
+        name: "boxing in".to_owned(),
+        shape: Shape::Box {
+            length,
+            width,
+            heading: 0.0,
+        },
+        at,
+        walk: None,
+        present_s: (0.0, f64::INFINITY),
+    };
+    for seed in 1..=3 {
+        let mut run = welaser_mission(seed).expect("built-in");
+        run.guiding.duration_s = 120.0;
+        run.obstacles = vec![
+            boxed((6.0, -3.0), 0.6, 3.6),
+            boxed((3.0, -1.1), 8.0, 0.3),
+            boxed((3.0, -4.9), 8.0, 0.3),
+            boxed((-2.0, -3.0), 0.6, 3.6),
+        ];
+        let o = drive_mission(&run);
+        let last = o
+            .stops
+            .last()
+            .unwrap_or_else(|| panic!("seed {seed}: no stop"));
+        assert!(
+            [
+                StopReason::NoDetour,
+                StopReason::NoDetourOnRoad,
+                StopReason::Obstacle
+            ]
+            .contains(&last.reason),
+            "seed {seed}: {:?}",
+            o.stops
+        );
+        assert!(last.to_s >= 119.0, "seed {seed}: not held: {:?}", o.stops);
+        assert!(o.stops.iter().all(|s| s.justified), "{:?}", o.stops);
+        assert!(o.collisions.is_empty(), "seed {seed}: {:?}", o.collisions);
+        assert!(o.replans.is_empty(), "seed {seed}: a detour out of the box");
+        assert!(!o.complete());
+        assert!(
+            o.tasks[1..].iter().all(|t| t.result == "not started"),
+            "{:?}",
+            o.tasks
+        );
+    }
+    for seed in 1..=2_u64 {
+        let mut run = welaser_mission(seed).expect("built-in");
+        let mut x = seed;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1_u64 << 53) as f64
+        };
+        for k in 0..200 {
+            let at = (3.0 + 8.0 * next(), -4.5 + 3.0 * next());
+            run.obstacles.push(WorldObstacle {
+                name: format!("speck {k}"),
+                shape: Shape::Circle { radius: 0.005 },
+                at,
+                walk: None,
+                present_s: (4.0, 6.0),
+            });
+        }
+        let o = drive_mission(&run);
+        eprintln!(
+            "specks, seed {seed}: {:?}, stops {:?}",
+            o.phase,
+            o.stops_by_reason()
+        );
+        assert!(o.complete(), "seed {seed}: {:?} {:?}", o.phase, o.stops);
+        assert!(o.collisions.is_empty(), "seed {seed}: {:?}", o.collisions);
+        assert!(o.stops.iter().all(|s| s.justified), "{:?}", o.stops);
+    }
+}
+
 //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
 //= type=test
 //# The arcs' angular error MUST be reported per kind of arc (the fields'
