@@ -609,8 +609,9 @@ proptest! {
     //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
     //= type=test
     //# The waypoint of a circle of radius ρ MUST lie beside its centre, at
-    //# ρ + width/2 + margin + k · step (plus, in turn, 0, 0.5, 1 and 2 times
-    //# width/2 + margin) to the left or the right of the planned path's heading
+    //# ρ + width/2 + margin + k · step (plus, in turn, 0, 0.125, 0.25, 0.375,
+    //# 0.5, 1 and 2 times width/2 + margin) to the left or the right of the
+    //# planned path's heading
     //# where the path passes nearest to the centre, with that heading.
     //= spec/emmi2024.md#em-obst-clear-clear-legs
     //= type=test
@@ -653,7 +654,7 @@ proptest! {
         let lateral = -s * (w.position.x() - centre.0) + c * (w.position.y() - centre.1);
         let along = c * (w.position.x() - centre.0) + s * (w.position.y() - centre.1);
         prop_assert!(along.abs() < 1e-6, "waypoint {along} m along");
-        prop_assert!([0.0, 0.5, 1.0, 2.0].iter().any(|e| (lateral.abs() - base - e * 1.18).abs() < 1e-6), "lateral {lateral}");
+        prop_assert!([0.0, 0.125, 0.25, 0.375, 0.5, 1.0, 2.0].iter().any(|e| (lateral.abs() - base - e * 1.18).abs() < 1e-6), "lateral {lateral}");
         prop_assert!((w.heading.get() - h).rem_euclid(TAU).min((h - w.heading.get()).rem_euclid(TAU)) < 1e-9);
         prop_assert!(footprint_distance(&w, &pose, &post) >= 0.3 - 1e-9);
         prop_assert!(legs_clearance(&pose, &w, &goal, &[post]) >= 0.3 - 1e-9);
@@ -705,7 +706,7 @@ proptest! {
         let off = 0.88 + 0.3 + k * 0.02;
         prop_assert!((w.position.x() - x).abs() < 1e-9);
         let from_an_end = [left, -right].iter().any(|end| {
-            [0.0, 0.5, 1.0, 2.0].iter().any(|e| ((w.position.y() - end).abs() - off - e * 1.18).abs() < 1e-6)
+            [0.0, 0.125, 0.25, 0.375, 0.5, 1.0, 2.0].iter().any(|e| ((w.position.y() - end).abs() - off - e * 1.18).abs() < 1e-6)
         });
         prop_assert!(from_an_end, "{w:?}");
         let beyond = if w.position.y() > 0.0 { w.position.y() - left } else { -right - w.position.y() };
@@ -1191,7 +1192,7 @@ fn a_long_object_alongside_is_passed_beside_an_end() {
             );
             let beside = sign * (sign * y - w.position.y());
             assert!(
-                [0.0, 0.5, 1.0, 2.0]
+                [0.0, 0.125, 0.25, 0.375, 0.5, 1.0, 2.0]
                     .iter()
                     .any(|e| (beside - off - e * 1.18).abs() < 1e-6),
                 "y {y}, sign {sign}: {w:?}"

@@ -4,7 +4,7 @@
 use fieldguide::supervisor::mission::StopReason;
 use fieldguide_sim::guiding::file::{builtin_mission, GuidingFile, BUILTIN};
 use fieldguide_sim::guiding::mission::{
-    campaign, drive_mission, welaser_mission, Shape, WorldObstacle, BOUNDS,
+    campaign, drive_mission, welaser_mission, PathClass, Shape, WorldObstacle, BOUNDS,
 };
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
@@ -38,6 +38,12 @@ const REACH_M: f64 = BOUNDS.reach_m;
 //= type=test
 //# On every tick of a detour on a road, the distance of the
 //# footprint's corners outside the road's edge MUST be measured.
+//= spec/emmi2024.md#em-sim-mission-the-supervisor-drives-the-farm
+//= type=test
+//# On a road's Approximation task the hazard MUST be assessed with the road's
+//# corridor (its centreline and half its width less an allowance for the
+//# tracking error), so that a detour keeps the footprint on the road or the
+//# robot stops.
 #[test]
 fn the_built_in_mission_is_safe_over_five_seeds() {
     for seed in SEEDS {
@@ -76,8 +82,13 @@ fn the_built_in_mission_is_safe_over_five_seeds() {
         assert!(!o.replans.is_empty(), "seed {seed}: no re-plan");
         // Each detour planned once (EM-MISSION-OBSTACLE).
         assert_eq!(o.detour_plans, o.replans.len(), "seed {seed}");
-        // Measured, not yet held: the core's detour does not know the road.
+        // The detour keeps the footprint on the road (EM-OBST-ROAD).
         assert!(o.detour_off_road_m.is_finite(), "seed {seed}");
+        assert!(
+            o.detour_off_road_m <= 0.0,
+            "seed {seed}: {}",
+            o.detour_off_road_m
+        );
         eprintln!(
             "seed {seed}: footprint outside the road on the detour {:.3} m",
             o.detour_off_road_m
@@ -164,8 +175,13 @@ fn a_reduced_campaign_has_no_collision_and_no_crushed_plant() {
         assert_eq!(r.replans_in_field, 0, "{r:?}");
         assert_eq!(r.unjustified, 0, "{r:?}");
         assert!(r.complete || r.reason.is_some(), "{r:?}");
+        // Every detour on the road (EM-OBST-ROAD): -inf without one.
+        assert!(r.detour_off_road_m <= 0.0, "{r:?}");
     }
-    assert!(rows.iter().filter(|r| r.complete).count() >= 5);
+    // Obstacles left in the middle of a 4 m road stop some missions for
+    // good (NoDetourOnRoad, or a box held in the critical area).
+    assert!(rows.iter().filter(|r| r.complete).count() >= 3);
+    assert!(rows.iter().any(|r| r.detour_plans > 0));
 }
 
 //= spec/emmi2024.md#em-sim-mission-file-missions-with-obstacles-as-files
@@ -308,4 +324,157 @@ fn blocked_roads_stop_with_a_reason_and_skip_nothing() {
             );
         }
     }
+}
+
+/// More bad scenes end to end: the robot boxed in on the first road (a box
+/// across it ahead, walls along both edges, a box behind) stops with a
+/// named reason and stays stopped, hitting nothing and starting no later
+/// task; a burst of spurious returns (200 specks of 5 mm over 2 s ahead on
+/// the road) neither panics nor hits anything, and the mission completes.
+#[test]
+fn boxed_in_and_a_burst_of_specks_end_to_end() {
+    let boxed = |at: (f64, f64), length: f64, width: f64| WorldObstacle {
+        name: "boxing in".to_owned(),
+        shape: Shape::Box {
+            length,
+            width,
+            heading: 0.0,
+        },
+        at,
+        walk: None,
+        present_s: (0.0, f64::INFINITY),
+    };
+    for seed in 1..=3 {
+        let mut run = welaser_mission(seed).expect("built-in");
+        run.guiding.duration_s = 120.0;
+        run.obstacles = vec![
+            boxed((6.0, -3.0), 0.6, 3.6),
+            boxed((3.0, -1.1), 8.0, 0.3),
+            boxed((3.0, -4.9), 8.0, 0.3),
+            boxed((-2.0, -3.0), 0.6, 3.6),
+        ];
+        let o = drive_mission(&run);
+        let last = o
+            .stops
+            .last()
+            .unwrap_or_else(|| panic!("seed {seed}: no stop"));
+        assert!(
+            [
+                StopReason::NoDetour,
+                StopReason::NoDetourOnRoad,
+                StopReason::Obstacle
+            ]
+            .contains(&last.reason),
+            "seed {seed}: {:?}",
+            o.stops
+        );
+        assert!(last.to_s >= 119.0, "seed {seed}: not held: {:?}", o.stops);
+        assert!(o.stops.iter().all(|s| s.justified), "{:?}", o.stops);
+        assert!(o.collisions.is_empty(), "seed {seed}: {:?}", o.collisions);
+        assert!(o.replans.is_empty(), "seed {seed}: a detour out of the box");
+        assert!(!o.complete());
+        assert!(
+            o.tasks[1..].iter().all(|t| t.result == "not started"),
+            "{:?}",
+            o.tasks
+        );
+    }
+    for seed in 1..=2_u64 {
+        let mut run = welaser_mission(seed).expect("built-in");
+        let mut x = seed;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1_u64 << 53) as f64
+        };
+        for k in 0..200 {
+            let at = (3.0 + 8.0 * next(), -4.5 + 3.0 * next());
+            run.obstacles.push(WorldObstacle {
+                name: format!("speck {k}"),
+                shape: Shape::Circle { radius: 0.005 },
+                at,
+                walk: None,
+                present_s: (4.0, 6.0),
+            });
+        }
+        let o = drive_mission(&run);
+        eprintln!(
+            "specks, seed {seed}: {:?}, stops {:?}",
+            o.phase,
+            o.stops_by_reason()
+        );
+        assert!(o.complete(), "seed {seed}: {:?} {:?}", o.phase, o.stops);
+        assert!(o.collisions.is_empty(), "seed {seed}: {:?}", o.collisions);
+        assert!(o.stops.iter().all(|s| s.justified), "{:?}", o.stops);
+    }
+}
+
+//= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
+//= type=test
+//# The arcs' angular error MUST be reported per kind of arc (the fields'
+//# U-turns, the roads' corners, detours and the legs re-planned after
+//# them), and its mean over every arc of the missions of seeds 1 to 5, as
+//# the paper pools every spiral followed, MUST be at most 0.0103 rad, for
+//# all arcs and for the fields' U-turns.
+/// The arcs' angular error split by kind, against ground truth: each seed
+/// of 1-10 reported, the pooled means of seeds 1-5 held.
+#[test]
+fn arcs_angular_error_by_kind() {
+    let bound = 0.0103;
+    let mut pooled: Vec<(PathClass, f64)> = Vec::new();
+    for seed in 1..=10_u64 {
+        let run = welaser_mission(seed).expect("built-in");
+        let o = drive_mission(&run);
+        let k = |c| o.angular_spiral_of(c);
+        let (f, r, d) = (
+            k(PathClass::Field),
+            k(PathClass::Road),
+            k(PathClass::Detour),
+        );
+        eprintln!(
+            "seed {seed}: arcs' angular error, mrad: all {:.1} ({} arcs), field U-turns {:.1} ({}), road corners {:.1} ({}), detours {:.1} ({})",
+            1e3 * o.drive.angular_spiral().mean_abs,
+            o.drive.angular_spiral().count,
+            1e3 * f.mean_abs,
+            f.count,
+            1e3 * r.mean_abs,
+            r.count,
+            1e3 * d.mean_abs,
+            d.count
+        );
+        assert!(f.count >= 4 && r.count >= 4, "seed {seed}");
+        if seed <= 5 {
+            pooled.extend(
+                o.classified
+                    .iter()
+                    .filter(|(c, m)| {
+                        *c != PathClass::Detour
+                            && matches!(m.kind, fieldguide_sim::guiding::Kind::Spiral(_))
+                    })
+                    .map(|(c, m)| (*c, m.angular_rad)),
+            );
+        }
+    }
+    let mean = |keep: &dyn Fn(PathClass) -> bool| {
+        let v: Vec<f64> = pooled
+            .iter()
+            .filter(|(c, _)| keep(*c))
+            .map(|p| p.1)
+            .collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let (all, field, road) = (
+        mean(&|_| true),
+        mean(&|c| c == PathClass::Field),
+        mean(&|c| c == PathClass::Road),
+    );
+    eprintln!(
+        "seeds 1-5 pooled, mrad: all arcs {:.2}, field U-turns {:.2}, road corners {:.2} (reported)",
+        1e3 * all,
+        1e3 * field,
+        1e3 * road
+    );
+    assert!(all <= bound, "{all}");
+    assert!(field <= bound, "{field}");
 }

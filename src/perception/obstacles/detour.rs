@@ -19,7 +19,7 @@ use crate::planning::dubins::{shortest, DubinsPath};
 
 /// Extra lateral offsets of the waypoint tried in turn, in units of half the
 /// width plus the margin (EM-OBST-DETOUR).
-const EXTRA: [f64; 4] = [0.0, 0.5, 1.0, 2.0];
+const EXTRA: [f64; 7] = [0.0, 0.125, 0.25, 0.375, 0.5, 1.0, 2.0];
 
 /// Most samples of one clearance check; a path needing more is not clear
 /// (EM-OBST-CLEAR).
@@ -214,8 +214,9 @@ pub fn detour(
 /// As [`detour`].
 //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
 //# The waypoint of a circle of radius ρ MUST lie beside its centre, at
-//# ρ + width/2 + margin + k · step (plus, in turn, 0, 0.5, 1 and 2 times
-//# width/2 + margin) to the left or the right of the planned path's heading
+//# ρ + width/2 + margin + k · step (plus, in turn, 0, 0.125, 0.25, 0.375,
+//# 0.5, 1 and 2 times width/2 + margin) to the left or the right of the
+//# planned path's heading
 //# where the path passes nearest to the centre, with that heading.
 //= spec/emmi2024.md#em-obst-detour-the-intermediate-waypoint
 //# The waypoint of a segment MUST lie beyond one of its ends, along the
@@ -318,7 +319,7 @@ pub fn detour_within(
             }
         }
     };
-    let mut candidates: Vec<Candidate, 24> = Vec::new();
+    let mut candidates: Vec<Candidate, 42> = Vec::new();
     for (anchor, dir) in anchors.into_iter().take(count) {
         for extra in EXTRA {
             let offset = own + base + extra * unit;
