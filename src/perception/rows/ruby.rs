@@ -923,12 +923,12 @@ fn energy<const N: usize>(
     let masks = set.masks.get(..n).unwrap_or(&[]);
     let alive = set.alive;
     let outliers = masks.iter().filter(|&&m| m & alive == 0).count();
-    // A select, not a branch (which pairs differ is the data's): adding
-    // +0 to the sum, never −0, leaves it the same.
     let mut neighbour = 0.0;
-    for (&w, pair) in weights.iter().zip(masks.windows(2)) {
+    for (w, pair) in weights.iter().zip(masks.windows(2)) {
         if let [m, q] = pair {
-            neighbour += if (m & alive) != (q & alive) { w } else { 0.0 };
+            if (m & alive) != (q & alive) {
+                neighbour += w;
+            }
         }
     }
     let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
