@@ -1675,6 +1675,7 @@ proptest! {
         }
         let speeds = (carob.cruise_speed, carob.turn_speed);
         let config = check!("supervisor::mission::config::MissionConfig::new", mi::MissionConfig::new(machine, lengths.0, lengths.1, lengths.2, carob.radius, speeds)).unwrap_or(carob);
+        let config = check!("supervisor::mission::config::MissionConfig::with_road_radius", config.with_road_radius(TurningRadius::new(lengths.0).unwrap_or(carob.radius)));
         let road = check!("supervisor::mission::tasks::Task::approximation", mi::Task::approximation(&waypoints));
         let row = mi::Row { start: row_start, length: lengths.0 };
         let field = check!("supervisor::mission::tasks::Task::treatment", mi::Task::treatment(&[row, row]));

@@ -376,3 +376,46 @@ fn no_detour_on_the_road_holds_the_robot_while_the_obstacle_is_there() {
         assert_eq!(out.plan, first.plan);
     }
 }
+
+//= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg
+//= type=test
+//# An Approximation's GoToGoal leg MUST be planned with the road radius,
+//# a Treatment's turns and the detours with the turning radius.
+#[test]
+fn road_corners_turn_on_the_road_radius_and_the_rest_on_the_turning_radius() {
+    use fieldguide::supervisor::mission::{Plan, Row};
+    let radius_of = |plan: Option<Plan>| match plan {
+        Some(Plan::GoToGoal { path, .. }) => path.radius().get(),
+        other => panic!("{other:?}"),
+    };
+    let still = Pose2::<Robot>::new(0.0, 0.0, 0.0).unwrap();
+    let base = MissionConfig::carob().unwrap();
+    assert_eq!(base.road_radius, base.radius);
+    for road in [0.75, 2.0, 4.0] {
+        let config = base.with_road_radius(TurningRadius::new(m(road)).unwrap());
+        assert_eq!(config.radius, base.radius);
+        // A road's 90° corner: GoToGoal on the road radius.
+        let corner = Task::approximation(&[world(6.0, 6.0, core::f64::consts::FRAC_PI_2)]).unwrap();
+        let row = Row {
+            start: world(20.0, 20.0, 0.0),
+            length: m(10.0),
+        };
+        let field = Task::treatment(&[row]).unwrap();
+        let mut mission = Mission::new(config, &[corner.clone(), field.clone()]).unwrap();
+        let at = world(0.0, 0.0, 0.0);
+        let out = mission.tick(&input(at, still, Hazard::Clear));
+        assert_eq!(radius_of(out.plan), road);
+        // A detour on the road: the turning radius.
+        let via = world(3.0, 1.0, 0.5);
+        let out = mission.tick(&input(at, still, Hazard::Warning { detour: Some(via) }));
+        assert!(matches!(out.command, Command::Follow(l) if l.detour));
+        assert_eq!(radius_of(out.plan), 1.5);
+        // A Treatment's turn: the turning radius.
+        let mut mission = Mission::new(config, &[field]).unwrap();
+        let out = mission.tick(&MissionInput {
+            in_field: true,
+            ..input(at, still, Hazard::Clear)
+        });
+        assert_eq!(radius_of(out.plan), 1.5);
+    }
+}

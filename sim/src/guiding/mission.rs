@@ -68,8 +68,8 @@ const UNDRIVEN_M: f64 = 0.05;
 const OUTLINE_STEP_M: f64 = 0.02;
 
 /// The bounds a mission with obstacles is held to (EM-SIM-MISSION-SAFE):
-/// half the paper's field figures for the lateral and reach errors
-/// (EM-SIM-FIGURES).
+/// half the paper's field figures for the lateral and reach errors and its
+/// 0.0103 rad on arcs (EM-SIM-FIGURES).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {
     /// Mean reach error, m.
@@ -78,7 +78,9 @@ pub struct Bounds {
     pub lateral_line_m: f64,
     /// Mean lateral error on arcs, m.
     pub lateral_spiral_m: f64,
-    /// Mean angular error on arcs, rad (`None`: reported, not held).
+    /// Mean angular error on arcs, rad (`None`: reported, not held; the
+    /// built-in missions turn the roads' corners on their own radius and
+    /// hold the paper's 0.0103 rad).
     pub angular_spiral_rad: Option<f64>,
 }
 
@@ -87,7 +89,7 @@ pub const BOUNDS: Bounds = Bounds {
     reach_m: 0.045,
     lateral_line_m: 0.038,
     lateral_spiral_m: 0.06,
-    angular_spiral_rad: None,
+    angular_spiral_rad: Some(0.0103),
 };
 
 /// The shape of an obstacle of the world.
@@ -339,7 +341,8 @@ impl MissionRun {
     }
 
     /// The supervisor's configuration: the robot's speeds, the field's
-    /// turning radius, goals within [`TOLERANCE_M`].
+    /// turning radius, the roads' corner radius, goals within
+    /// [`TOLERANCE_M`].
     ///
     /// # Errors
     /// The core's configuration errors for a run's values out of range.
@@ -350,7 +353,8 @@ impl MissionRun {
             Seconds::new(10.0)?,
             Seconds::new(600.0)?,
         )?;
-        MissionConfig::new(
+        let corners = TurningRadius::new(Meters::new(self.farm()?.corner_radius_m)?)?;
+        Ok(MissionConfig::new(
             machine,
             Meters::new(TOLERANCE_M)?,
             Meters::new(500.0)?,
@@ -360,7 +364,8 @@ impl MissionRun {
                 MetersPerSecond::new(c.line_speed)?,
                 MetersPerSecond::new(c.turn_speed)?,
             ),
-        )
+        )?
+        .with_road_radius(corners))
     }
 
     fn radius(&self) -> Result<TurningRadius, Precondition> {
@@ -498,9 +503,9 @@ impl MissionOutcome {
     //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
     //# The arcs' angular error MUST be reported per kind of arc (the fields'
     //# U-turns, the roads' corners, detours and the legs re-planned after
-    //# them), and its mean over every arc of the missions of seeds 1 to 5, as
-    //# the paper pools every spiral followed, MUST be at most 0.0103 rad, for
-    //# all arcs and for the fields' U-turns.
+    //# them); over seeds 1 to 5, its mean over each mission's arcs MUST be at
+    //# most 0.0103 rad, and so MUST its mean over the fields' U-turns of those
+    //# missions pooled, as the paper pools every spiral followed.
     #[must_use]
     pub fn angular_spiral_of(&self, class: PathClass) -> Kpi {
         let values: Vec<f64> = self

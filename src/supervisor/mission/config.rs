@@ -114,8 +114,11 @@ pub struct MissionConfig {
     pub odometry_distance: Meters,
     /// The GoToGoal / LineFollowing threshold.
     pub threshold: PlannerThreshold,
-    /// The turning radius of GoToGoal.
+    /// The turning radius of GoToGoal in the fields and of detours.
     pub radius: TurningRadius,
+    /// The turning radius of an Approximation's GoToGoal legs (a road's
+    /// corners); [`MissionConfig::new`] sets it to `radius`.
+    pub road_radius: TurningRadius,
     /// The speed on straight legs, m/s (≥ 0).
     pub cruise_speed: MetersPerSecond,
     /// The speed on GoToGoal legs, m/s (≥ 0).
@@ -168,9 +171,21 @@ impl MissionConfig {
             odometry_distance,
             threshold: PlannerThreshold::DEFAULT,
             radius,
+            road_radius: radius,
             cruise_speed,
             turn_speed,
         })
+    }
+
+    /// The same configuration, an Approximation's GoToGoal legs planned
+    /// with `road_radius` (EM-MISSION-LEGS): a road's corner turned on its
+    /// own fillet rather than on the field's tight U-turn radius.
+    #[must_use]
+    pub const fn with_road_radius(self, road_radius: TurningRadius) -> Self {
+        Self {
+            road_radius,
+            ..self
+        }
     }
 
     /// The field robot of the paper at 10 Hz (sections 2 and 4): a leg's end

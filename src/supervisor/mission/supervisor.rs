@@ -342,29 +342,32 @@ impl Mission {
     //# longest leg (a goal unreachable with the turning radius), MUST stop the
     //# mission with the reason Unplannable.
     fn plan_leg(&self, leg: &LegRef, pose: &Pose2<World>) -> Result<Plan, Precondition> {
-        let radius = self.config.radius;
-        let go_to = |goal: Pose2<World>| -> Result<Plan, Precondition> {
+        //= spec/emmi2024.md#em-mission-legs-the-plan-of-each-leg
+        //# An Approximation's GoToGoal leg MUST be planned with the road radius,
+        //# a Treatment's turns and the detours with the turning radius.
+        let go_to = |goal: Pose2<World>, radius| -> Result<Plan, Precondition> {
             Ok(Plan::GoToGoal {
                 path: shortest(pose, &goal, radius)?,
                 goal,
             })
         };
+        let (radius, road) = (self.config.radius, self.config.road_radius);
         let missing = Precondition::new("EM-MISSION-TASKS", "no such leg");
         let plan = if leg.detour {
-            go_to(self.detour_goal.ok_or(missing)?)?
+            go_to(self.detour_goal.ok_or(missing)?, radius)?
         } else {
             match self.tasks.get(usize::from(leg.task)).ok_or(missing)? {
                 Task::Approximation(waypoints) => {
                     let goal = *waypoints.get(usize::from(leg.leg)).ok_or(missing)?;
                     match choose_planner(pose, &goal, self.config.threshold) {
-                        Planner::GoToGoal => go_to(goal)?,
+                        Planner::GoToGoal => go_to(goal, road)?,
                         Planner::LineFollowing => Plan::Line { start: *pose, goal },
                     }
                 }
                 Task::Treatment(rows) => {
                     let row = rows.get(usize::from(leg.leg >> 1)).ok_or(missing)?;
                     if leg.leg & 1 == 0 {
-                        go_to(row.start)?
+                        go_to(row.start, radius)?
                     } else {
                         Plan::Line {
                             start: row.start,
