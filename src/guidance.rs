@@ -63,6 +63,7 @@
 
 mod bridge;
 mod config;
+pub mod entry;
 pub mod handover;
 mod resume;
 
@@ -70,6 +71,7 @@ pub use config::{
     BehaviourId, BehaviourParams, GuidanceConfig, GuidanceParams, PathTrackingParams,
     MAX_SCAN_AGE_TICKS,
 };
+pub use entry::{Entry, EntryParams};
 pub use handover::{Handover, HandoverParams};
 
 use heapless::Vec;
@@ -464,6 +466,8 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     line_offset: Option<Meters>,
     /// The hand-over in progress (GD-HANDOVER).
     handing_over: Option<handover::Active>,
+    /// The entry in progress into the active behaviour (GD-ENTRY).
+    entering: Option<entry::Entering>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -517,6 +521,7 @@ where
             turning: None,
             line_offset: None,
             handing_over: None,
+            entering: None,
         })
     }
 
@@ -545,6 +550,7 @@ where
         self.since_projection = 0.0;
         self.line_offset = None;
         self.handing_over = None;
+        self.entering = None;
     }
 
     /// Replaces the desired speed of path tracking between ticks (a path
@@ -717,12 +723,48 @@ where
         //# configured, and the curvature c(s + vT) with v its desired speed and T the
         //# prediction horizon; every other behaviour MUST use its law's neutral input
         //# and a straight line, c = c(s + vT) = 0.
-        if let Some(active) = self.handing_over.as_mut() {
+        for active in [
+            self.handing_over.as_mut(),
+            self.entering.as_mut().map(|e| &mut e.ramp),
+        ]
+        .into_iter()
+        .flatten()
+        {
             active.travelled += travelled;
         }
+        //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
+        //# Path tracking MUST NOT use the dead-reckoned pose: localisation stays
+        //# invalid without a fix (GD-LOCALISATION).
+        let plan_pose = match (&frenet, input.gnss) {
+            (Some(_), _) => PlanPose::Gnss,
+            (None, Some(_)) => PlanPose::Unjudged,
+            (None, None) => self.dead_reckoned(&input.odometry),
+        };
+        let mut behaviours = Vec::<BehaviourStatus, K>::new();
+        let mut ahead = None;
+        let plan_frenet = match &plan_pose {
+            PlanPose::Gnss => frenet,
+            PlanPose::DeadReckoned { frenet, .. } => Some(*frenet),
+            PlanPose::Unjudged => None,
+        };
+        for (i, (estimate, b)) in estimates.iter().zip(self.config.behaviours()).enumerate() {
+            let reference = plan_frenet.as_ref().map(|f| {
+                PlanReference::new(self.path, f, b.plan, estimate.error.is_some(), &mut ahead)
+            });
+            let entry = self.entry_reference(i, estimate.error.as_ref());
+            // One status per configured behaviour, at most K.
+            let _ = behaviours.push(behaviour_status(
+                estimate,
+                reference.as_ref(),
+                b,
+                &params.vehicle,
+                entry,
+            ));
+        }
+        let approach = self.approach(&behaviours);
         let reference_offset = self.reference_offset();
         let path_law = match &frenet {
-            Some(f) => match self.path_error(f, reference_offset) {
+            Some(f) => match self.path_error(f, reference_offset, approach) {
                 Ok(error) => LawOutcome::run(
                     &params.path.law,
                     &params.vehicle,
@@ -739,14 +781,6 @@ where
         //# projection on the path succeeds and the path-tracking law gives a command
         //# from it.
         let localisation_valid = path_law.command().is_some();
-        //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
-        //# Path tracking MUST NOT use the dead-reckoned pose: localisation stays
-        //# invalid without a fix (GD-LOCALISATION).
-        let plan_pose = match (&frenet, input.gnss) {
-            (Some(_), _) => PlanPose::Gnss,
-            (None, Some(_)) => PlanPose::Unjudged,
-            (None, None) => self.dead_reckoned(&input.odometry),
-        };
         let path = PathStatus {
             frenet,
             projection_refused,
@@ -754,27 +788,10 @@ where
             localisation_valid,
             extra_used,
             plan_pose,
-            reference_offset: self.shift(reference_offset),
+            reference_offset: approach
+                .map(|(o, _)| o)
+                .or_else(|| self.shift(reference_offset)),
         };
-        let mut behaviours = Vec::<BehaviourStatus, K>::new();
-        let mut ahead = None;
-        let plan_frenet = match &path.plan_pose {
-            PlanPose::Gnss => path.frenet,
-            PlanPose::DeadReckoned { frenet, .. } => Some(*frenet),
-            PlanPose::Unjudged => None,
-        };
-        for (estimate, b) in estimates.iter().zip(self.config.behaviours()) {
-            let reference = plan_frenet.as_ref().map(|f| {
-                PlanReference::new(self.path, f, b.plan, estimate.error.is_some(), &mut ahead)
-            });
-            // One status per configured behaviour, at most K.
-            let _ = behaviours.push(behaviour_status(
-                estimate,
-                reference.as_ref(),
-                b,
-                &params.vehicle,
-            ));
-        }
 
         // 5. The switching machine (GD-BEHAVIOURS).
         //= spec/guidance.md#gd-behaviours-behaviour-slots-in-a-priority-order
@@ -796,6 +813,7 @@ where
             localisation_valid,
         });
         self.track_handover(before, &switching, &behaviours, travelled);
+        self.track_entry(before, &switching, &behaviours, path.reference_offset);
 
         // 6. The command of the selected source.
         //= spec/guidance.md#gd-command-the-command-of-the-selected-source
@@ -1017,6 +1035,7 @@ fn behaviour_status<C, L: ControlLaw>(
     plan_reference: Option<&PlanReference>,
     behaviour: &BehaviourParams<C, L>,
     vehicle: &Vehicle,
+    entry: Option<(Entry, Meters, Meters)>,
 ) -> BehaviourStatus {
     let plan = match (&estimate.error, plan_reference) {
         (Some(line), Some(r)) => line_relative_to_path(line, &r.path).ok(),
@@ -1037,13 +1056,23 @@ fn behaviour_status<C, L: ControlLaw>(
     };
     let law = match &estimate.error {
         // Straight line, neutral input, no prediction (GD-PREDICTION).
-        Some(e) if estimate.verdict.estimate_is_valid() => LawOutcome::run(
-            &behaviour.law,
-            vehicle,
-            &TrackingError::to_straight_line(e.y, e.angular_deviation),
-            &L::NEUTRAL,
-            behaviour.speed,
-        ),
+        Some(e) if estimate.verdict.estimate_is_valid() => {
+            let line = TrackingError::to_straight_line(e.y, e.angular_deviation);
+            let error = match entry {
+                Some((rule, start, travelled)) => rule.reference_error(&line, start, travelled),
+                None => Ok(line),
+            };
+            match error {
+                Ok(error) => LawOutcome::run(
+                    &behaviour.law,
+                    vehicle,
+                    &error,
+                    &L::NEUTRAL,
+                    behaviour.speed,
+                ),
+                Err(e) => LawOutcome::Refused(e),
+            }
+        }
         _ => LawOutcome::NotRun,
     };
     //= spec/guidance.md#gd-command-the-command-of-the-selected-source

@@ -140,6 +140,7 @@ pub fn pierre2022_path() -> Result<Pierre2022Params, Precondition> {
         bridge: None,
         steer_before_resuming: false,
         handover: None,
+        entry: None,
     })
 }
 

@@ -1500,6 +1500,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
             bridge: None,
             steer_before_resuming: false,
             handover: None,
+            entry: None,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1738,6 +1739,7 @@ fn declared(
         bridge: params.bridge,
         steer_before_resuming: params.steer_before_resuming,
         handover: params.handover,
+        entry: params.entry,
     }
 }
 

@@ -56,7 +56,7 @@ use fieldguide::guidance::{
     BehaviourId, Guidance, GuidanceConfig, GuidanceParams, Mode as GuidanceMode, RoutedScan,
     TickInput,
 };
-use fieldguide::guidance::{Handover, HandoverParams};
+use fieldguide::guidance::{Entry, EntryParams, Handover, HandoverParams};
 use fieldguide::model::bicycle::{
     frenet_rates, world_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
 };
@@ -1880,6 +1880,7 @@ proptest! {
         check!("guidance::config::GuidanceConfig::max_scan_age_ticks", config.max_scan_age_ticks());
         check!("guidance::config::GuidanceConfig::settle_ticks", config.settle_ticks());
         check!("guidance::config::GuidanceConfig::handover", config.handover());
+        check!("guidance::config::GuidanceConfig::entry", config.entry());
         let (path, replacement) = (path_of(&points), path_of(&other));
         let mut guidance: Pipeline<'_> = check!("guidance::Guidance::new", Guidance::new(config, &path)).unwrap();
         check!("guidance::Guidance::config", guidance.config());
@@ -2525,6 +2526,22 @@ proptest! {
         check!("guidance::handover::Handover::offset", rule.offset(start, travelled));
         check!("guidance::handover::Handover::is_over", rule.is_over(start, travelled));
         check!("guidance::handover::Handover::reference_error", rule.reference_error(&path, start, travelled));
+    }
+}
+
+// ---------------------------------------------------------------- entry (GD-ENTRY)
+
+proptest! {
+    #[test]
+    fn entry(closing in meters(), lead in meters(), start in meters(), travelled in meters(), path in tracking()) {
+        let params = EntryParams { closing, lead };
+        check!("guidance::entry::Entry::new", Entry::new(&params));
+        let rule = Entry::new(&params)
+            .unwrap_or(Entry::new(&EntryParams { closing: m(1.0), lead: m(2.0) }).unwrap());
+        check!("guidance::entry::Entry::params", rule.params());
+        check!("guidance::entry::Entry::reference", rule.reference(start, travelled));
+        check!("guidance::entry::Entry::is_over", rule.is_over(start, travelled));
+        check!("guidance::entry::Entry::reference_error", rule.reference_error(&path, start, travelled));
     }
 }
 

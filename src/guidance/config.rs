@@ -4,6 +4,7 @@
 
 use heapless::Vec;
 
+use super::entry::{Entry, EntryParams};
 use super::handover::{Handover, HandoverParams};
 use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
@@ -108,6 +109,9 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// How path tracking takes over from a behaviour (GD-HANDOVER); `None`:
     /// straight back to the path, as Pierre 2022 does.
     pub handover: Option<HandoverParams>,
+    /// How a behaviour takes over from path tracking (GD-ENTRY); `None`:
+    /// the behaviour's law gets its whole error at once, as Pierre 2022 does.
+    pub entry: Option<EntryParams>,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -120,6 +124,7 @@ pub struct GuidanceConfig<C, L, const K: usize> {
     max_scan_age_ticks: u16,
     settle_ticks: u16,
     handover: Option<Handover>,
+    entry: Option<Entry>,
 }
 
 fn positive_speed(speed: MetersPerSecond, violated: &'static str) -> Result<(), Precondition> {
@@ -256,6 +261,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     /// - `GD-RESUME` when 3 τ is longer than 65 535 ticks.
     /// - `GD-HANDOVER` when the hand-over's hold distance is negative or its
     ///   slope outside (0, 1].
+    /// - `GD-ENTRY` when the entry's slope is outside (0, 1].
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -346,6 +352,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
         }
         let settle_ticks = settle_ticks(params.path.steering_lag, params.period)?;
         let handover = params.handover.as_ref().map(Handover::new).transpose()?;
+        let entry = params.entry.as_ref().map(Entry::new).transpose()?;
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,
@@ -357,6 +364,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             max_scan_age_ticks,
             settle_ticks,
             handover,
+            entry,
         })
     }
 }
@@ -441,5 +449,11 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
     #[must_use]
     pub const fn handover(&self) -> Option<&Handover> {
         self.handover.as_ref()
+    }
+
+    /// The validated entry rule, if one is configured (GD-ENTRY).
+    #[must_use]
+    pub const fn entry(&self) -> Option<&Entry> {
+        self.entry.as_ref()
     }
 }

@@ -91,17 +91,11 @@ impl Handover {
     //# changing sign.
     #[must_use]
     pub fn offset(&self, start: Meters, travelled: Meters) -> Meters {
-        let past = travelled.get() - self.params.hold.get();
-        if past <= 0.0 {
-            return start;
-        }
-        // Both finite, hold ≥ 0, slope ≤ 1: the product is finite.
-        let left = start.get().abs() - self.params.slope * past;
-        if left <= 0.0 {
-            Meters::ZERO
-        } else {
-            Meters::new(libm::copysign(left, start.get())).unwrap_or(Meters::ZERO)
-        }
+        shrunk(
+            start,
+            self.params.slope,
+            travelled.get() - self.params.hold.get(),
+        )
     }
 
     /// The line's averaged offset after a tick that measured `measured`
@@ -161,25 +155,55 @@ impl Handover {
         } else {
             0.0
         };
-        let y = finite(path.y.get() - o, "handover lateral error overflows")?;
-        let theta = wrap_raw(path.angular_deviation.get() - libm::atan(rate));
-        let shifted = |c: Curvature| -> Result<Curvature, Precondition> {
-            let denominator = finite(1.0 - o * c.get(), "handover curvature overflows")?;
-            if denominator <= 0.0 {
-                return Err(Precondition::new(
-                    "GD-HANDOVER",
-                    "the shifted path passes the path's centre of curvature",
-                ));
-            }
-            Curvature::new(c.get() / denominator)
-        };
-        Ok(TrackingError {
-            y: Meters::new(y)?,
-            angular_deviation: Radians::new(theta)?,
-            curvature: shifted(path.curvature)?,
-            curvature_ahead: shifted(path.curvature_ahead)?,
-        })
+        shifted_error(path, o, rate)
     }
+}
+
+/// `start` shrunk toward zero by `slope` times `past` metres (none for a
+/// negative distance), never past zero: the shared ramp of GD-HANDOVER and
+/// GD-ENTRY. `slope` is a validated one, in (0, 1].
+pub(super) fn shrunk(start: Meters, slope: f64, past: f64) -> Meters {
+    if past <= 0.0 {
+        return start;
+    }
+    // Both finite, slope ≤ 1: the product is finite.
+    let left = start.get().abs() - slope * past;
+    if left <= 0.0 {
+        Meters::ZERO
+    } else {
+        Meters::new(libm::copysign(left, start.get())).unwrap_or(Meters::ZERO)
+    }
+}
+
+/// The error `path` seen from that path shifted sideways by `o` whose shift
+/// changes by `rate` metres per metre: (y − o, θ̃ − atan(rate), c / (1 − o c)).
+///
+/// # Errors
+/// `GD-HANDOVER` when 1 − o c ≤ 0 at the projection or ahead; `LIB-FINITE`
+/// on overflow.
+pub(super) fn shifted_error(
+    path: &TrackingError,
+    o: f64,
+    rate: f64,
+) -> Result<TrackingError, Precondition> {
+    let y = finite(path.y.get() - o, "handover lateral error overflows")?;
+    let theta = wrap_raw(path.angular_deviation.get() - libm::atan(rate));
+    let shifted = |c: Curvature| -> Result<Curvature, Precondition> {
+        let denominator = finite(1.0 - o * c.get(), "handover curvature overflows")?;
+        if denominator <= 0.0 {
+            return Err(Precondition::new(
+                "GD-HANDOVER",
+                "the shifted path passes the path's centre of curvature",
+            ));
+        }
+        Curvature::new(c.get() / denominator)
+    };
+    Ok(TrackingError {
+        y: Meters::new(y)?,
+        angular_deviation: Radians::new(theta)?,
+        curvature: shifted(path.curvature)?,
+        curvature_ahead: shifted(path.curvature_ahead)?,
+    })
 }
 
 /// A hand-over in progress: the shift it started with and the odometry
@@ -223,13 +247,17 @@ where
         reference.map(|(start, travelled)| rule.offset(start, travelled))
     }
 
-    /// Path tracking's error in this tick: to the path, or to the path
-    /// shifted by the hand-over (GD-HANDOVER).
+    /// Path tracking's error in this tick: to the path, to the path shifted
+    /// by an entry's approach (GD-ENTRY) or by the hand-over (GD-HANDOVER).
     pub(super) fn path_error(
         &self,
         frenet: &FrenetError,
         reference: Option<(Meters, Meters)>,
+        approach: Option<(Meters, f64)>,
     ) -> Result<TrackingError, Precondition> {
+        if let Some((o, rate)) = approach {
+            return shifted_error(&frenet.tracking_error(), o.get(), rate);
+        }
         match (self.config.handover(), reference) {
             (Some(rule), Some((start, travelled))) => {
                 rule.reference_error(&frenet.tracking_error(), start, travelled)

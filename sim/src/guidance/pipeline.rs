@@ -120,6 +120,7 @@ pub fn params(
         bridge: sw.bridge,
         steer_before_resuming: sw.steer_before_resuming,
         handover: sw.handover,
+        entry: sw.entry,
     })
 }
 

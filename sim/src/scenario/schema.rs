@@ -166,6 +166,13 @@ pub struct SwitchingSection {
     /// Hand-over: the line's offset is averaged over this odometry length,
     /// m, > 0 (default 1).
     pub handover_averaging_m: Option<f64>,
+    /// Entry into a behaviour (GD-ENTRY): the lateral reference starts at
+    /// the robot's error to the line and the point `entry_lead_m` ahead of
+    /// the rear axle closes on the line over this length, m, in (0, 1000]
+    /// [off when absent].
+    pub entry_closing_m: Option<f64>,
+    /// Entry: the lead, m, in (0, 1000] [the vehicle's wheelbase].
+    pub entry_lead_m: Option<f64>,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

@@ -150,6 +150,7 @@ pub fn drive_in(
         bridge: None,
         steer_before_resuming: false,
         handover: None,
+        entry: None,
     };
     let config = GuidanceConfig::new(&params).map_err(s)?;
     let mut core: Box<Guidance<'_, PATH_VERTICES, VineDetector<RAYS, POINTS>, Strategy1, 1>> =

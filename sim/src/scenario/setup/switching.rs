@@ -1,7 +1,9 @@
 //! Validates `[switching]`: the transit delays of the switching machine and
 //! its plan consistency check.
 
-use fieldguide::guidance::{BehaviourId, Handover, HandoverParams, MAX_SCAN_AGE_TICKS};
+use fieldguide::guidance::{
+    BehaviourId, Entry, EntryParams, Handover, HandoverParams, MAX_SCAN_AGE_TICKS,
+};
 use fieldguide::supervisor::switching::{PlanTolerance, MAX_DELAY_TICKS};
 use fieldguide::{Meters, Radians, Seconds};
 
@@ -54,6 +56,8 @@ pub struct SwitchingSetup {
     pub steer_before_resuming: bool,
     /// The hand-over rule, when on (GD-HANDOVER).
     pub handover: Option<HandoverParams>,
+    /// The entry rule, when on (GD-ENTRY).
+    pub entry: Option<EntryParams>,
 }
 
 /// The switching settings of `[switching]`, each default taken when a field is absent.
@@ -136,6 +140,12 @@ pub(super) fn switching(
             })
         }
     };
+    if s.entry_lead_m.is_some() && s.entry_closing_m.is_none() {
+        return Err(check.error(
+            "switching.entry_closing_m",
+            "the entry needs its closing length when its lead is set",
+        ));
+    }
     let handover = match s.handover_hold_m {
         None => {
             if s.handover_slope.is_some() || s.handover_averaging_m.is_some() {
@@ -195,6 +205,28 @@ pub(super) fn switching(
             .transpose()?,
         steer_before_resuming: s.steer_before_resuming.unwrap_or(false),
         handover,
+        entry: s
+            .entry_closing_m
+            .map(|closing| {
+                let field = "switching.entry_closing_m";
+                let closing = check.range(field, closing, 0.0, 1000.0)?;
+                let lead_field = "switching.entry_lead_m";
+                let lead = check.range(
+                    lead_field,
+                    s.entry_lead_m.unwrap_or(file.vehicle.wheelbase_m),
+                    0.0,
+                    1000.0,
+                )?;
+                let params = EntryParams {
+                    closing: Meters::new(closing)
+                        .map_err(|e| check.error(field, &e.to_string()))?,
+                    lead: Meters::new(lead).map_err(|e| check.error(lead_field, &e.to_string()))?,
+                };
+                Entry::new(&params)
+                    .map(|_| params)
+                    .map_err(|e| check.error(field, &e.to_string()))
+            })
+            .transpose()?,
     })
 }
 
