@@ -1344,19 +1344,15 @@ fn reattach<const N: usize>(
         // same line, the same bits); the points of a moved model start from
         // the closest model that did not move.
         if moved != 0 {
-            // Those points listed first (no branch per point), then each
-            // one's closest steady model found by selects.
-            let moving = compact(
-                set.masks.get(..n).unwrap_or(&[]),
-                &mut cols.picked,
-                |_, m| m & moved != 0,
-            );
-            for i in listed(&cols.picked, moving) {
-                let (Some(&x), Some(&y), Some(best), Some(r)) =
-                    (xs.get(i), ys.get(i), best.get_mut(i), ranks.get_mut(i))
-                else {
+            for (((&x, &y), &old), (best, r)) in xs
+                .iter()
+                .zip(ys)
+                .zip(set.masks.iter())
+                .zip(best.iter_mut().zip(ranks.iter_mut()))
+            {
+                if old & moved == 0 {
                     continue;
-                };
+                }
                 let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
