@@ -236,10 +236,16 @@ pub const CLASSES: &[Class] = &[
     },
     Class {
         name: "hedges-and-trunks",
-        stresses: "a row of 0.1 m trunks every metre, posts along a bent hedge, a hedge ragged by 0.15 m with 1-3 m gaps",
+        stresses: "a row of 0.1 m trunks every metre (a thin hedge, and posts), posts along a bent hedge, ragged hedges with 1-3 m and 0.5-1 m gaps",
         cases: &[
             Case { scenario: "trunks-row.toml", bounds: &[ScenarioChecks, SwitchesAtMost(2)], known_failure: None },
             Case { scenario: "trunks-posts-hedge.toml", bounds: &[ScenarioChecks], known_failure: None },
+            Case { scenario: "trunks-posts.toml", bounds: &[ScenarioChecks, SwitchesAtMost(2)], known_failure: None },
+            Case {
+                scenario: "hedge-gappy.toml",
+                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
+                known_failure: Some("as hedge-ragged: 4-6 switches in 4 of 20 seeds, up to 0.23 m off the envelope"),
+            },
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
