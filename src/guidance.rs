@@ -289,8 +289,9 @@ struct Held<L> {
 struct Slot<D: Detector> {
     detector: D,
     held: Option<Held<D::Line>>,
-    /// The latest valid line, for the bridge (GD-BRIDGE).
-    last_valid: Option<bridge::LastValid>,
+    /// The latest valid line and the structure line, for the bridge
+    /// (GD-BRIDGE, GD-BRIDGE-STEADY).
+    bridge: bridge::Bridge,
 }
 
 /// A behaviour's estimate in the current tick, before plan and law.
@@ -354,16 +355,12 @@ impl<D: Detector> Slot<D> {
             }
             (Some(_), _) => bridge::ScanOutcome::Refused,
         };
-        bridge::record(
-            &mut self.last_valid,
-            outcome,
-            &carry.odometry,
-            carry.travelled,
-        );
+        self.bridge
+            .record(outcome, &carry.odometry, carry.travelled, bridge);
         if !carry.active || estimate.verdict.estimate_is_valid() {
             return estimate;
         }
-        match bridge::carried(self.last_valid.as_ref(), &carry.odometry, bridge) {
+        match self.bridge.carried(&carry.odometry, bridge) {
             Some((error, carried)) => Estimate {
                 verdict: Verdict::Hold,
                 error: Some(error),
@@ -501,7 +498,7 @@ where
             let slot = Slot {
                 detector: D::configure(&b.detector)?,
                 held: None,
-                last_valid: None,
+                bridge: bridge::Bridge::default(),
             };
             // The configuration holds at most K behaviours.
             if slots.push(slot).is_err() {

@@ -1,26 +1,89 @@
 //! Regular gaps bridged by the held line (`spec/guidance.md`, GD-BRIDGE):
 //! across trunks, posts and short gaps, the active behaviour keeps steering
-//! on its last valid line carried by odometry instead of handing the
-//! command to path tracking and flipping modes.
+//! on a line carried by odometry instead of handing the command to path
+//! tracking and flipping modes. The line carried is the structure's line
+//! (GD-BRIDGE-STEADY): the least-squares straight line through the points
+//! the valid detections of the last bridge length put on the followed line,
+//! and a valid detection that disagrees with it (the bent line of a ragged
+//! stub at the end of a piece) is bridged over like a gap.
+
+use heapless::Deque;
 
 use crate::geometry::carry::moved_line_error;
 use crate::geometry::carry::pose_in_scan_frame;
+use crate::geometry::carry::straight;
 use crate::geometry::frame::{Odom, Pose2};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::Meters;
+use crate::geometry::units::{wrap_raw, Meters};
 use crate::perception::Detection;
 
-/// A behaviour's latest detection with a valid estimate (Enter or Hold):
-/// its tracking error at its scan's pose, where the robot was then, and the
+/// The most anchors kept: two bridge lengths at [`ANCHORS_PER_BRIDGE`].
+const ANCHOR_CAPACITY: usize = 32;
+
+/// Anchors per bridge length: one is kept every `bridge / 16` of odometry.
+const ANCHORS_PER_BRIDGE: f64 = 16.0;
+
+/// The fewest anchors of a structure line.
+const MIN_ANCHORS: f64 = 3.0;
+
+/// Anchors farther than this from the first fit are outliers, left out of
+/// the refit (GD-BRIDGE-STEADY), m.
+const OUTLIER_M: f64 = 0.15;
+
+/// A behaviour's latest valid detection (Enter or Hold, steady): its
+/// tracking error at its scan's pose, where the robot was then, and the
 /// odometry distance since.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct LastValid {
+struct LastValid {
     error: TrackingError,
     odom: Pose2<Odom>,
     travelled: f64,
 }
 
-/// What the tick's scan did to a behaviour's last valid line.
+/// The point a valid detection puts on the followed line, abeam the robot,
+/// with that line's heading, odometry frame, and the odometer reading then.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Anchor {
+    x: f64,
+    y: f64,
+    heading: f64,
+    at: f64,
+}
+
+impl Anchor {
+    /// The foot on the line of the robot at `odom`, its error being `error`:
+    /// the line's heading is φ = h − θ̃, and the robot lies y to its left.
+    fn of(error: &TrackingError, odom: &Pose2<Odom>, at: f64) -> Self {
+        let heading = odom.heading.get() - error.angular_deviation.get();
+        let y = error.y.get();
+        Self {
+            x: odom.position.x() + y * libm::sin(heading),
+            y: odom.position.y() - y * libm::cos(heading),
+            heading,
+            at,
+        }
+    }
+}
+
+/// A straight line of the odometry frame: a point and a heading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct StructureLine {
+    x: f64,
+    y: f64,
+    heading: f64,
+}
+
+impl StructureLine {
+    /// The error of the robot at `odom` to this line: y its signed left
+    /// distance, θ̃ = wrap(h − φ).
+    fn error_at(&self, odom: &Pose2<Odom>) -> Option<TrackingError> {
+        let (s, c) = (libm::sin(self.heading), libm::cos(self.heading));
+        let (dx, dy) = (odom.position.x() - self.x, odom.position.y() - self.y);
+        straight(-dx * s + dy * c, odom.heading.get() - self.heading).ok()
+    }
+}
+
+/// What the tick's scan did to a behaviour's line.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum ScanOutcome<'a, L> {
     /// No scan in this tick.
@@ -31,56 +94,299 @@ pub(super) enum ScanOutcome<'a, L> {
     Refused,
 }
 
-/// Updates `last` after a tick whose odometry pose is `odometry`, the robot
-/// having moved `travelled` metres since the previous tick: a valid
-/// detection replaces it, a refused scan ends it (a failing sensor is not a
-/// gap), otherwise the distance grows.
-pub(super) fn record<L>(
-    last: &mut Option<LastValid>,
-    scan: ScanOutcome<'_, L>,
-    odometry: &Pose2<Odom>,
-    travelled: f64,
-) {
-    match scan {
-        ScanOutcome::Read(d) if d.verdict.estimate_is_valid() => {
-            *last = d.error.map(|error| LastValid {
-                error,
-                odom: *odometry,
-                travelled: 0.0,
-            });
+/// A behaviour's bridge: its last valid line and the anchors of its valid
+/// detections (GD-BRIDGE, GD-BRIDGE-STEADY).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Bridge {
+    last: Option<LastValid>,
+    anchors: Deque<Anchor, ANCHOR_CAPACITY>,
+    odometer: f64,
+}
+
+impl Bridge {
+    /// Updates the bridge after a tick whose odometry pose is `odometry`,
+    /// the robot having moved `travelled` metres since the previous tick: a
+    /// valid detection becomes the last valid line and an anchor, a refused
+    /// scan ends both (a failing sensor is not a gap), otherwise the
+    /// distance grows.
+    pub(super) fn record<L>(
+        &mut self,
+        scan: ScanOutcome<'_, L>,
+        odometry: &Pose2<Odom>,
+        travelled: f64,
+        bridge: Meters,
+    ) {
+        self.odometer += travelled;
+        if let Some(l) = self.last.as_mut() {
+            l.travelled += travelled;
         }
-        ScanOutcome::Refused => *last = None,
-        ScanOutcome::Read(_) | ScanOutcome::None => {
-            if let Some(l) = last.as_mut() {
-                l.travelled += travelled;
+        match scan {
+            ScanOutcome::Read(d) if d.verdict.estimate_is_valid() => {
+                self.last = d.error.map(|error| LastValid {
+                    error,
+                    odom: *odometry,
+                    travelled: 0.0,
+                });
+                if let Some(error) = d.error {
+                    self.push(Anchor::of(&error, odometry, self.odometer), bridge);
+                }
             }
+            ScanOutcome::Refused => {
+                self.last = None;
+                self.anchors.clear();
+            }
+            ScanOutcome::Read(_) | ScanOutcome::None => {}
         }
+    }
+
+    //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
+    //# Every valid detection of a behaviour MUST put an anchor on its line: the
+    //# foot of the robot's perpendicular on the followed line, with the line's
+    //# heading and the odometry distance, in the odometry frame, one anchor kept
+    //# per sixteenth of the bridge length.
+    /// Keeps `anchor` when it lies at least `bridge / 16` of odometry after
+    /// the newest one, dropping the oldest when full.
+    fn push(&mut self, anchor: Anchor, bridge: Meters) {
+        let spacing = bridge.get() / ANCHORS_PER_BRIDGE;
+        if self
+            .anchors
+            .back()
+            .is_some_and(|b| anchor.at - b.at < spacing)
+        {
+            return;
+        }
+        if self.anchors.is_full() {
+            self.anchors.pop_front();
+        }
+        // Cannot fail: a slot was freed above when full.
+        let _ = self.anchors.push_back(anchor);
+    }
+
+    //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
+    //# The structure line MUST be the
+    //# least-squares straight line through the anchors within the bridge length of
+    //# odometry up to the newest one, refitted once without the anchors farther
+    //# than 0.15 m from the first fit.
+    /// The structure line (GD-BRIDGE-STEADY): the least-squares straight
+    /// line through the anchors of the `bridge` metres of odometry up to the
+    /// newest one, fitted in the newest anchor's frame, then refitted
+    /// without the anchors farther than 0.15 m from it; `None` with fewer
+    /// than 3 anchors or a span under three quarters of `bridge`.
+    fn structure(&self, bridge: Meters) -> Option<StructureLine> {
+        let newest = *self.anchors.back()?;
+        let (s, c) = (libm::sin(newest.heading), libm::cos(newest.heading));
+        let from = newest.at - bridge.get();
+        let frame = |a: &Anchor| {
+            let (dx, dy) = (a.x - newest.x, a.y - newest.y);
+            (dx * c + dy * s, -dx * s + dy * c)
+        };
+        let window = || self.anchors.iter().filter(|a| a.at >= from).map(frame);
+        let first = fit(window(), bridge, None)?;
+        let (slope, intercept) = fit(window(), bridge, Some(first))?;
+        let line = StructureLine {
+            x: newest.x - intercept * s,
+            y: newest.y + intercept * c,
+            heading: wrap_raw(newest.heading + libm::atan(slope)),
+        };
+        (line.x.is_finite() && line.y.is_finite() && line.heading.is_finite()).then_some(line)
+    }
+
+    /// The error to carry to `odometry` and the distance since the last
+    /// valid line, while that distance is at most `bridge` (GD-BRIDGE): the
+    /// error to the structure line (GD-BRIDGE-STEADY), else to the last
+    /// valid line carried straight; `None` beyond it, without a line, or
+    /// when moving it overflows.
+    //= spec/guidance.md#gd-bridge-regular-gaps-bridged-by-the-held-line
+    //# When a bridge length is configured, a tick in which the behaviour of the
+    //# active specialised mode has no valid estimate MUST report Hold with the
+    //# tracking error of that behaviour's latest scan with an Enter or Hold verdict,
+    //# moved to the current pose through odometry as the error to a straight line
+    //# (GD-ODOMETRY), as long as the odometry distance summed over the ticks since
+    //# that scan is at most the bridge length and no scan of that behaviour was
+    //# refused since; otherwise, and for a behaviour that is not active, the
+    //# estimate MUST be that of GD-SCAN-AGE.
+    //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
+    //# While the valid detections of that behaviour put at least 3 anchors
+    //# spanning at least three quarters of the bridge length within the bridge
+    //# length of odometry up to the newest anchor, the line carried MUST be the
+    //# structure line instead of the latest valid line.
+    pub(super) fn carried(
+        &self,
+        odometry: &Pose2<Odom>,
+        bridge: Meters,
+    ) -> Option<(TrackingError, Meters)> {
+        let last = self.last.as_ref()?;
+        if last.travelled > bridge.get() {
+            return None;
+        }
+        let error = match self.structure(bridge).and_then(|s| s.error_at(odometry)) {
+            Some(error) => error,
+            None => {
+                let pose = pose_in_scan_frame(&last.odom, odometry).ok()?;
+                moved_line_error(&last.error, &pose).ok()?
+            }
+        };
+        Some((error, Meters::new(last.travelled).ok()?))
     }
 }
 
-/// The error to the last valid line, carried straight to `odometry`, and the
-/// distance it has been carried, while that distance is at most `bridge`
-/// (GD-BRIDGE); `None` beyond it, without a line, or when moving it
-/// overflows.
-//= spec/guidance.md#gd-bridge-regular-gaps-bridged-by-the-held-line
-//# When a bridge length is configured, a tick in which the behaviour of the
-//# active specialised mode has no valid estimate MUST report Hold with the
-//# tracking error of that behaviour's latest scan with an Enter or Hold verdict,
-//# moved to the current pose through odometry as the error to a straight line
-//# (GD-ODOMETRY), as long as the odometry distance summed over the ticks since
-//# that scan is at most the bridge length and no scan of that behaviour was
-//# refused since; otherwise, and for a behaviour that is not active, the
-//# estimate MUST be that of GD-SCAN-AGE.
-pub(super) fn carried(
-    last: Option<&LastValid>,
-    odometry: &Pose2<Odom>,
+/// The least-squares line v = m u + q through `points` (u along the newest
+/// anchor's heading, v to its left), leaving out the points farther than
+/// 0.15 m from `first` when given; `None` with fewer than 3 points, a span
+/// of less than three quarters of `bridge`, or a degenerate fit.
+fn fit(
+    points: impl Iterator<Item = (f64, f64)>,
     bridge: Meters,
-) -> Option<(TrackingError, Meters)> {
-    let last = last?;
-    if last.travelled > bridge.get() {
+    first: Option<(f64, f64)>,
+) -> Option<(f64, f64)> {
+    let (mut n, mut su, mut sv, mut suu, mut suv) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (u, v) in points {
+        if first.is_some_and(|(m, q)| (v - m * u - q).abs() > OUTLIER_M) {
+            continue;
+        }
+        n += 1.0;
+        su += u;
+        sv += v;
+        suu += u * u;
+        suv += u * v;
+        low = low.min(u);
+        high = high.max(u);
+    }
+    if n < MIN_ANCHORS || high - low < 0.75 * bridge.get() {
         return None;
     }
-    let pose = pose_in_scan_frame(&last.odom, odometry).ok()?;
-    let error = moved_line_error(&last.error, &pose).ok()?;
-    Some((error, Meters::new(last.travelled).ok()?))
+    let denominator = n * suu - su * su;
+    if denominator.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+        return None;
+    }
+    let slope = (n * suv - su * sv) / denominator;
+    Some((slope, (sv - slope * su) / n))
+}
+
+#[cfg(test)]
+mod tests {
+    //! The structure line (GD-BRIDGE-STEADY): anchors of a straight edge
+    //! seen with noisy headings and a bent stub give the true line.
+
+    use super::*;
+    use crate::error::Precondition;
+    use crate::perception::Verdict;
+
+    /// A valid detection of error (y, θ̃).
+    fn valid(y: f64, theta: f64) -> Detection<()> {
+        Detection {
+            verdict: Verdict::Hold,
+            error: straight(y, theta).ok(),
+            quality: Some(0.02),
+            line: Some(()),
+        }
+    }
+
+    /// The robot driving along x at lateral `y_of(x)` and heading `h`,
+    /// detecting a line along the x axis: the detection's error is the
+    /// truth plus `noise(k)` in offset and heading.
+    fn drive(
+        bridge: &mut Bridge,
+        length: Meters,
+        to: f64,
+        noise: impl Fn(f64, bool) -> (f64, f64),
+    ) -> Result<Pose2<Odom>, Precondition> {
+        let step = 0.04;
+        let mut pose = Pose2::new(0.0, 0.0, 0.0)?;
+        for k in 0_u16..=u16::MAX {
+            let x = step * f64::from(k);
+            if x > to {
+                break;
+            }
+            let y = 0.1 * libm::sin(x);
+            let heading = 0.1 * libm::cos(x);
+            pose = Pose2::new(x, y, heading)?;
+            let (dy, dt) = noise(x, k % 2 == 0);
+            let d = valid(y * libm::cos(heading) + dy, heading + dt);
+            bridge.record(ScanOutcome::Read(&d), &pose, step, length);
+        }
+        Ok(pose)
+    }
+
+    //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
+    //= type=test
+    //# The structure line MUST be the
+    //# least-squares straight line through the anchors within the bridge length of
+    //# odometry up to the newest one, refitted once without the anchors farther
+    //# than 0.15 m from the first fit.
+    //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
+    //= type=test
+    //# Every valid detection of a behaviour MUST put an anchor on its line: the
+    //# foot of the robot's perpendicular on the followed line, with the line's
+    //# heading and the odometry distance, in the odometry frame, one anchor kept
+    //# per sixteenth of the bridge length.
+    #[test]
+    fn noisy_headings_and_a_bent_stub_give_the_true_line() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        // Headings off by ±0.2 rad scan to scan, offsets by ±2 cm, and the
+        // last 0.3 m a stub 0.25 m off.
+        let last = drive(&mut bridge, length, 6.0, |x, even| {
+            let sign = if even { 1.0 } else { -1.0 };
+            let stub = if x > 5.7 { 0.25 } else { 0.0 };
+            (0.02 * sign + stub, 0.2 * sign)
+        })?;
+        // One anchor per 0.25 m (7 steps of 0.04 m) over 6 m.
+        assert_eq!(bridge.anchors.len(), 22);
+        let ats: heapless::Vec<f64, ANCHOR_CAPACITY> =
+            bridge.anchors.iter().map(|a| a.at).collect();
+        assert!(ats.windows(2).all(|w| matches!(w, [a, b] if b - a >= 0.25)));
+        let line = bridge
+            .structure(length)
+            .ok_or_else(|| Precondition::new("T", "no line"))?;
+        assert!(line.heading.abs() < 0.01, "{line:?}");
+        for x in [2.0, 6.0] {
+            let y = line.y + (x - line.x) * libm::tan(line.heading);
+            assert!(y.abs() < 0.02, "{line:?}");
+        }
+        // Carried 2 m on: the error is the truth's, not the stub's.
+        let ahead = Pose2::new(last.position.x() + 2.0, 0.3, 0.05)?;
+        let (error, _) = bridge
+            .carried(&ahead, length)
+            .ok_or_else(|| Precondition::new("T", "not carried"))?;
+        assert!((error.y.get() - 0.3).abs() < 0.03, "{error:?}");
+        assert!(
+            (error.angular_deviation.get() - 0.05).abs() < 0.01,
+            "{error:?}"
+        );
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
+    //= type=test
+    //# While the valid detections of that behaviour put at least 3 anchors
+    //# spanning at least three quarters of the bridge length within the bridge
+    //# length of odometry up to the newest anchor, the line carried MUST be the
+    //# structure line instead of the latest valid line.
+    #[test]
+    fn too_short_a_span_carries_the_latest_line() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        // 2 m of detections (half the bridge), the last one 0.2 rad off.
+        let last = drive(&mut bridge, length, 2.0, |x, _| {
+            if x >= 2.0 - 1e-9 {
+                (0.0, 0.2)
+            } else {
+                (0.0, 0.0)
+            }
+        })?;
+        assert!(bridge.structure(length).is_none());
+        let (error, _) = bridge
+            .carried(&last, length)
+            .ok_or_else(|| Precondition::new("T", "not carried"))?;
+        assert!(
+            (error.angular_deviation.get() - (0.1 * libm::cos(last.position.x()) + 0.2)).abs()
+                < 1e-9
+        );
+        // A refused scan clears the anchors and the line.
+        bridge.record(ScanOutcome::<()>::Refused, &last, 0.04, length);
+        assert!(bridge.anchors.is_empty() && bridge.carried(&last, length).is_none());
+        Ok(())
+    }
 }

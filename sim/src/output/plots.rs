@@ -34,6 +34,17 @@ const HEDGE: Stroke<'static> = Stroke {
     width: 1.2,
     dash: None,
 };
+const POST_COLOUR: &str = "#6b4423";
+const POST: Stroke<'static> = Stroke {
+    colour: POST_COLOUR,
+    width: 1.2,
+    dash: None,
+};
+const WIRE: Stroke<'static> = Stroke {
+    colour: "#7a7a7a",
+    width: 0.8,
+    dash: Some("4 2"),
+};
 const OFFSET_LINE: Stroke<'static> = Stroke {
     colour: "#2e6b2e",
     width: 1.0,
@@ -176,6 +187,14 @@ pub fn trajectory_svg_marked(
         .segments
         .iter()
         .flat_map(|g| [(g.a[0], g.a[1]), (g.b[0], g.b[1])])
+        .chain(
+            setup
+                .world
+                .obstacles
+                .circles
+                .iter()
+                .map(|c| (c.center[0], c.center[1])),
+        )
         .collect();
     let all = reference
         .iter()
@@ -235,6 +254,17 @@ pub fn trajectory_svg_marked(
     for g in &setup.world.obstacles.segments {
         svg.polyline(&axes, &[(g.a[0], g.a[1]), (g.b[0], g.b[1])], HEDGE);
     }
+    for g in &setup.world.obstacles.wires {
+        svg.polyline(&axes, &[(g.a[0], g.a[1]), (g.b[0], g.b[1])], WIRE);
+    }
+    let posts: Vec<(f64, f64, f64)> = setup
+        .world
+        .obstacles
+        .circles
+        .iter()
+        .map(|c| (c.center[0], c.center[1], c.radius))
+        .collect();
+    svg.circles(&axes, &posts, POST_COLOUR);
     let offset_lines = offset_lines(setup);
     for line in &offset_lines {
         svg.polyline(&axes, line, OFFSET_LINE);
@@ -282,6 +312,12 @@ pub fn trajectory_svg_marked(
     entries.extend(plant_legend(setup));
     if !setup.world.hedges.is_empty() {
         entries.push((HEDGE, false, "hedge"));
+    }
+    if !posts.is_empty() {
+        entries.push((POST, false, "posts and trunks"));
+    }
+    if !setup.world.obstacles.wires.is_empty() {
+        entries.push((WIRE, false, "fence wire"));
     }
     if !offset_lines.is_empty() {
         entries.push((OFFSET_LINE, false, "true offset line"));

@@ -272,6 +272,23 @@ impl Svg {
         self.raw(&g);
     }
 
+    /// Circles of their own radius in metres, outlined in `colour`, clipped
+    /// to the plot area: `(x, y, radius)` each.
+    pub fn circles(&mut self, axes: &Axes, circles: &[(f64, f64, f64)], colour: &str) {
+        if circles.is_empty() {
+            return;
+        }
+        let mut g =
+            format!(r#"<g fill="none" stroke="{colour}" stroke-width="1" clip-path="url(#plot)">"#);
+        for &(x, y, r) in circles {
+            let (px, py) = axes.px(x, y);
+            let pr = (axes.px(x + r, y).0 - px).abs().max(1.0);
+            let _ = write!(g, r#"<circle cx="{px:.1}" cy="{py:.1}" r="{pr:.1}"/>"#);
+        }
+        g.push_str("</g>");
+        self.raw(&g);
+    }
+
     /// A cross (×) of `size` pixels at each data point, in `colour`, clipped
     /// to the plot area, grouped under `class` (to find them in the file).
     pub fn crosses(

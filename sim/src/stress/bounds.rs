@@ -96,6 +96,11 @@ pub enum Bound {
     AlongHedgeMax(f64),
     /// At most this many mode changes in the run.
     SwitchesAtMost(usize),
+    /// Largest |error to the offset line of hedge 0's envelope| in edge
+    /// following, settled, below this, metres ([`super::envelope`]).
+    EnvelopeMax(f64),
+    /// Mean |error to that line| below this, metres.
+    EnvelopeMean(f64),
 }
 
 /// A bound's figure on one run: the value measured and the limit it must
@@ -249,6 +254,23 @@ impl Bound {
                     .map_or(f64::INFINITY, |e| e.max_abs),
                 limit,
             ),
+            Self::EnvelopeMax(limit) | Self::EnvelopeMean(limit) => {
+                let errors = super::envelope::envelope_errors(setup, trace);
+                let max = matches!(self, Self::EnvelopeMax(_));
+                let value = if errors.is_empty() {
+                    f64::INFINITY
+                } else if max {
+                    errors.iter().map(|e| e.abs()).fold(0.0, f64::max)
+                } else {
+                    errors.iter().map(|e| e.abs()).sum::<f64>() / errors.len() as f64
+                };
+                let what = if max { "max" } else { "mean" };
+                judged(
+                    format!("{what} |y| to the envelope's line (m)"),
+                    value,
+                    limit,
+                )
+            }
             Self::SwitchesAtMost(n) => judged(
                 "mode changes".to_owned(),
                 summary.mode_switches as f64,

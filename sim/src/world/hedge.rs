@@ -490,6 +490,8 @@ pub fn fence(vertices: &[[f64; 2]], spacing: f64, radius: f64, wall: bool) -> Ob
         }
         if wall {
             out.segments.push(Segment { a: *a, b: *b });
+        } else {
+            out.wires.push(Segment { a: *a, b: *b });
         }
     }
     out
@@ -502,6 +504,8 @@ pub struct Obstacles {
     pub segments: Vec<Segment>,
     /// Posts and trunks.
     pub circles: Vec<Circle>,
+    /// Fence wires between posts: drawn in the plots, never hit by a LiDAR.
+    pub wires: Vec<Segment>,
 }
 
 impl Obstacles {
@@ -527,6 +531,7 @@ impl Obstacles {
     pub fn extend(&mut self, other: Obstacles) {
         self.segments.extend(other.segments);
         self.circles.extend(other.circles);
+        self.wires.extend(other.wires);
     }
 
     /// Adds a generated post row.
