@@ -15,6 +15,7 @@ use super::count_f64;
 use super::points::RowPoint;
 use crate::error::Precondition;
 use crate::geometry::fit::MIN_RELATIVE_X_SPREAD;
+use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::units::Meters;
 use crate::perception::furrow::lines::RowLine;
 
@@ -284,8 +285,12 @@ impl Line {
         (a.is_finite() && b.is_finite() && inv_norm > 0.0).then_some(Self { a, b, inv_norm })
     }
 
-    /// ‖p − L‖, the Euclidean distance of the point p = (x, y) to the line
-    /// (eq. 6).
+    /// ‖p − L‖, the Euclidean distance of `p` to the line (eq. 6).
+    fn distance(&self, p: Point2<Robot>) -> f64 {
+        self.distance_xy(p.x(), p.y())
+    }
+
+    /// The same for the point (x, y).
     fn distance_xy(&self, x: f64, y: f64) -> f64 {
         libm::fabs(self.a * x + self.b - y) * self.inv_norm
     }
@@ -455,36 +460,11 @@ fn slot_of(rank: f64) -> usize {
 const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
 /// The points' coordinates in columns, for the re-attachment's inner loops
-/// and the fits, and room for a list of points' indices ([`compact`]).
+/// and the fits.
 #[derive(Debug, Clone)]
 struct Columns<const N: usize> {
     xs: [f64; N],
     ys: [f64; N],
-    picked: [u32; N],
-}
-
-/// Writes into `list`, in order, the indices of the `masks` that `keep`
-/// accepts (given the index and the mask), and returns how many: without a
-/// branch per point, where a test of the data would be mispredicted at
-/// random (every index is written, the count advances on the kept ones).
-fn compact(masks: &[u64], list: &mut [u32], keep: impl Fn(usize, u64) -> bool) -> usize {
-    let mut len = 0_usize;
-    for (i, &m) in masks.iter().enumerate().take(list.len()) {
-        let index = u32::try_from(i);
-        if let (Some(slot), Ok(index)) = (list.get_mut(len), index) {
-            *slot = index;
-        }
-        len = len.saturating_add(usize::from(keep(i, m) & index.is_ok()));
-    }
-    len
-}
-
-/// The points' indices `list` holds, as `usize`.
-fn listed(list: &[u32], len: usize) -> impl Iterator<Item = usize> + '_ {
-    list.get(..len)
-        .unwrap_or(&[])
-        .iter()
-        .map(|&i| usize::try_from(i).unwrap_or(usize::MAX))
 }
 
 /// A set of models and which points belong to each.
@@ -514,19 +494,17 @@ struct ModelSet<const N: usize> {
     seeds: [[usize; SEED_POINTS]; MAX_MODELS],
 }
 
-/// Per-model sums of one pass over the points: |P(L)| and E_L(L), and
-/// past the last slot a sink for the outliers (slot `MAX_MODELS`, never
-/// read), so that a point is added without a test of its model.
+/// Per-model sums of one pass over the points: |P(L)| and E_L(L).
 #[derive(Debug, Clone, Copy)]
 struct Stats {
-    count: [usize; MAX_MODELS + 1],
-    energy: [f64; MAX_MODELS + 1],
+    count: [usize; MAX_MODELS],
+    energy: [f64; MAX_MODELS],
 }
 
 impl Stats {
     const ZERO: Self = Self {
-        count: [0; MAX_MODELS + 1],
-        energy: [0.0; MAX_MODELS + 1],
+        count: [0; MAX_MODELS],
+        energy: [0.0; MAX_MODELS],
     };
 
     fn add(&mut self, k: usize, distance: f64) {
@@ -624,13 +602,14 @@ impl<const N: usize> ModelSet<N> {
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
         let masks = self.masks.get(..n).unwrap_or(&[]);
-        // Every point written, the count advanced on the model's own: no
-        // branch on which points are its (count ≤ the index < N).
         for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
-            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
-                (*mx, *my) = (x, y);
+            if m & b != 0 {
+                if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count))
+                {
+                    (*mx, *my) = (x, y);
+                    count = count.saturating_add(1);
+                }
             }
-            count = count.saturating_add(usize::from(m & b != 0));
         }
         Line::fit(
             scratch.xs.get(..count).unwrap_or(&[]),
@@ -705,7 +684,6 @@ impl<const N: usize> Ruby<N> {
             columns: Columns {
                 xs: [0.0; N],
                 ys: [0.0; N],
-                picked: [0; N],
             },
         }
     }
@@ -833,18 +811,11 @@ impl<const N: usize> Ruby<N> {
         for _ in 0..p.iterations {
             let (best, candidate) = pair(&mut self.sets, self.kept);
             candidate.copy_from(best, n);
-            search(candidate, &mut self.columns, n, &mut self.rng, &p);
+            search(candidate, points, &mut self.rng, &p);
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
             let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
             let gone = delete(candidate, &candidate_stats, &p);
-            reattach_deleted(
-                candidate,
-                gone,
-                &mut self.columns,
-                n,
-                &mut candidate_stats,
-                &p,
-            );
+            reattach_deleted(candidate, gone, points, &mut candidate_stats, &p);
             let e = energy(candidate, &candidate_stats, n, &self.weights, &p);
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
@@ -921,12 +892,11 @@ fn energy<const N: usize>(
     p: &RubyParams,
 ) -> f64 {
     let masks = set.masks.get(..n).unwrap_or(&[]);
-    let alive = set.alive;
-    let outliers = masks.iter().filter(|&&m| m & alive == 0).count();
+    let outliers = masks.iter().filter(|&&m| m & set.alive == 0).count();
     let mut neighbour = 0.0;
     for (w, pair) in weights.iter().zip(masks.windows(2)) {
         if let [m, q] = pair {
-            if (m & alive) != (q & alive) {
+            if (m & set.alive) != (q & set.alive) {
                 neighbour += w;
             }
         }
@@ -954,8 +924,7 @@ pub(crate) fn pick(rng: &mut Xoshiro128PlusPlus, len: usize) -> usize {
 //# is full.
 fn search<const N: usize>(
     set: &mut ModelSet<N>,
-    cols: &mut Columns<N>,
-    n: usize,
+    points: &[RowPoint],
     rng: &mut Xoshiro128PlusPlus,
     p: &RubyParams,
 ) {
@@ -966,31 +935,32 @@ fn search<const N: usize>(
         //# robot (y > 0), then on those right of it (y < 0), each with half
         //# the iteration's model budget, rounded up.
         let budget = p.models_per_iteration.div_ceil(2);
-        search_side(set, cols, n, rng, p, budget, |y| y > 0.0);
-        search_side(set, cols, n, rng, p, budget, |y| y < 0.0);
+        search_side(set, points, rng, p, budget, |y| y > 0.0);
+        search_side(set, points, rng, p, budget, |y| y < 0.0);
     } else {
-        search_side(set, cols, n, rng, p, p.models_per_iteration, |_| true);
+        search_side(set, points, rng, p, p.models_per_iteration, |_| true);
     }
 }
 
 fn search_side<const N: usize>(
     set: &mut ModelSet<N>,
-    cols: &mut Columns<N>,
-    n: usize,
+    points: &[RowPoint],
     rng: &mut Xoshiro128PlusPlus,
     p: &RubyParams,
     budget: u16,
     side: impl Fn(f64) -> bool,
 ) {
-    let Columns { xs, ys, picked } = cols;
-    let alive = set.alive;
-    // The outliers of this side, in ray order.
-    let mut outliers = compact(set.masks.get(..n).unwrap_or(&[]), picked, |i, m| {
-        (m & alive == 0) & ys.get(i).is_some_and(|&y| side(y))
-    });
-    let stop = p.search_until * count_f64(outliers);
+    let mut outliers: Vec<u16, N> = Vec::new();
+    for (i, (pt, &m)) in points.iter().zip(set.masks.iter()).enumerate() {
+        if m & set.alive == 0 && side(pt.position.y()) {
+            if let Ok(i) = u16::try_from(i) {
+                let _ = outliers.push(i);
+            }
+        }
+    }
+    let stop = p.search_until * count_f64(outliers.len());
     let mut added = 0_u16;
-    while outliers >= SEED_POINTS && count_f64(outliers) > stop && added < budget {
+    while outliers.len() >= SEED_POINTS && count_f64(outliers.len()) > stop && added < budget {
         let free = !set.alive;
         if free == 0 {
             break;
@@ -998,27 +968,21 @@ fn search_side<const N: usize>(
         let slot = usize::try_from(free.trailing_zeros()).unwrap_or(MAX_MODELS);
         let mut seed = [0_usize; SEED_POINTS];
         for s in &mut seed {
-            // The outlier drawn leaves the list, the last taking its place.
-            let at = pick(rng, outliers);
-            outliers = outliers.saturating_sub(1);
-            let last = picked.get(outliers).copied().unwrap_or(u32::MAX);
-            if let Some(drawn) = picked.get_mut(at) {
-                *s = usize::try_from(*drawn).unwrap_or(usize::MAX);
-                *drawn = last;
-            }
+            *s = usize::from(outliers.swap_remove(pick(rng, outliers.len())));
         }
         added = added.saturating_add(1);
-        let at = |i: usize| xs.get(i).copied().zip(ys.get(i).copied());
-        if let [Some(a), Some(b), Some(c)] = seed.map(at) {
-            let xs = [a.0, b.0, c.0];
-            let ys = [a.1, b.1, c.1];
+        let seeds = seed.map(|i| points.get(i).map(|q| q.position));
+        if let [Some(a), Some(b), Some(c)] = seeds {
+            let xs = [a.x(), b.x(), c.x()];
+            let ys = [a.y(), b.y(), c.y()];
             if let (Some(line), Some(l), Some(points)) = (
                 Line::fit(&xs, &ys, 0, &mut [0.0; SEED_POINTS]),
                 set.lines.get_mut(slot),
                 set.seeds.get_mut(slot),
             ) {
                 *l = line;
-                *points = sorted(seed);
+                *points = seed;
+                points.sort_unstable();
                 set.seeded |= bit(slot);
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
@@ -1036,18 +1000,9 @@ fn search_side<const N: usize>(
     }
 }
 
-/// Three indices in ascending order, by minima and maxima (no branch on
-/// the draws, which a sort's comparisons would mispredict at random).
-fn sorted([a, b, c]: [usize; SEED_POINTS]) -> [usize; SEED_POINTS] {
-    let (low, high) = (a.min(b), a.max(b));
-    let (middle, high) = (high.min(c), high.max(c));
-    [low.min(middle), low.max(middle), high]
-}
-
-/// Whether two models are one (Alg. 1, line 13); both tests made, without
-/// a branch.
+/// Whether two models are one (Alg. 1, line 13).
 fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
-    (libm::fabs(x.a - y.a) < p.parallel_slope) & (libm::fabs(x.b - y.b) < p.same_intercept.get())
+    libm::fabs(x.a - y.a) < p.parallel_slope && libm::fabs(x.b - y.b) < p.same_intercept.get()
 }
 
 /// Merges models that are the same and refits every model to its points
@@ -1088,10 +1043,10 @@ fn merge<const N: usize>(
             }
             let mut absorbed = 0_u64;
             let lj = set.line(j);
-            // The models of the slots above j.
-            let above = !(bit(j).wrapping_shl(1).wrapping_sub(1));
-            for k in slots(set.alive & above) {
-                absorbed |= bit(k) & u64::from(same(&lj, &set.line(k), p)).wrapping_neg();
+            for k in slots(set.alive & !bit(j)).filter(|&k| k > j) {
+                if same(&lj, &set.line(k), p) {
+                    absorbed |= bit(k);
+                }
             }
             if absorbed != 0 {
                 merged_any = true;
@@ -1212,8 +1167,7 @@ fn delete<const N: usize>(set: &ModelSet<N>, stats: &Stats, p: &RubyParams) -> u
 fn reattach_deleted<const N: usize>(
     set: &mut ModelSet<N>,
     gone: u64,
-    cols: &mut Columns<N>,
-    n: usize,
+    points: &[RowPoint],
     stats: &mut Stats,
     p: &RubyParams,
 ) {
@@ -1225,48 +1179,37 @@ fn reattach_deleted<const N: usize>(
     for k in slots(gone) {
         stats.clear(k);
     }
-    if p.variant.shared_points() {
-        for m in set.masks.iter_mut().take(n) {
-            *m &= !gone;
-        }
-        return;
-    }
     let limit = p.outlier_distance.get();
-    let mut packed: Vec<(usize, Line), MAX_MODELS> = Vec::new();
+    let mut packed: Vec<(u64, usize, Line), MAX_MODELS> = Vec::new();
     for k in slots(set.alive) {
-        let _ = packed.push((k, set.line(k)));
+        let _ = packed.push((bit(k), k, set.line(k)));
     }
-    // The points of the models deleted, in order; each to the closest model
-    // left within the limit (the first of the closest, models in slot
-    // order), by selects.
-    let moving = compact(
-        set.masks.get(..n).unwrap_or(&[]),
-        &mut cols.picked,
-        |_, m| m & gone != 0,
-    );
-    for i in listed(&cols.picked, moving) {
-        let (Some(&x), Some(&y)) = (cols.xs.get(i), cols.ys.get(i)) else {
+    for ((pt, m), (dist, r)) in points
+        .iter()
+        .zip(set.masks.iter_mut())
+        .zip(set.dist.iter_mut().zip(set.rank.iter_mut()))
+    {
+        if *m & gone == 0 {
             continue;
+        }
+        if p.variant.shared_points() {
+            *m &= !gone;
+            continue;
+        }
+        let mut closest = (f64::INFINITY, MAX_MODELS, 0_u64);
+        for &(b, k, line) in &packed {
+            let d = line.distance(pt.position);
+            if d <= limit && d < closest.0 {
+                closest = (d, k, b);
+            }
+        }
+        *m = closest.2;
+        (*dist, *r) = if closest.2 == 0 {
+            (limit, NO_RANK)
+        } else {
+            stats.add(closest.1, closest.0);
+            (closest.0, rank(closest.1))
         };
-        let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
-        for &(k, line) in &packed {
-            let d = line.distance_xy(x, y);
-            let take = (d <= limit) & (d < d_best);
-            d_best = if take { d } else { d_best };
-            k_best = if take { k } else { k_best };
-        }
-        let found = k_best < MAX_MODELS;
-        if let (Some(m), Some(dist), Some(r)) = (
-            set.masks.get_mut(i),
-            set.dist.get_mut(i),
-            set.rank.get_mut(i),
-        ) {
-            *m = bit(k_best);
-            *dist = if found { d_best } else { limit };
-            *r = rank(k_best);
-        }
-        // An outlier is added to the sink past the last slot.
-        stats.add(k_best, d_best);
     }
 }
 
@@ -1357,17 +1300,19 @@ fn reattach<const N: usize>(
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
                     let k = usize::from(k);
-                    let take = (d <= limit) & ((d < d_best) | ((d <= d_best) & (k < k_best)));
-                    d_best = if take { d } else { d_best };
-                    k_best = if take { k } else { k_best };
+                    if d <= limit && (d < d_best || (d <= d_best && k < k_best)) {
+                        (d_best, k_best) = (d, k);
+                    }
                 }
                 // With no model yet, the limit stands for the distance to
                 // beat: a moved model takes the point when within it
                 // (RUBY-REATTACH), and no test of the limit is left in the
                 // loop below.
-                let found = k_best < MAX_MODELS;
-                *best = if found { d_best } else { limit };
-                *r = rank(k_best);
+                (*best, *r) = if k_best < MAX_MODELS {
+                    (d_best, rank(k_best))
+                } else {
+                    (limit, NO_RANK)
+                };
             }
         }
         // Each moved model over every point: one loop per model on f64
@@ -1421,18 +1366,19 @@ fn reattach<const N: usize>(
                 lowest_on_ties(xs, ys, best, ranks, &[(k, line)]);
             }
         }
-        // An outlier (no slot) is added to the sink past the last slot.
         for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
             let k = slot_of(r);
             *m = bit(k);
-            stats.add(k, best);
+            if k < MAX_MODELS {
+                stats.add(k, best);
+            }
         }
     }
     set.moved = 0;
     let few = slots(set.alive)
         .filter(|&k| stats.count.get(k).copied().unwrap_or(0) < SEED_POINTS)
         .fold(0_u64, |acc, k| acc | bit(k));
-    reattach_deleted(set, few, cols, n, &mut stats, p);
+    reattach_deleted(set, few, points, &mut stats, p);
     stats
 }
 
@@ -1443,7 +1389,6 @@ mod tests {
     //! not move and from a moved one of a lower slot goes to the lower slot.
 
     use super::*;
-    use crate::geometry::frame::Point2;
 
     const N: usize = 16;
 
@@ -1485,7 +1430,6 @@ mod tests {
         let mut cols = Columns::<N> {
             xs: [0.0; N],
             ys: [0.0; N],
-            picked: [0; N],
         };
         let mut points = [RowPoint {
             position: Point2::origin(),
