@@ -74,6 +74,19 @@ fn wall_ranges(x: f64, present: impl Fn(f64) -> bool) -> Vec<f64> {
         .collect()
 }
 
+/// The hedge scan `ranges` (`RAYS` rays all round), routed to edge following.
+fn edge_scan(ranges: &[f64], limits: RangeLimits) -> RoutedScan<'_> {
+    RoutedScan {
+        behaviour: EDGE,
+        scan: Scan {
+            start: Radians::new(-PI).unwrap(),
+            increment: Radians::new(TAU / RAYS as f64).unwrap(),
+            ranges,
+            limits,
+        },
+    }
+}
+
 fn tick<'a>(x: f64, scans: &'a [RoutedScan<'a>], gnss: bool) -> TickInput<'a, Sideslip> {
     TickInput {
         scans,
@@ -95,15 +108,7 @@ fn drive(
         .map(|k| {
             let x = STEP_M * k as f64;
             let ranges = wall_ranges(x, present);
-            let scans = [RoutedScan {
-                behaviour: EDGE,
-                scan: Scan {
-                    start: Radians::new(-PI).unwrap(),
-                    increment: Radians::new(TAU / RAYS as f64).unwrap(),
-                    ranges: &ranges,
-                    limits,
-                },
-            }];
+            let scans = [edge_scan(&ranges, limits)];
             let scans: &[RoutedScan<'_>] = if k % 10 == 0 { &scans } else { &[] };
             (x, g.step(&tick(x, scans, true)).unwrap())
         })
@@ -291,15 +296,7 @@ fn after_a_stop_a_behaviour_commands_at_once() {
     assert_eq!(g.mode(), Mode::Stop);
     let held = held.unwrap().get();
     let ranges = wall_ranges(0.0, |_| true);
-    let scans = [RoutedScan {
-        behaviour: EDGE,
-        scan: Scan {
-            start: Radians::new(-PI).unwrap(),
-            increment: Radians::new(TAU / RAYS as f64).unwrap(),
-            ranges: &ranges,
-            limits,
-        },
-    }];
+    let scans = [edge_scan(&ranges, limits)];
     for k in 0..2000 {
         let scans: &[RoutedScan<'_>] = if k % 10 == 0 { &scans } else { &[] };
         let out = g.step(&tick(0.0, scans, false)).unwrap();

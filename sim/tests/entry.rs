@@ -13,11 +13,11 @@
     clippy::cast_precision_loss
 )]
 
-use std::path::Path;
+mod common;
 
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput};
-use fieldguide_sim::scenario::{Setup, Source};
+use fieldguide_sim::scenario::Setup;
 
 /// Ten other fields and other noise.
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=10;
@@ -26,16 +26,9 @@ const SEEDS: std::ops::RangeInclusive<u64> = 1..=10;
 const ENTRY_M: f64 = 4.0;
 
 fn run(seed: u64, with_rule: bool) -> (Setup, RunOutput) {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/stress/rows-offset-entry.toml");
-    let mut source = Source::file(&path).unwrap();
+    let mut source = common::stress_source("rows-offset-entry");
     if !with_rule {
-        source.text = source
-            .text
-            .lines()
-            .filter(|l| !l.starts_with("entry_"))
-            .collect::<Vec<_>>()
-            .join("\n");
+        source.text = common::without_key(&source.text, "entry_");
     }
     let (setup, mut rng): (Setup, SimRng) = runner::prepare_with_seed(&source, seed).unwrap();
     assert_eq!(setup.switching.entry.is_some(), with_rule);

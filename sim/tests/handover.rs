@@ -13,13 +13,13 @@
     clippy::cast_precision_loss
 )]
 
-use std::path::Path;
+mod common;
 
 use fieldguide::guidance::Mode;
 use fieldguide_sim::guidance::pipeline::FURROW;
 use fieldguide_sim::rng::SimRng;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput};
-use fieldguide_sim::scenario::{Setup, Source};
+use fieldguide_sim::scenario::Setup;
 use fieldguide_sim::world::PlantKind;
 
 /// Ten other fields and other noise for each bound.
@@ -29,16 +29,9 @@ const SEEDS: std::ops::RangeInclusive<u64> = 1..=10;
 /// the first plants while furrow pursuing turns onto rows seen 4 m ahead.
 const ENTRY_M: f64 = 3.0;
 
-fn stress(name: &str) -> Source {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenarios/stress")
-        .join(format!("{name}.toml"));
-    Source::file(&path).unwrap()
-}
-
 /// `name` with its text edited by `edit`, with `seed`.
 fn prepare(name: &str, seed: u64, edit: impl FnOnce(String) -> String) -> (Setup, SimRng) {
-    let mut source = stress(name);
+    let mut source = common::stress_source(name);
     source.text = edit(source.text);
     runner::prepare_with_seed(&source, seed).unwrap()
 }
@@ -51,10 +44,7 @@ fn run(setup: &Setup, rng: &mut SimRng) -> RunOutput {
 
 /// Without the hand-over rule: `[switching]`'s hand-over lines removed.
 fn without_handover(text: String) -> String {
-    text.lines()
-        .filter(|l| !l.starts_with("handover_"))
-        .collect::<Vec<_>>()
-        .join("\n")
+    common::without_key(&text, "handover_")
 }
 
 /// The crop plants a tyre's contact disc overlapped, each as (plot index,
@@ -210,14 +200,13 @@ fn rows_0_3_m_off_the_path_are_locked_on() {
         // about 0.7 m beside the robot, and the far row (0.675 m) is lost
         // (without the entry rule, GD-ENTRY, as FUR-REACH measured it).
         let (setup, mut rng) = prepare("rows-offset-entry", seed, |t| {
-            t.replace(
-                "window_half_angle_deg = 30.0",
-                "window_half_angle_deg = 20.0",
+            common::without_key(
+                &t.replace(
+                    "window_half_angle_deg = 30.0",
+                    "window_half_angle_deg = 20.0",
+                ),
+                "entry_",
             )
-            .lines()
-            .filter(|l| !l.starts_with("entry_"))
-            .collect::<Vec<_>>()
-            .join("\n")
         });
         let out = run(&setup, &mut rng);
         narrow_shares.push(furrow_share(&out, 0).1.min(furrow_share(&out, 1).1));

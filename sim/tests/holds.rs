@@ -20,12 +20,10 @@
 
 mod common;
 
-use std::path::PathBuf;
-
 use fieldguide::guidance::Mode;
 use fieldguide_sim::guidance::pipeline::{EDGE, FURROW};
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
-use fieldguide_sim::scenario::{Setup, Source};
+use fieldguide_sim::scenario::Setup;
 use fieldguide_sim::stress::envelope;
 
 /// The seeds every stress field is swept over.
@@ -42,10 +40,7 @@ fn run_stress_edited(
     seed: u64,
     edit: impl FnOnce(String) -> String,
 ) -> (Setup, RunOutput) {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("scenarios/stress")
-        .join(format!("{name}.toml"));
-    let mut source = Source::file(&path).unwrap();
+    let mut source = common::stress_source(name);
     source.text = edit(source.text);
     let (setup, mut rng) = runner::prepare_with_seed(&source, seed).unwrap();
     let out = runner::run(&setup, &mut rng);
@@ -335,17 +330,7 @@ fn pass_figures(setup: &Setup, out: &RunOutput, envelope_line: bool) -> PassFigu
     let t = &out.trace;
     let spec = &setup.world.hedges[0].spec;
     let half = 0.5 * spec.thickness;
-    // The near face's vertices: (along, protrusion beyond the nominal face).
-    let face: Vec<(f64, f64)> = setup
-        .world
-        .obstacles
-        .segments
-        .iter()
-        .flat_map(|s| [s.a, s.b])
-        .map(|p| hedge_frame(setup, p[0], p[1]))
-        .filter(|(_, across)| *across < 0.0)
-        .map(|(along, across)| (along, -across - half))
-        .collect();
+    let face = envelope::near_face(setup);
     let switches = t
         .windows(2)
         .filter(|w| w[0].command.switching_mode != w[1].command.switching_mode)
@@ -407,10 +392,7 @@ fn sweep_pass(name: &str, bridge: bool, envelope_line: bool) -> PassFigures {
                             if bridge {
                                 t
                             } else {
-                                t.lines()
-                                    .filter(|l| !l.starts_with("bridge_m"))
-                                    .collect::<Vec<_>>()
-                                    .join("\n")
+                                common::without_key(&t, "bridge_m")
                             }
                         });
                         (

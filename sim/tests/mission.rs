@@ -263,6 +263,21 @@ fn bad_obstacle_tables_name_their_file_and_field() {
     assert!(run.obstacles.is_empty());
 }
 
+/// A box `length` × `width` m, square to the x axis, at `at`, there all run.
+fn standing_box(name: &str, at: (f64, f64), length: f64, width: f64) -> WorldObstacle {
+    WorldObstacle {
+        name: name.to_owned(),
+        shape: Shape::Box {
+            length,
+            width,
+            heading: 0.0,
+        },
+        at,
+        walk: None,
+        present_s: (0.0, f64::INFINITY),
+    }
+}
+
 //= spec/emmi2024.md#em-sim-mission-safe-closed-loop-safety-of-a-mission
 //= type=test
 //# A campaign of missions with obstacles placed at random along the roads
@@ -273,17 +288,7 @@ fn bad_obstacle_tables_name_their_file_and_field() {
 /// reason, held, no collision, no later task started.
 #[test]
 fn blocked_roads_stop_with_a_reason_and_skip_nothing() {
-    let wall = |at: (f64, f64), length: f64, width: f64| WorldObstacle {
-        name: "blocking".to_owned(),
-        shape: Shape::Box {
-            length,
-            width,
-            heading: 0.0,
-        },
-        at,
-        walk: None,
-        present_s: (0.0, f64::INFINITY),
-    };
+    let wall = |at, length, width| standing_box("blocking", at, length, width);
     for (obstacle, reasons) in [
         // The road's first goal: 0.5 m before the corner's tangent point.
         (
@@ -333,17 +338,7 @@ fn blocked_roads_stop_with_a_reason_and_skip_nothing() {
 /// the road) neither panics nor hits anything, and the mission completes.
 #[test]
 fn boxed_in_and_a_burst_of_specks_end_to_end() {
-    let boxed = |at: (f64, f64), length: f64, width: f64| WorldObstacle {
-        name: "boxing in".to_owned(),
-        shape: Shape::Box {
-            length,
-            width,
-            heading: 0.0,
-        },
-        at,
-        walk: None,
-        present_s: (0.0, f64::INFINITY),
-    };
+    let boxed = |at, length, width| standing_box("boxing in", at, length, width);
     for seed in 1..=3 {
         let mut run = welaser_mission(seed).expect("built-in");
         run.guiding.duration_s = 120.0;

@@ -5,7 +5,7 @@
 //! (GD-BRIDGE-STEADY): the least-squares straight line through the points
 //! the valid detections of the last bridge length put on the followed line,
 //! and a valid detection that disagrees with it (the bent line of a ragged
-//! stub at the end of a piece) is bridged over like a gap.
+//! end of a piece) is bridged over like a gap.
 
 use heapless::Deque;
 
@@ -267,7 +267,7 @@ fn fit(
 #[cfg(test)]
 mod tests {
     //! The structure line (GD-BRIDGE-STEADY): anchors of a straight edge
-    //! seen with noisy headings and a bent stub give the true line.
+    //! seen with noisy headings and a bent piece end give the true line.
 
     use super::*;
     use crate::error::Precondition;
@@ -322,15 +322,15 @@ mod tests {
     //# heading and the odometry distance, in the odometry frame, one anchor kept
     //# per sixteenth of the bridge length.
     #[test]
-    fn noisy_headings_and_a_bent_stub_give_the_true_line() -> Result<(), Precondition> {
+    fn noisy_headings_and_a_bent_piece_end_give_the_true_line() -> Result<(), Precondition> {
         let length = Meters::new(4.0)?;
         let mut bridge = Bridge::default();
         // Headings off by ±0.2 rad scan to scan, offsets by ±2 cm, and the
-        // last 0.3 m a stub 0.25 m off.
+        // last 0.3 m a piece end bent 0.25 m off.
         let last = drive(&mut bridge, length, 6.0, |x, even| {
             let sign = if even { 1.0 } else { -1.0 };
-            let stub = if x > 5.7 { 0.25 } else { 0.0 };
-            (0.02 * sign + stub, 0.2 * sign)
+            let bend = if x > 5.7 { 0.25 } else { 0.0 };
+            (0.02 * sign + bend, 0.2 * sign)
         })?;
         // One anchor per 0.25 m (7 steps of 0.04 m) over 6 m.
         assert_eq!(bridge.anchors.len(), 22);
@@ -345,7 +345,7 @@ mod tests {
             let y = line.y + (x - line.x) * libm::tan(line.heading);
             assert!(y.abs() < 0.02, "{line:?}");
         }
-        // Carried 2 m on: the error is the truth's, not the stub's.
+        // Carried 2 m on: the error is the truth's, not the bent end's.
         let ahead = Pose2::new(last.position.x() + 2.0, 0.3, 0.05)?;
         let (error, _) = bridge
             .carried(&ahead, length)

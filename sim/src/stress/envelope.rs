@@ -25,6 +25,26 @@ pub fn hedge_frame(setup: &Setup, h: usize, x: f64, y: f64) -> Option<(f64, f64)
     Some((dx * c + dy * s, -dx * s + dy * c))
 }
 
+/// The vertices of hedge 0's right face (the near one, within 1 m of it):
+/// (along, protrusion beyond the nominal face), metres.
+#[must_use]
+pub fn near_face(setup: &Setup) -> Vec<(f64, f64)> {
+    let Some(hedge) = setup.world.hedges.first() else {
+        return Vec::new();
+    };
+    let half = 0.5 * hedge.spec.thickness;
+    setup
+        .world
+        .obstacles
+        .segments
+        .iter()
+        .flat_map(|s| [s.a, s.b])
+        .filter_map(|p| hedge_frame(setup, 0, p[0], p[1]))
+        .filter(|(_, across)| *across < 0.0 && *across > -half - 1.0)
+        .map(|(along, across)| (along, -across - half))
+        .collect()
+}
+
 /// How far the envelope of a face stands out beyond the nominal face at
 /// along-hedge distance `u`: the largest p_v − (r − √(r² − d²)) over the
 /// face's vertices v within r of `u` (d the along distance, p_v the
@@ -50,16 +70,7 @@ pub fn envelope_errors(setup: &Setup, trace: &[TickRecord]) -> Vec<f64> {
     let spec = &hedge.spec;
     let half = 0.5 * spec.thickness;
     let (radius, offset) = (edge.detector.radius().get(), edge.detector.offset().get());
-    let face: Vec<(f64, f64)> = setup
-        .world
-        .obstacles
-        .segments
-        .iter()
-        .flat_map(|s| [s.a, s.b])
-        .filter_map(|p| hedge_frame(setup, 0, p[0], p[1]))
-        .filter(|(_, across)| *across < 0.0 && *across > -half - 1.0)
-        .map(|(along, across)| (along, -across - half))
-        .collect();
+    let face = near_face(setup);
     let mut errors = Vec::new();
     let mut since_entry = 0.0;
     for w in trace.windows(2) {

@@ -27,6 +27,23 @@ pub fn prepare_edited(
     runner::prepare_with_seed(&source, seed).unwrap()
 }
 
+/// The stress field `name` (`sim/scenarios/stress/<name>.toml`) as written.
+pub fn stress_source(name: &str) -> Source {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios/stress")
+        .join(format!("{name}.toml"));
+    Source::file(&path).unwrap()
+}
+
+/// A scenario's `text` without the lines that start with `key` (an optional
+/// rule switched off: `handover_`, `entry_`, `bridge_m`).
+pub fn without_key(text: &str, key: &str) -> String {
+    text.lines()
+        .filter(|l| !l.starts_with(key))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// The worst of `values` over a sweep: the largest, with the seed it came from.
 pub fn worst_of(values: impl IntoIterator<Item = (u64, f64)>) -> (u64, f64) {
     values.into_iter().fold(
