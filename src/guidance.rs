@@ -1032,7 +1032,7 @@ fn behaviour_status<C, L: ControlLaw>(
     plan_reference: Option<&PlanReference>,
     behaviour: &BehaviourParams<C, L>,
     vehicle: &Vehicle,
-    entry: Option<(Entry, Meters, Meters)>,
+    entry: Option<entry::EntryReference>,
 ) -> BehaviourStatus {
     let plan = match (&estimate.error, plan_reference) {
         (Some(line), Some(r)) => line_relative_to_path(line, &r.path).ok(),
@@ -1056,7 +1056,7 @@ fn behaviour_status<C, L: ControlLaw>(
         Some(e) if estimate.verdict.estimate_is_valid() => {
             let line = TrackingError::to_straight_line(e.y, e.angular_deviation);
             let error = match entry {
-                Some((rule, start, travelled)) => rule.reference_error(&line, start, travelled),
+                Some(reference) => reference.line_error(&line, plan.as_ref()),
                 None => Ok(line),
             };
             match error {

@@ -60,12 +60,11 @@ fn rules_outside_the_lengths_are_refused() {
 
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
-//# The reference MUST equal the robot's lateral error r₀ to the line when the
-//# entry starts and MUST then close on the line as
-//# r₀ (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or r₀ (1 + d/ℓ) e^(−d/ℓ) when μ = ℓ,
-//# d the odometry distance since the entry started, μ the closing length and ℓ
-//# the lead, and MUST be zero once d reaches twenty times the longer of μ and
-//# ℓ.
+//# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
+//# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
+//# when μ = ℓ, d the odometry distance since the entry started, μ the closing
+//# length and ℓ the lead, and MUST be zero once d reaches twenty times the
+//# longer of μ and ℓ.
 #[test]
 fn the_reference_starts_at_the_error_and_closes_on_the_line() {
     for mu in CLOSINGS {
@@ -127,9 +126,8 @@ fn the_reference_starts_at_the_error_and_closes_on_the_line() {
 /// never passes the line, so with ℓ the wheelbase neither axle swings across.
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
-//# The reference MUST equal the robot's lateral error r₀ to the line when the
-//# entry starts and MUST then close on the line as
-//# r₀ (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or r₀ (1 + d/ℓ) e^(−d/ℓ) when μ = ℓ,
+//# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
+//# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
 #[test]
 fn the_lead_point_closes_without_overshoot() {
     for mu in CLOSINGS {
@@ -159,19 +157,37 @@ fn the_lead_point_closes_without_overshoot() {
 //# During an entry, the behaviour's law MUST get the error to its line
 //# shifted sideways by the reference: the lateral error less the reference,
 //# the angular deviation less the angle of the reference's change per metre
-//# travelled.
+//# travelled seen from the line, r₀ s'(d) − s(d) tan h, h the line's heading
+//# minus the path's (zero when the path has no projection).
 #[test]
 fn the_law_gets_the_error_to_the_reference() {
     let entry = rule(1.0, 2.0);
     let line = TrackingError::to_straight_line(m(-0.28), Radians::new(0.02).unwrap());
-    for d in [0.0, 0.4, 1.5, 3.0, 45.0] {
-        let (r, rate) = entry.reference(m(-0.3), m(d));
-        let error = entry.reference_error(&line, m(-0.3), m(d)).unwrap();
-        assert!((error.y.get() - (-0.28 - r.get())).abs() < 1e-12);
-        assert!((error.angular_deviation.get() - (0.02 - rate.atan())).abs() < 1e-12);
-        assert_eq!(error.curvature.get(), 0.0);
+    for h in [0.0, 0.06, -0.3] {
+        let heading = Radians::new(h).unwrap();
+        for d in [0.0, 0.4, 1.5, 3.0, 45.0] {
+            let (r, rate) = entry.reference(m(-0.3), m(d));
+            let shape = r.get() / -0.3;
+            let error = entry
+                .reference_error(&line, m(-0.3), m(d), heading)
+                .unwrap();
+            assert!((error.y.get() - (-0.28 - r.get())).abs() < 1e-12);
+            let turned = (rate - shape * h.tan()).atan();
+            assert!(
+                (error.angular_deviation.get() - (0.02 - turned)).abs() < 1e-12,
+                "{h} {d}"
+            );
+            assert_eq!(error.curvature.get(), 0.0);
+        }
+        // At the start the law sees the robot on its reference, heading
+        // along the path: the line's heading plus h.
+        let start = entry
+            .reference_error(&line, m(-0.28), m(0.0), heading)
+            .unwrap();
+        assert!(start.y.get().abs() < 1e-12);
+        assert!(
+            (start.angular_deviation.get() - (0.02 + h)).abs() < 1e-12,
+            "{h}"
+        );
     }
-    // At the start the law sees the robot on its reference, heading along it.
-    let start = entry.reference_error(&line, m(-0.28), m(0.0)).unwrap();
-    assert!(start.y.get().abs() < 1e-12 && (start.angular_deviation.get() - 0.02).abs() < 1e-12);
 }

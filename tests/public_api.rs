@@ -2533,7 +2533,7 @@ proptest! {
 
 proptest! {
     #[test]
-    fn entry(closing in meters(), lead in meters(), start in meters(), travelled in meters(), path in tracking()) {
+    fn entry(closing in meters(), lead in meters(), start in meters(), travelled in meters(), path in tracking(), heading in radians()) {
         let params = EntryParams { closing, lead };
         check!("guidance::entry::Entry::new", Entry::new(&params));
         let rule = Entry::new(&params)
@@ -2541,7 +2541,7 @@ proptest! {
         check!("guidance::entry::Entry::params", rule.params());
         check!("guidance::entry::Entry::reference", rule.reference(start, travelled));
         check!("guidance::entry::Entry::is_over", rule.is_over(start, travelled));
-        check!("guidance::entry::Entry::reference_error", rule.reference_error(&path, start, travelled));
+        check!("guidance::entry::Entry::reference_error", rule.reference_error(&path, start, travelled, heading));
     }
 }
 

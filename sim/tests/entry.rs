@@ -55,7 +55,8 @@ fn front_swing(setup: &Setup, out: &RunOutput) -> f64 {
 //# While an entry closes on a behaviour the machine has not entered,
 //# path tracking's error MUST be the error to the path shifted sideways by
 //# that behaviour's line offset from the path plus the reference, changing by
-//# the reference's change per metre.
+//# the reference's change per metre seen from the path,
+//# r₀ s'(d) + (1 − s(d)) tan h.
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
 //# When an entry rule is configured, an entry MUST start from the robot's
@@ -63,7 +64,7 @@ fn front_swing(setup: &Setup, out: &RunOutput) -> f64 {
 //# (a valid estimate consistent with the plan, with an offset from the path)
 //# while path tracking commands, the first usable behaviour in priority order,
 //# ending any hand-over in progress, or in the tick the machine enters a
-//# behaviour no entry closes on; it MUST end when its reference reaches
+//# behaviour no entry closes on; it MUST end when its closing shape reaches
 //# zero in the behaviour, when the machine leaves the behaviour or stops, when
 //# the line stops being usable before the machine entered (a hand-over then
 //# starts from the shift, when a hand-over rule is configured) or when the
