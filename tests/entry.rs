@@ -191,3 +191,26 @@ fn the_law_gets_the_error_to_the_reference() {
         );
     }
 }
+
+proptest::proptest! {
+    /// For any rule, start and distance: the reference stays between the
+    /// start and the line (it never passes the line), and its offset changes
+    /// by at most |r₀| / (e min(μ, ℓ)) per metre.
+    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+    //= type=test
+    //# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
+    //# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
+    #[test]
+    fn the_reference_never_passes_the_line_and_turns_gently(
+        mu in 0.05_f64..20.0,
+        lead in 0.05_f64..20.0,
+        r0 in -2.0_f64..2.0,
+        d in 0.0_f64..400.0,
+    ) {
+        let entry = rule(mu, lead);
+        let (r, rate) = entry.reference(m(r0), m(d));
+        proptest::prop_assert!(r.get() * r0 >= 0.0 && r.get().abs() <= r0.abs() * (1.0 + 1e-12));
+        let bound = r0.abs() / (std::f64::consts::E * mu.min(lead));
+        proptest::prop_assert!(rate.abs() <= bound * (1.0 + 1e-9) + 1e-15, "{rate} {bound}");
+    }
+}

@@ -79,7 +79,9 @@ fn run(name: &str, seed: u64) -> (Setup, RunOutput) {
         for pair in set.split(';').filter(|p| !p.is_empty()) {
             let key = pair.split('=').next().unwrap().trim();
             source.text = common::without_key(&source.text, key);
-            source.text.push_str(&format!("\n{pair}\n"));
+            if pair.contains('=') {
+                source.text.push_str(&format!("\n{pair}\n"));
+            }
         }
     }
     let (setup, mut rng): (Setup, SimRng) = runner::prepare_with_seed(&source, seed).unwrap();
@@ -88,7 +90,10 @@ fn run(name: &str, seed: u64) -> (Setup, RunOutput) {
     (setup, out)
 }
 
-fn sweep(name: &str) {
+/// Over the seeds: O within `rear_max` of the rows' centre when it reaches
+/// each plot's first plants, at most `crushed_max` plants crushed per run
+/// (bounds measured over seeds 1-20, not derived: README, stress rows).
+fn sweep(name: &str, rear_max: f64, crushed_max: usize) {
     let (mut rear, mut front, mut crushed) = (0.0_f64, 0.0_f64, Vec::new());
     for seed in seeds() {
         let (setup, out) = run(name, seed);
@@ -109,71 +114,50 @@ fn sweep(name: &str) {
         crushed.push(out.plants_crushed);
     }
     println!(
-        "{name}: worst |rear| {rear:.3} m, |front| {front:.3} m at the first plants; crushed {}-{}",
+        "{name}: worst |rear| {rear:.3} m, |front| {front:.3} m at the first plants; crushed {}-{} ({} in all)",
         crushed.iter().min().unwrap(),
-        crushed.iter().max().unwrap()
+        crushed.iter().max().unwrap(),
+        crushed.iter().sum::<usize>()
+    );
+    assert!(
+        rear <= rear_max,
+        "{name}: O {rear:.3} m off at the first plants"
+    );
+    assert!(
+        crushed.iter().all(|&c| c <= crushed_max),
+        "{name}: {crushed:?}"
     );
 }
 
+//= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+//= type=test
+//# While the path has a projection, r₀ MUST be re-evaluated in every tick
+//# as the robot's lateral error to the path when the entry started less the
+//# line's current offset from the path, so that the reference follows the
+//# line as it is detected again; without a projection r₀ MUST keep its last
+//# value.
 #[test]
 fn rows_offset_entry() {
-    sweep("rows-offset-entry");
+    // With r₀ fixed at the first line: up to 0.19 m (seeds 1-20).
+    sweep("rows-offset-entry", 0.16, 5);
 }
 
 #[test]
 fn rows_offset_maize_beans() {
-    sweep("rows-offset-maize-beans");
+    sweep("rows-offset-maize-beans", 0.12, 8);
 }
 
 #[test]
 fn rows_offset_right_slow() {
-    sweep("rows-offset-right-slow");
+    sweep("rows-offset-right-slow", 0.15, 6);
 }
 
 #[test]
 fn rows_offset_handover() {
-    sweep("rows-offset-handover");
+    sweep("rows-offset-handover", 0.05, 1);
 }
 
 #[test]
-fn debug_trace() {
-    let Ok(name) = std::env::var("ENTRY_DEBUG") else {
-        return;
-    };
-    let seed: u64 = std::env::var("ENTRY_DEBUG_SEED").unwrap().parse().unwrap();
-    let (setup, out) = run(&name, seed);
-    let plot = &setup.world.plots[0];
-    let x0 = plot.spec.start.x();
-    let mut last = String::new();
-    for r in &out.trace {
-        let x = r.truth.position.x() - x0;
-        if !(-5.0..6.0).contains(&x) {
-            continue;
-        }
-        let h = r.truth.heading.get();
-        let l = setup.vehicle.wheelbase.get().get();
-        let d = r.command.detector;
-        let line = format!(
-            "{:?} {} {:?} ref {:?}",
-            r.command.mode,
-            d.map_or("-".into(), |d| format!("{:?}", d.verdict)),
-            d.and_then(|d| d.error).map(|e| (
-                format!("{:.3}", e.y.get()),
-                format!("{:.3}", e.angular_deviation.get())
-            )),
-            r.command.reference_offset.map(|o| format!("{o:.3}")),
-        );
-        if line != last || (r.t_s * 100.0).round() as i64 % 25 == 0 {
-            println!(
-                "t {:.2} x {:+.2} y {:+.3} h {:+.3} yf {:+.3} steer {:+.3} | {line}",
-                r.t_s,
-                x,
-                r.truth.position.y(),
-                h,
-                r.truth.position.y() + l * h.sin(),
-                r.steering_rad,
-            );
-            last = line;
-        }
-    }
+fn rows_offset_beans_fast() {
+    sweep("rows-offset-beans-fast", 0.09, 8);
 }

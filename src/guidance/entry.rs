@@ -390,3 +390,97 @@ where
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! The start re-evaluated from the line's offset (GD-ENTRY): the
+    //! reference is the blend of the start's track and the line, wherever
+    //! the line is detected again.
+
+    use super::*;
+
+    fn m(v: f64) -> Meters {
+        Meters::new(v).unwrap_or(Meters::ZERO)
+    }
+
+    fn plan(offset: f64, heading: f64) -> LineRelativeToPath {
+        LineRelativeToPath {
+            offset: m(offset),
+            heading: Radians::new(heading).unwrap_or(Radians::ZERO),
+        }
+    }
+
+    /// The robot 0.05 m right of the path when the entry started, the line
+    /// first 0.45 m left of the path, then found 0.3 m left.
+    fn reference(travelled: f64) -> Result<EntryReference, Precondition> {
+        Ok(EntryReference {
+            rule: Entry::new(&EntryParams {
+                closing: m(0.5),
+                lead: m(2.0),
+            })?,
+            start: m(-0.5),
+            anchor: Some(m(-0.05)),
+            travelled: m(travelled),
+        })
+    }
+
+    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+    //= type=test
+    //# While the path has a projection, r₀ MUST be re-evaluated in every tick
+    //# as the robot's lateral error to the path when the entry started less the
+    //# line's current offset from the path, so that the reference follows the
+    //# line as it is detected again; without a projection r₀ MUST keep its last
+    //# value.
+    #[test]
+    fn the_start_follows_the_line_detected_again() -> Result<(), Precondition> {
+        for d in [0.0, 0.7, 2.3, 6.0] {
+            let e = reference(d)?;
+            assert!((e.start(Some(&plan(0.45, 0.0))).get() + 0.5).abs() < 1e-12);
+            assert!((e.start(Some(&plan(0.3, 0.0))).get() + 0.35).abs() < 1e-12);
+            // No projection: the last value.
+            assert!((e.start(None).get() + 0.5).abs() < 1e-12);
+            // Path tracking's reference lies between the start's track
+            // (−0.05) and the line, s(d) of the way from the line: the same
+            // place wherever the line was first seen.
+            let (shape, _) = e.rule.shape(m(d));
+            for line in [0.45, 0.3] {
+                let (shift, _) = e
+                    .path_shift(&plan(line, 0.0))
+                    .ok_or(Precondition::new("T", "none"))?;
+                let expected = shape * -0.05 + (1.0 - shape) * line;
+                assert!((shift.get() - expected).abs() < 1e-12, "{d} {line}");
+            }
+        }
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+    //= type=test
+    //# While an entry closes on a behaviour the machine has not entered,
+    //# path tracking's error MUST be the error to the path shifted sideways by
+    //# that behaviour's line offset from the path plus the reference, changing by
+    //# the reference's change per metre seen from the path,
+    //# r₀ s'(d) + (1 − s(d)) tan h.
+    #[test]
+    fn the_shift_turns_from_the_path_to_the_line() -> Result<(), Precondition> {
+        let h = 0.04;
+        for d in [0.0, 0.7, 2.3, 6.0, 45.0] {
+            let e = reference(d)?;
+            let (shape, slope) = e.rule.shape(m(d));
+            let (_, rate) = e
+                .path_shift(&plan(0.3, h))
+                .ok_or(Precondition::new("T", "none"))?;
+            let expected = -0.35 * slope + (1.0 - shape) * libm::tan(h);
+            assert!((rate - expected).abs() < 1e-12, "{d}");
+        }
+        // At the start: the path's heading; at the end: the line's.
+        let (_, start) = reference(0.0)?
+            .path_shift(&plan(0.3, h))
+            .ok_or(Precondition::new("T", "none"))?;
+        let (_, end) = reference(45.0)?
+            .path_shift(&plan(0.3, h))
+            .ok_or(Precondition::new("T", "none"))?;
+        assert!(start.abs() < 1e-12 && (end - libm::tan(h)).abs() < 1e-12);
+        Ok(())
+    }
+}
