@@ -210,7 +210,7 @@ proptest::proptest! {
         let entry = rule(mu, lead);
         let (r, rate) = entry.reference(m(r0), m(d));
         proptest::prop_assert!(r.get() * r0 >= 0.0 && r.get().abs() <= r0.abs() * (1.0 + 1e-12));
-        let bound = r0.abs() / (std::f64::consts::E * mu.min(lead));
+        let bound = r0.abs() / (core::f64::consts::E * mu.min(lead));
         proptest::prop_assert!(rate.abs() <= bound * (1.0 + 1e-9) + 1e-15, "{rate} {bound}");
     }
 }
