@@ -239,6 +239,7 @@ impl Guidance for Pipeline<'_> {
             detector,
             plan_pose: out.path.plan_pose,
             reference_offset: out.path.reference_offset.map(fieldguide::Meters::get),
+            fix: out.path.fix,
         };
         self.last = Some(out);
         Ok(command)
