@@ -465,6 +465,7 @@ fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
         .abs();
         let before = ticks[back - 1].steering;
         let jolt = (ticks[back].steering - before).abs();
+        eprintln!("bias {bias} m, odometry drift {drift} rad/m: step {step:.3} m, heading step {heading_step:.4} rad, steering moves {jolt:.4} rad");
         assert!(
             jolt < 2.8 * WHEELBASE * heading_step + 0.01,
             "steering jumps by {jolt} rad"
