@@ -64,6 +64,7 @@
 mod bridge;
 mod config;
 pub mod entry;
+pub mod fix;
 pub mod handover;
 mod resume;
 
@@ -72,6 +73,7 @@ pub use config::{
     MAX_SCAN_AGE_TICKS,
 };
 pub use entry::{Entry, EntryParams};
+pub use fix::{FixKind, FixQuality, FixRule, FixRuleParams, FixUse};
 pub use handover::{Handover, HandoverParams};
 
 use heapless::Vec;
@@ -172,8 +174,9 @@ impl LawOutcome {
 /// Path tracking in one tick; `X` is the law's extra input.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathStatus<X> {
-    /// The Frénet error of the GNSS pose (with c(s + vT)); `None` without a
-    /// pose or when the projection was refused.
+    /// The Frénet error of the GNSS pose (with c(s + vT)), or of the last
+    /// good fix carried by odometry (`fix`, GD-FIX-QUALITY); `None` without
+    /// a pose or when the projection was refused.
     pub frenet: Option<FrenetError>,
     /// Why the projection was refused, if it was (overflow).
     pub projection_refused: Option<Precondition>,
@@ -187,8 +190,12 @@ pub struct PathStatus<X> {
     /// The pose the plan check judged the lines from (GD-PLAN-DEAD-RECKONING).
     pub plan_pose: PlanPose,
     /// The shift of path tracking's reference from the path in this tick,
-    /// when a hand-over rule is configured and one applies (GD-HANDOVER).
+    /// when a hand-over rule is configured and one applies (GD-HANDOVER),
+    /// or while a returning good fix is rejoined (GD-FIX-QUALITY).
     pub reference_offset: Option<Meters>,
+    /// What path tracking steered on: the fix, the last good fix carried,
+    /// or nothing and why (GD-FIX-QUALITY).
+    pub fix: FixUse,
 }
 
 /// The pose a tick's plan check judged the behaviours' lines from.
@@ -465,6 +472,11 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     handing_over: Option<handover::Active>,
     /// The entry in progress into the active behaviour (GD-ENTRY).
     entering: Option<entry::Entering>,
+    /// Path tracking's lateral error on the carried pose in the last tick
+    /// that steered on it, until a good fix returns (GD-FIX-QUALITY).
+    carried_y: Option<Meters>,
+    /// The rejoin in progress after a good fix returned (GD-FIX-QUALITY).
+    rejoining: Option<fix::Rejoin>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -519,6 +531,8 @@ where
             line_offset: None,
             handing_over: None,
             entering: None,
+            carried_y: None,
+            rejoining: None,
         })
     }
 
@@ -548,6 +562,8 @@ where
         self.line_offset = None;
         self.handing_over = None;
         self.entering = None;
+        self.carried_y = None;
+        self.rejoining = None;
     }
 
     /// Replaces the desired speed of path tracking between ticks (a path
@@ -660,7 +676,31 @@ where
         &mut self,
         input: &TickInput<'_, L::Extra>,
     ) -> Result<TickOutput<L::Extra, K>, Precondition> {
+        self.step_with_fix(input, &FixQuality::RTK_FIXED)
+    }
+
+    /// One control tick whose GNSS pose, if any, has the quality `quality`
+    /// the receiver reports: with a fix rule configured, a fix the rule
+    /// refuses counts as no fix (GD-FIX-QUALITY); [`Guidance::step`] is this
+    /// with an RTK-fixed quality.
+    ///
+    /// # Errors
+    /// As [`Guidance::step`]: only for malformed input (GD-INPUT).
+    //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+    //# When a fix rule is configured, a tick whose fix is not good MUST be
+    //# processed as a tick without a fix: it MUST NOT be projected for path
+    //# tracking or for the plan check, nor become the last fix of
+    //# GD-PLAN-DEAD-RECKONING; without a rule every fix MUST be taken.
+    pub fn step_with_fix(
+        &mut self,
+        input: &TickInput<'_, L::Extra>,
+        quality: &FixQuality,
+    ) -> Result<TickOutput<L::Extra, K>, Precondition> {
         self.check_input(input)?;
+        let gnss = match self.config.fix() {
+            Some(rule) => rule.filter(input.gnss, quality),
+            None => input.gnss,
+        };
         let travelled = self.last_odometry.map_or(0.0, |p| {
             // A distance that overflows is an absurd jump: the whole path is searched.
             p.position
@@ -668,7 +708,7 @@ where
                 .map_or(f64::INFINITY, Meters::get)
         });
         self.last_odometry = Some(input.odometry);
-        match (input.gnss, self.last_fix.as_mut()) {
+        match (gnss, self.last_fix.as_mut()) {
             (Some(world), _) => {
                 self.last_fix = Some(LastFix {
                     world,
@@ -706,7 +746,9 @@ where
         }
 
         // 2. The path (GD-LOCALISATION).
-        let (frenet, projection_refused) = self.project(input.gnss.as_ref(), travelled);
+        let (frenet, projection_refused) = self.project(gnss.as_ref(), travelled);
+        let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &input.odometry);
+        let rejoin = self.rejoin(path_frenet.as_ref(), &fix_use, travelled);
 
         // 3-4. Plan consistency and the laws.
         let params = self.config.params();
@@ -732,7 +774,7 @@ where
         //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
         //# Path tracking MUST NOT use the dead-reckoned pose: localisation stays
         //# invalid without a fix (GD-LOCALISATION).
-        let plan_pose = match (&frenet, input.gnss) {
+        let plan_pose = match (&frenet, gnss) {
             (Some(_), _) => PlanPose::Gnss,
             (None, Some(_)) => PlanPose::Unjudged,
             (None, None) => self.dead_reckoned(&input.odometry),
@@ -760,8 +802,9 @@ where
         }
         let approach = self.approach(&behaviours);
         let reference_offset = self.reference_offset();
-        let path_law = match &frenet {
-            Some(f) => match self.path_error(f, reference_offset, approach) {
+        let rejoin = rejoin.filter(|_| approach.is_none() && reference_offset.is_none());
+        let path_law = match &path_frenet {
+            Some(f) => match self.rejoined_error(f, rejoin, reference_offset, approach) {
                 Ok(error) => LawOutcome::run(
                     &params.path.law,
                     &params.vehicle,
@@ -779,7 +822,7 @@ where
         //# from it.
         let localisation_valid = path_law.command().is_some();
         let path = PathStatus {
-            frenet,
+            frenet: path_frenet,
             projection_refused,
             law: path_law,
             localisation_valid,
@@ -787,7 +830,9 @@ where
             plan_pose,
             reference_offset: approach
                 .map(|(o, _)| o)
-                .or_else(|| self.shift(reference_offset)),
+                .or_else(|| self.shift(reference_offset))
+                .or_else(|| self.rejoin_shift(rejoin)),
+            fix: fix_use,
         };
 
         // 5. The switching machine (GD-BEHAVIOURS).
@@ -956,20 +1001,45 @@ where
     //# summed over the ticks since the fix is at most the configured distance;
     //# beyond it, and before the first fix, the check MUST NOT judge.
     fn dead_reckoned(&self, odometry: &Pose2<Odom>) -> PlanPose {
-        let (Some(limit), Some(fix)) = (self.config.params().plan_dead_reckoning, self.last_fix)
-        else {
+        let Some(limit) = self.config.params().plan_dead_reckoning else {
             return PlanPose::Unjudged;
         };
+        match self.carried(odometry, limit) {
+            Ok((travelled, frenet)) => PlanPose::DeadReckoned { travelled, frenet },
+            Err(_) => PlanPose::Unjudged,
+        }
+    }
+
+    /// The last fix moved by the odometry since it to the tick's odometry
+    /// pose, projected on the path, with the odometry distance since the
+    /// fix, while that distance is at most `limit`.
+    ///
+    /// # Errors
+    /// `GD-FIX-QUALITY` naming why nothing can be carried: no fix yet,
+    /// carried farther than `limit`, or the move or its projection refused.
+    fn carried(
+        &self,
+        odometry: &Pose2<Odom>,
+        limit: Meters,
+    ) -> Result<(Meters, FrenetError), Precondition> {
+        let Some(fix) = self.last_fix else {
+            return Err(Precondition::new("GD-FIX-QUALITY", "no good fix yet"));
+        };
         if fix.travelled > limit.get() {
-            return PlanPose::Unjudged;
+            return Err(Precondition::new(
+                "GD-FIX-QUALITY",
+                "no good fix within the dead-reckoning distance",
+            ));
         }
-        let pose = pose_in_scan_frame(&fix.odometry, odometry)
+        let frenet = pose_in_scan_frame(&fix.odometry, odometry)
             .and_then(|moved| fix.world.body_to_frame::<Robot>().apply_pose(moved))
-            .and_then(|pose| self.project_locally(&pose));
-        match (pose, Meters::new(fix.travelled)) {
-            (Ok(frenet), Ok(travelled)) => PlanPose::DeadReckoned { travelled, frenet },
-            _ => PlanPose::Unjudged,
-        }
+            .and_then(|pose| self.project_locally(&pose))
+            .map_err(|_| {
+                Precondition::new("GD-FIX-QUALITY", "the carried pose has no projection")
+            })?;
+        let travelled = Meters::new(fix.travelled)
+            .map_err(|_| Precondition::new("GD-FIX-QUALITY", "carried distance overflows"))?;
+        Ok((travelled, frenet))
     }
 }
 

@@ -141,6 +141,7 @@ pub fn pierre2022_path() -> Result<Pierre2022Params, Precondition> {
         steer_before_resuming: false,
         handover: None,
         entry: None,
+        fix: None,
     })
 }
 

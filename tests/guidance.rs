@@ -1501,6 +1501,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
             steer_before_resuming: false,
             handover: None,
             entry: None,
+            fix: None,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1740,6 +1741,7 @@ fn declared(
         steer_before_resuming: params.steer_before_resuming,
         handover: params.handover,
         entry: params.entry,
+        fix: params.fix,
     }
 }
 

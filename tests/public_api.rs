@@ -57,6 +57,7 @@ use fieldguide::guidance::{
     TickInput,
 };
 use fieldguide::guidance::{Entry, EntryParams, Handover, HandoverParams};
+use fieldguide::guidance::{FixKind, FixQuality, FixRule, FixRuleParams};
 use fieldguide::model::bicycle::{
     frenet_rates, world_rates, yaw_rate, Bicycle, Sideslip, SteeringLimit, Wheelbase,
 };
@@ -1838,6 +1839,23 @@ fn guidance_params(
             p.plan_delay = Some(seconds);
             p.behaviours[0].plan = PlanTolerance::new(m(0.3), rad(0.3)).ok();
         }
+        9 => {
+            p.fix = Some(FixRuleParams {
+                worst_kind: FixKind::RtkFloat,
+                max_accuracy: m(v),
+                path_dead_reckoning: m(v),
+                rejoin_slope: v,
+            });
+        }
+        10 => {
+            p.plan_dead_reckoning = Some(m(3.0));
+            p.fix = Some(FixRuleParams {
+                worst_kind: FixKind::RtkFixed,
+                max_accuracy: m(0.05),
+                path_dead_reckoning: m(2.0),
+                rejoin_slope: 0.1,
+            });
+        }
         _ => {}
     }
     p
@@ -1881,6 +1899,7 @@ proptest! {
         check!("guidance::config::GuidanceConfig::settle_ticks", config.settle_ticks());
         check!("guidance::config::GuidanceConfig::handover", config.handover());
         check!("guidance::config::GuidanceConfig::entry", config.entry());
+        check!("guidance::config::GuidanceConfig::fix", config.fix());
         let (path, replacement) = (path_of(&points), path_of(&other));
         let mut guidance: Pipeline<'_> = check!("guidance::Guidance::new", Guidance::new(config, &path)).unwrap();
         check!("guidance::Guidance::config", guidance.config());
@@ -1918,12 +1937,20 @@ proptest! {
                     Pose2::new(q.x() - left * h.sin(), q.y() + left * h.cos(), h + turn).ok()
                 }
             };
-            let out = check!("guidance::Guidance::step", guidance.step(&TickInput {
+            let input = TickInput {
                 scans: &scans,
                 gnss,
                 odometry,
                 extra: Sideslip { front, rear },
-            }));
+            };
+            let out = if stranger % 2 == 0 {
+                check!("guidance::Guidance::step", guidance.step(&input))
+            } else {
+                // Any kind, an accuracy of any finite size or none.
+                let kind = [FixKind::RtkFixed, FixKind::RtkFloat, FixKind::Single, FixKind::DeadReckoned][usize::from(stranger) % 4];
+                let accuracy = (stranger < 7).then(|| m(v));
+                check!("guidance::Guidance::step_with_fix", guidance.step_with_fix(&input, &FixQuality { kind, accuracy }))
+            };
             if let Ok(out) = out {
                 check!("guidance::LawOutcome::command", out.path.law.command());
                 for id in [presets::EDGE, presets::FURROW, BehaviourId(7)] {
@@ -2526,6 +2553,26 @@ proptest! {
         check!("guidance::handover::Handover::offset", rule.offset(start, travelled));
         check!("guidance::handover::Handover::is_over", rule.is_over(start, travelled));
         check!("guidance::handover::Handover::reference_error", rule.reference_error(&path, start, travelled));
+    }
+}
+
+// ---------------------------------------------------------------- fix quality (GD-FIX-QUALITY)
+
+proptest! {
+    #[test]
+    fn fix_rule(max_accuracy in meters(), carry in meters(), slope in raw(), sigma in meters(), start in meters(), travelled in meters(), path in tracking(), p in pose::<World>()) {
+        let params = FixRuleParams { worst_kind: FixKind::RtkFloat, max_accuracy, path_dead_reckoning: carry, rejoin_slope: slope };
+        check!("guidance::fix::FixRule::new", FixRule::new(&params));
+        let rule = FixRule::new(&params).unwrap_or(
+            FixRule::new(&FixRuleParams { worst_kind: FixKind::RtkFixed, max_accuracy: m(0.05), path_dead_reckoning: m(10.0), rejoin_slope: 0.1 }).unwrap(),
+        );
+        check!("guidance::fix::FixRule::params", rule.params());
+        for quality in [FixQuality::RTK_FIXED, FixQuality { kind: FixKind::Single, accuracy: Some(sigma) }] {
+            check!("guidance::fix::FixRule::accepts", rule.accepts(&quality));
+            check!("guidance::fix::FixRule::filter", rule.filter(Some(p), &quality));
+        }
+        check!("guidance::fix::FixRule::rejoin_offset", rule.rejoin_offset(start, travelled));
+        check!("guidance::fix::FixRule::rejoin_error", rule.rejoin_error(&path, start, travelled));
     }
 }
 

@@ -603,6 +603,7 @@ fn a_pipeline_without_behaviour_slots_is_refused() {
         steer_before_resuming: false,
         handover: None,
         entry: None,
+        fix: None,
     };
     let e = GuidanceConfig::new(&none).unwrap_err();
     assert_eq!(e.requirement, "SW-MODES");

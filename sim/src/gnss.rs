@@ -8,6 +8,9 @@
 //! the one without them, and a scenario without them draws nothing more: its
 //! runs are those of before.
 
+use fieldguide::guidance::{FixKind, FixQuality};
+use fieldguide::Meters;
+
 use crate::rng::SimRng;
 
 /// Mixed into the run's seed to seed the GNSS errors' own generator.
@@ -173,6 +176,30 @@ pub struct GnssError {
     pub offset_m: (f64, f64),
     /// Whether the fix is float at this tick.
     pub float: bool,
+    /// The spread per axis the float span adds, metres: √(noise² + jump²)
+    /// of `[gnss]` float_noise_m and float_jump_m; 0 while fixed.
+    pub float_sigma_m: f64,
+}
+
+impl GnssError {
+    /// What the receiver reports of this tick's fix, its white noise per
+    /// axis being `white_m` (`[noise] gnss_position_m`): RTK fixed with σ =
+    /// `white_m`, or RTK float with σ = √(white_m² + float_sigma_m²). A
+    /// receiver's σ is its own solution's spread: a slow drift or a bias
+    /// (a base station misplaced, multipath) is common to its measurements
+    /// and not in it, so neither raises σ.
+    #[must_use]
+    pub fn quality(&self, white_m: f64) -> FixQuality {
+        let (kind, sigma) = if self.float {
+            (FixKind::RtkFloat, white_m.hypot(self.float_sigma_m))
+        } else {
+            (FixKind::RtkFixed, white_m)
+        };
+        FixQuality {
+            kind,
+            accuracy: Meters::new(sigma).ok(),
+        }
+    }
 }
 
 /// The errors' state through a run.
@@ -208,6 +235,7 @@ impl GnssErrorState {
             return GnssError {
                 offset_m: (0.0, 0.0),
                 float: false,
+                float_sigma_m: 0.0,
             };
         };
         let draws = [
@@ -249,18 +277,21 @@ impl GnssErrorState {
             .float
             .as_ref()
             .is_some_and(|f| f.spans.contains(t_s, s_m));
+        let mut float_sigma_m = 0.0;
         if let (true, Some(f)) = (float, &self.errors.float) {
             let jump = *self
                 .jump
                 .get_or_insert((f.jump_m * draws[4], f.jump_m * draws[5]));
             dx += jump.0 + f.noise_m * draws[2];
             dy += jump.1 + f.noise_m * draws[3];
+            float_sigma_m = f.noise_m.hypot(f.jump_m);
         } else {
             self.jump = None;
         }
         GnssError {
             offset_m: (dx, dy),
             float,
+            float_sigma_m,
         }
     }
 }

@@ -7,7 +7,7 @@
 
 pub mod pipeline;
 
-use fieldguide::guidance::{Mode, PlanPose, RoutedScan};
+use fieldguide::guidance::{FixUse, Mode, PlanPose, RoutedScan};
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::{MetersPerSecond, Precondition, TrackingError, Verdict};
 
@@ -54,6 +54,9 @@ pub struct Command {
     /// The shift of path tracking's reference from the path during a
     /// hand-over, m, positive to the left (GD-HANDOVER); `None` without one.
     pub reference_offset: Option<f64>,
+    /// What path tracking steered on: the fix, the last good fix carried,
+    /// or nothing and why (GD-FIX-QUALITY).
+    pub fix: FixUse,
 }
 
 impl Command {

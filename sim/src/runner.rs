@@ -380,6 +380,7 @@ fn tick(
     let mut readings = sensors.read(state, setup.control.period_s, fix, rng)?;
     // The receiver's errors beyond its white noise (their own generator).
     let error = gnss.step(t_s, truth.s.get(), setup.control.period_s);
+    readings.gnss_quality = error.quality(setup.noise.gnss_position_m);
     if let (Some(p), true) = (readings.gnss, error.offset_m != (0.0, 0.0)) {
         readings.gnss = Some(Pose2::new(
             p.position.x() + error.offset_m.0,

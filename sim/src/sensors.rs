@@ -2,6 +2,7 @@
 //! wheel odometry. Each tick draws the same number of random values whatever
 //! the noise levels, from the run's one generator (see [`crate::rng`]).
 
+use fieldguide::guidance::{FixKind, FixQuality};
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::{Odom, Pose2, Precondition, World};
 
@@ -33,6 +34,10 @@ pub struct Readings {
     /// Estimated pose of O from RTK-GNSS (and IMU), world frame; `None`
     /// without a fix.
     pub gnss: Option<Pose2<World>>,
+    /// What the receiver says of that fix: RTK fixed with σ the white
+    /// noise `gnss_position_m`, unless the runner's GNSS errors say float
+    /// (`crate::gnss::GnssError::quality`).
+    pub gnss_quality: FixQuality,
     /// Pose of O from wheel odometry, odometry frame (the robot's start pose is its origin).
     pub odometry: Pose2<Odom>,
     /// The sideslip observer's estimate of β_F and β_R.
@@ -121,6 +126,10 @@ impl Sensors {
         let (x, y, th) = self.odometry;
         Ok(Readings {
             gnss: fix.then_some(gnss),
+            gnss_quality: FixQuality {
+                kind: FixKind::RtkFixed,
+                accuracy: fieldguide::Meters::new(n.gnss_position_m).ok(),
+            },
             odometry: Pose2::new(x, y, th)?,
             sideslip,
         })

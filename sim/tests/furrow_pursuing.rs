@@ -420,6 +420,7 @@ impl Guidance for Straight {
             detector: None,
             plan_pose: fieldguide::guidance::PlanPose::Unjudged,
             reference_offset: None,
+            fix: fieldguide::guidance::FixUse::Fix,
         })
     }
 }

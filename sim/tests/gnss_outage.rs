@@ -10,7 +10,9 @@
     clippy::panic
 )]
 
-use fieldguide::guidance::Mode;
+mod common;
+
+use fieldguide::guidance::{FixKind, FixUse, Mode};
 use fieldguide_sim::guidance::pipeline::FURROW;
 use fieldguide_sim::metrics::summarize;
 use fieldguide_sim::runner::{self, RunEnd, RunOutput, TickRecord};
@@ -177,4 +179,71 @@ fn the_plots_shade_the_outages_and_mark_each_stop_with_its_length() {
     let (clear, clear_out) = run("path-tracking");
     let lateral = fieldguide_sim::output::plots::lateral_error_svg(&clear, &clear_out.trace);
     assert!(!lateral.contains("GNSS fix lost") && !lateral.contains("stop "));
+}
+
+/// The float fix's plants: those the wheels reach while the fix of
+/// `gnss-drift-random-walk` is float (path abscissa 34-46 m, the front axle
+/// 2 m ahead of O): x from 28 to 44 m.
+const FLOAT_PLANTS_X: (f64, f64) = (28.0, 44.0);
+
+//= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+//= type=test
+//# When a fix rule is configured, a tick whose fix is not good MUST be
+//# processed as a tick without a fix: it MUST NOT be projected for path
+//# tracking or for the plan check, nor become the last fix of
+//# GD-PLAN-DEAD-RECKONING; without a rule every fix MUST be taken.
+/// The receiver says when its fix is float, and the fix rule keeps that fix
+/// from path tracking: over seeds 1-5 of `gnss-drift-random-walk`, no plant
+/// the wheels reach during the float span is crushed with the rule; without
+/// it, path tracking follows the float fix's 0.3-1 m jump into the beans.
+#[test]
+fn a_float_fix_reported_as_such_crushes_nothing_with_the_fix_rule() {
+    let source = common::stress_source("gnss-drift-random-walk");
+    let mut crushed_without = 0;
+    for seed in 1..=5 {
+        let (setup, mut rng) = runner::prepare_with_seed(&source, seed).unwrap();
+        let noise = setup.noise.gnss_position_m;
+        let out = runner::run(&setup, &mut rng);
+        assert_eq!(out.end, RunEnd::PathEnd, "seed {seed}");
+        let mut float_ticks = 0;
+        for r in &out.trace {
+            let q = r.readings.gnss_quality;
+            let sigma = q.accuracy.unwrap().get();
+            if r.gnss_float {
+                float_ticks += 1;
+                // Float, with the span's spread: √(0.015² + 0.1² + 0.3²).
+                assert_eq!(q.kind, FixKind::RtkFloat);
+                assert!((sigma - noise.hypot(0.1_f64.hypot(0.3))).abs() < 1e-12);
+                assert!(
+                    !matches!(r.command.fix, FixUse::Fix),
+                    "seed {seed}, t {}: path tracking on a float fix",
+                    r.t_s
+                );
+            } else {
+                // Fixed, with the receiver's white noise: the drift is not in it.
+                assert_eq!(q.kind, FixKind::RtkFixed);
+                assert_eq!(sigma, noise);
+                assert_eq!(r.command.fix, FixUse::Fix, "seed {seed}, t {}", r.t_s);
+            }
+        }
+        assert!(float_ticks > 1000, "seed {seed}: {float_ticks} float ticks");
+        let in_span = |out: &RunOutput| {
+            out.crushed
+                .iter()
+                .filter(|p| p.x_m >= FLOAT_PLANTS_X.0 && p.x_m < FLOAT_PLANTS_X.1)
+                .count()
+        };
+        assert_eq!(
+            in_span(&out),
+            0,
+            "seed {seed}: plants crushed over the float span"
+        );
+        // The same field and seed without the rule.
+        let mut off = source.clone();
+        off.text = common::without_key(&off.text, "fix_");
+        let (setup, mut rng) = runner::prepare_with_seed(&off, seed).unwrap();
+        assert!(setup.switching.fix.is_none());
+        crushed_without += in_span(&runner::run(&setup, &mut rng));
+    }
+    assert!(crushed_without > 20, "without the rule: {crushed_without}");
 }

@@ -5,6 +5,7 @@
 use heapless::Vec;
 
 use super::entry::{Entry, EntryParams};
+use super::fix::{FixRule, FixRuleParams};
 use super::handover::{Handover, HandoverParams};
 use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
@@ -112,6 +113,9 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// How a behaviour takes over from path tracking (GD-ENTRY); `None`:
     /// the behaviour's law gets its whole error at once, as Pierre 2022 does.
     pub entry: Option<EntryParams>,
+    /// Which GNSS fixes are good enough, and how far path tracking carries
+    /// the last good one (GD-FIX-QUALITY); `None`: every fix is taken.
+    pub fix: Option<FixRuleParams>,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -125,6 +129,7 @@ pub struct GuidanceConfig<C, L, const K: usize> {
     settle_ticks: u16,
     handover: Option<Handover>,
     entry: Option<Entry>,
+    fix: Option<FixRule>,
 }
 
 fn positive_speed(speed: MetersPerSecond, violated: &'static str) -> Result<(), Precondition> {
@@ -262,6 +267,9 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     /// - `GD-HANDOVER` when the hand-over's hold distance is negative or its
     ///   slope outside (0, 1].
     /// - `GD-ENTRY` when the entry's slope is outside (0, 1].
+    /// - `GD-FIX-QUALITY` when the fix rule's largest accuracy is not
+    ///   positive, its carry distance negative or its rejoin slope outside
+    ///   (0, 1].
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -353,6 +361,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
         let settle_ticks = settle_ticks(params.path.steering_lag, params.period)?;
         let handover = params.handover.as_ref().map(Handover::new).transpose()?;
         let entry = params.entry.as_ref().map(Entry::new).transpose()?;
+        let fix = params.fix.as_ref().map(FixRule::new).transpose()?;
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,
@@ -365,6 +374,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             settle_ticks,
             handover,
             entry,
+            fix,
         })
     }
 }
@@ -455,5 +465,11 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
     #[must_use]
     pub const fn entry(&self) -> Option<&Entry> {
         self.entry.as_ref()
+    }
+
+    /// The validated fix rule, if one is configured (GD-FIX-QUALITY).
+    #[must_use]
+    pub const fn fix(&self) -> Option<&FixRule> {
+        self.fix.as_ref()
     }
 }

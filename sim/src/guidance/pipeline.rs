@@ -121,6 +121,7 @@ pub fn params(
         steer_before_resuming: sw.steer_before_resuming,
         handover: sw.handover,
         entry: sw.entry,
+        fix: sw.fix,
     })
 }
 
@@ -181,12 +182,15 @@ impl Guidance for Pipeline<'_> {
                 self.core.set_path_speed(v)?;
             }
         }
-        let out = self.core.step(&fieldguide::guidance::TickInput {
-            scans: input.scans,
-            gnss: r.gnss,
-            odometry: r.odometry,
-            extra: r.sideslip,
-        })?;
+        let out = self.core.step_with_fix(
+            &fieldguide::guidance::TickInput {
+                scans: input.scans,
+                gnss: r.gnss,
+                odometry: r.odometry,
+                extra: r.sideslip,
+            },
+            &r.gnss_quality,
+        )?;
         let mode = out.source.unwrap_or(out.mode);
         // The behaviour whose status is recorded: the one in charge, else the
         // one of highest priority.
@@ -235,6 +239,7 @@ impl Guidance for Pipeline<'_> {
             detector,
             plan_pose: out.path.plan_pose,
             reference_offset: out.path.reference_offset.map(fieldguide::Meters::get),
+            fix: out.path.fix,
         };
         self.last = Some(out);
         Ok(command)

@@ -173,6 +173,33 @@ pub struct SwitchingSection {
     pub entry_closing_m: Option<f64>,
     /// Entry: the lead, m, in (0, 1000] [the vehicle's wheelbase].
     pub entry_lead_m: Option<f64>,
+    /// Fix rule (GD-FIX-QUALITY): a fix whose claimed horizontal σ is
+    /// above this, m, in (0, 1000], or of a kind worse than
+    /// `fix_worst_kind`, counts as no fix [off when absent].
+    pub fix_max_accuracy_m: Option<f64>,
+    /// Fix rule: the worst kind taken, `"rtk_fixed"`, `"rtk_float"`,
+    /// `"single"` or `"dead_reckoned"` [rtk_fixed].
+    pub fix_worst_kind: Option<FixKindName>,
+    /// Fix rule: how far path tracking steers on the last good fix carried
+    /// by odometry, m, in [0, 1000] [0: it stops commanding at once].
+    pub fix_dead_reckoning_m: Option<f64>,
+    /// Fix rule: how fast the step to a returning good fix is taken up,
+    /// metres per metre, in (0, 1] [0.1].
+    pub fix_rejoin_slope: Option<f64>,
+}
+
+/// A fix kind in `switching.fix_worst_kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FixKindName {
+    /// RTK fixed.
+    RtkFixed,
+    /// RTK float.
+    RtkFloat,
+    /// Single point or code differential.
+    Single,
+    /// The receiver's own dead reckoning.
+    DeadReckoned,
 }
 
 /// `[path]`: the reference path, from segments or from a CSV of waypoints.

@@ -151,6 +151,7 @@ pub fn drive_in(
         steer_before_resuming: false,
         handover: None,
         entry: None,
+        fix: None,
     };
     let config = GuidanceConfig::new(&params).map_err(s)?;
     let mut core: Box<Guidance<'_, PATH_VERTICES, VineDetector<RAYS, POINTS>, Strategy1, 1>> =

@@ -2,14 +2,15 @@
 //! its plan consistency check.
 
 use fieldguide::guidance::{
-    BehaviourId, Entry, EntryParams, Handover, HandoverParams, MAX_SCAN_AGE_TICKS,
+    BehaviourId, Entry, EntryParams, FixKind, FixRule, FixRuleParams, Handover, HandoverParams,
+    MAX_SCAN_AGE_TICKS,
 };
 use fieldguide::supervisor::switching::{PlanTolerance, MAX_DELAY_TICKS};
 use fieldguide::{Meters, Radians, Seconds};
 
 use crate::error::ScenarioError;
 use crate::scenario::check::Checker;
-use crate::scenario::schema::ScenarioFile;
+use crate::scenario::schema::{FixKindName, ScenarioFile, SwitchingSection};
 
 /// The id of furrow pursuing, the `[furrow]` section (`"furrow"` in
 /// `switching.priority`).
@@ -58,6 +59,8 @@ pub struct SwitchingSetup {
     pub handover: Option<HandoverParams>,
     /// The entry rule, when on (GD-ENTRY).
     pub entry: Option<EntryParams>,
+    /// The fix rule, when on (GD-FIX-QUALITY).
+    pub fix: Option<FixRuleParams>,
 }
 
 /// The switching settings of `[switching]`, each default taken when a field is absent.
@@ -183,7 +186,9 @@ pub(super) fn switching(
             Some(params)
         }
     };
+    let fix = fix_rule(&s, check)?;
     Ok(SwitchingSetup {
+        fix,
         priority: priority(s.priority.as_deref(), configured, check)?,
         edge_enter_s: pos("edge_enter_s", s.edge_enter_s, 0.4)?,
         edge_exit_s: pos("edge_exit_s", s.edge_exit_s, 0.26)?,
@@ -228,6 +233,56 @@ pub(super) fn switching(
             })
             .transpose()?,
     })
+}
+
+/// The fix rule of `switching.fix_*` (GD-FIX-QUALITY), on when its largest
+/// accuracy is set.
+fn fix_rule(
+    s: &SwitchingSection,
+    check: &Checker<'_>,
+) -> Result<Option<FixRuleParams>, ScenarioError> {
+    let Some(accuracy) = s.fix_max_accuracy_m else {
+        if s.fix_worst_kind.is_some()
+            || s.fix_dead_reckoning_m.is_some()
+            || s.fix_rejoin_slope.is_some()
+        {
+            return Err(check.error(
+                "switching.fix_max_accuracy_m",
+                "the fix rule needs its largest accuracy when its kind, dead reckoning or rejoin slope is set",
+            ));
+        }
+        return Ok(None);
+    };
+    let field = "switching.fix_max_accuracy_m";
+    let accuracy = check.range(field, accuracy, 0.0, 1000.0)?;
+    let carry_field = "switching.fix_dead_reckoning_m";
+    let carry = check.range(
+        carry_field,
+        s.fix_dead_reckoning_m.unwrap_or(0.0),
+        0.0,
+        1000.0,
+    )?;
+    let params = FixRuleParams {
+        worst_kind: match s.fix_worst_kind.unwrap_or(FixKindName::RtkFixed) {
+            FixKindName::RtkFixed => FixKind::RtkFixed,
+            FixKindName::RtkFloat => FixKind::RtkFloat,
+            FixKindName::Single => FixKind::Single,
+            FixKindName::DeadReckoned => FixKind::DeadReckoned,
+        },
+        max_accuracy: Meters::new(accuracy).map_err(|e| check.error(field, &e.to_string()))?,
+        path_dead_reckoning: Meters::new(carry)
+            .map_err(|e| check.error(carry_field, &e.to_string()))?,
+        rejoin_slope: s.fix_rejoin_slope.unwrap_or(0.1),
+    };
+    FixRule::new(&params).map_err(|e| {
+        let field = if accuracy <= 0.0 {
+            field
+        } else {
+            "switching.fix_rejoin_slope"
+        };
+        check.error(field, &e.to_string())
+    })?;
+    Ok(Some(params))
 }
 
 /// `switching.priority`: the ids of the named behaviours in order, each a

@@ -1,0 +1,325 @@
+//! A GNSS fix with its quality (`spec/guidance.md`, GD-FIX-QUALITY): the
+//! kind a receiver reports (NMEA GGA quality 4 / 5 / 1 / 6, UBX `carrSoln`)
+//! and its horizontal accuracy σ (UBX `hAcc`, GST), judged against a
+//! configured rule. A fix the rule refuses counts as no fix: the plan check
+//! carries the last good fix by odometry (GD-PLAN-DEAD-RECKONING) and path
+//! tracking, with a carry distance configured, steers on that carried pose,
+//! then stops with the reason named; when a good fix returns, the step
+//! between the carried pose and it is taken up at a bounded slope.
+//!
+//! Pierre 2022 assumes an RTK-fixed pose; a float fix 0.3-1 m off or a
+//! single-point one would steer path tracking beside the path by that much.
+
+use super::handover::shifted_error;
+use super::Guidance;
+use crate::control::ControlLaw;
+use crate::error::Precondition;
+use crate::geometry::frame::{Odom, Pose2, World};
+use crate::geometry::path::FrenetError;
+use crate::geometry::tracking::TrackingError;
+use crate::geometry::units::Meters;
+use crate::perception::Detector;
+
+/// The kind of a fix, from best to worst.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum FixKind {
+    /// RTK with the carrier ambiguities fixed (GGA quality 4): centimetres.
+    RtkFixed,
+    /// RTK float (GGA quality 5): decimetres, jumps when the ambiguities move.
+    RtkFloat,
+    /// Single point or differential code (GGA quality 1 or 2): metres.
+    Single,
+    /// The receiver's own dead reckoning (GGA quality 6): no satellite fix.
+    DeadReckoned,
+}
+
+/// What a receiver says of one fix.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixQuality {
+    /// The fix's kind.
+    pub kind: FixKind,
+    /// The horizontal accuracy σ the receiver claims, m; `None` when it
+    /// gives none (only the kind is judged). A negative σ is no accuracy
+    /// the rule can accept.
+    pub accuracy: Option<Meters>,
+}
+
+impl FixQuality {
+    /// An RTK-fixed fix without an accuracy figure: the quality
+    /// [`super::Guidance::step`] assumes (the behaviour before qualities).
+    pub const RTK_FIXED: Self = Self {
+        kind: FixKind::RtkFixed,
+        accuracy: None,
+    };
+}
+
+/// The rule a fix is judged by, as a user writes it; [`FixRule::new`]
+/// validates it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixRuleParams {
+    /// The worst kind accepted (`RtkFixed` between crop rows).
+    pub worst_kind: FixKind,
+    /// The largest horizontal σ accepted, m, > 0.
+    pub max_accuracy: Meters,
+    /// How far path tracking goes on the last good fix carried by odometry,
+    /// m, ≥ 0 (0: path tracking stops commanding at once without a good
+    /// fix); beyond it localisation is lost and the machine stops (SW-STOP).
+    pub path_dead_reckoning: Meters,
+    /// How fast the step between the carried pose and a returning good fix
+    /// is taken up, metres of lateral change per metre travelled, in (0, 1].
+    pub rejoin_slope: f64,
+}
+
+/// A validated fix rule (GD-FIX-QUALITY).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixRule {
+    params: FixRuleParams,
+}
+
+impl FixRule {
+    /// Validates `params` once.
+    ///
+    /// # Errors
+    /// `GD-FIX-QUALITY` when the largest σ is not positive, the carry
+    /// distance negative or the rejoin slope outside (0, 1] (NaN included).
+    //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+    //# A fix rule whose largest accuracy is not positive, whose path
+    //# dead-reckoning distance is negative or whose rejoin slope is not in (0, 1]
+    //# MUST be refused with `GD-FIX-QUALITY`.
+    pub fn new(params: &FixRuleParams) -> Result<Self, Precondition> {
+        if params.max_accuracy.get() <= 0.0 {
+            return Err(Precondition::new(
+                "GD-FIX-QUALITY",
+                "fix max_accuracy must be > 0",
+            ));
+        }
+        if params.path_dead_reckoning.get() < 0.0 {
+            return Err(Precondition::new(
+                "GD-FIX-QUALITY",
+                "fix path_dead_reckoning must not be negative",
+            ));
+        }
+        if !(params.rejoin_slope > 0.0 && params.rejoin_slope <= 1.0) {
+            return Err(Precondition::new(
+                "GD-FIX-QUALITY",
+                "fix rejoin_slope must lie in (0, 1]",
+            ));
+        }
+        Ok(Self { params: *params })
+    }
+
+    /// The validated parameters.
+    #[must_use]
+    pub const fn params(&self) -> &FixRuleParams {
+        &self.params
+    }
+
+    /// Whether a fix of `quality` is good enough: its kind at most the worst
+    /// accepted and its σ, when given, in [0, largest σ].
+    //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+    //# A fix MUST be good exactly when its kind is at most the rule's worst kind
+    //# (RTK fixed, then float, single, dead-reckoned) and its horizontal accuracy,
+    //# when the receiver gives one, is at least zero and at most the rule's largest
+    //# accuracy.
+    #[must_use]
+    pub fn accepts(&self, quality: &FixQuality) -> bool {
+        quality.kind <= self.params.worst_kind
+            && quality
+                .accuracy
+                .is_none_or(|s| s.get() >= 0.0 && s.get() <= self.params.max_accuracy.get())
+    }
+
+    /// The pose a tick's GNSS pose `gnss` of `quality` gives the core: the
+    /// pose when the fix is good, `None` otherwise.
+    #[must_use]
+    pub fn filter(&self, gnss: Option<Pose2<World>>, quality: &FixQuality) -> Option<Pose2<World>> {
+        gnss.filter(|_| self.accepts(quality))
+    }
+
+    /// The shift o(d) of path tracking's reference `travelled` metres after
+    /// a good fix returned with the step `start` (the fix's lateral error
+    /// less the carried pose's): o₀ (1 − S(d / D)), S(u) = 3u² − 2u³ the
+    /// smoothstep, D = 1.5 |o₀| / k, so that its rate starts and ends at zero
+    /// and never exceeds the rejoin slope k; zero from D on (a negative
+    /// distance counts as 0).
+    #[must_use]
+    pub fn rejoin_offset(&self, start: Meters, travelled: Meters) -> Meters {
+        let (o, _) = self.rejoin_shape(start, travelled);
+        o
+    }
+
+    /// The shift o(d) of [`FixRule::rejoin_offset`] and its rate do/dd.
+    fn rejoin_shape(&self, start: Meters, travelled: Meters) -> (Meters, f64) {
+        let o0 = start.get();
+        // 1.5 |o0| / k: finite (k ≥ a positive f64, |o0| finite) unless o0
+        // is beyond f64::MAX / 1.5 · k; an overflow ends the rejoin.
+        let length = 1.5 * libm::fabs(o0) / self.params.rejoin_slope;
+        let d = travelled.get().max(0.0);
+        if !(length.is_finite() && length > 0.0) || d >= length {
+            return (Meters::ZERO, 0.0);
+        }
+        let u = d / length;
+        let o = o0 * (1.0 - u * u * (3.0 - 2.0 * u));
+        let rate = -o0 * 6.0 * u * (1.0 - u) / length;
+        (Meters::new(o).unwrap_or(Meters::ZERO), rate)
+    }
+
+    /// Path tracking's error `path` (to the path, from the good fix) seen
+    /// from the path shifted by the rejoin's shift o(d) of
+    /// [`FixRule::rejoin_offset`]: y − o, θ̃ − atan(do/dd), c / (1 − o c).
+    ///
+    /// # Errors
+    /// `GD-HANDOVER` when the shifted path passes the path's centre of
+    /// curvature, `LIB-FINITE` on overflow.
+    //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+    //# When a good fix returns after ticks in which path tracking steered on the
+    //# carried pose, path tracking's error MUST be the error to the path shifted
+    //# sideways by o₀ (1 − S(d / D)), o₀ the fix's lateral error less the lateral
+    //# error of the last carried pose, d the odometry distance since, S(u) = 3u² −
+    //# 2u³ and D = 1.5 |o₀| / k with k the rejoin slope (zero from D on), the
+    //# angular deviation less atan of that shift's rate, in every tick in which no
+    //# entry (GD-ENTRY) or hand-over (GD-HANDOVER) shifts the reference.
+    pub fn rejoin_error(
+        &self,
+        path: &TrackingError,
+        start: Meters,
+        travelled: Meters,
+    ) -> Result<TrackingError, Precondition> {
+        let (o, rate) = self.rejoin_shape(start, travelled);
+        shifted_error(path, o.get(), rate)
+    }
+}
+
+/// What path tracking steered on in a tick.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FixUse {
+    /// The tick's fix (a good one, or any without a rule configured).
+    Fix,
+    /// No fix in the tick and no rule configured: nothing to steer on
+    /// (GD-LOCALISATION).
+    NoFix,
+    /// No good fix: the last good fix carried `travelled` metres by odometry.
+    Carried {
+        /// Odometry distance since the last good fix.
+        travelled: Meters,
+    },
+    /// No good fix and none to carry: no good fix yet, or farther than the
+    /// path dead-reckoning distance; the reason names GD-FIX-QUALITY.
+    Lost(Precondition),
+}
+
+/// A rejoin in progress: the shift it started with and the odometry
+/// distance since.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Rejoin {
+    pub(super) start: Meters,
+    pub(super) travelled: f64,
+}
+
+impl Rejoin {
+    /// The odometry distance since the rejoin, saturated to a finite value.
+    pub(super) fn travelled(&self) -> Meters {
+        Meters::new(self.travelled.min(f64::MAX)).unwrap_or(Meters::ZERO)
+    }
+}
+
+impl<const PATH: usize, D, L, const K: usize> Guidance<'_, PATH, D, L, K>
+where
+    D: Detector,
+    L: ControlLaw + Copy,
+    D::Config: Copy,
+{
+    /// What path tracking steers on in a tick whose good fix (if
+    /// `good_fix`) projected as `frenet`: that projection; without a good
+    /// fix and with a rule, the last good fix carried by odometry within the
+    /// path dead-reckoning distance, or nothing and why.
+    //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+    //# With a fix rule, in a tick without a good fix, path tracking MUST steer on
+    //# the pose of the last good fix moved by odometry, as GD-PLAN-DEAD-RECKONING
+    //# moves it, while the odometry distance since that fix is at most the rule's
+    //# path dead-reckoning distance; beyond it, and before the first good fix,
+    //# localisation MUST be invalid, with the reason named (`GD-FIX-QUALITY`).
+    pub(super) fn path_pose(
+        &self,
+        frenet: Option<FrenetError>,
+        good_fix: bool,
+        odometry: &Pose2<Odom>,
+    ) -> (Option<FrenetError>, FixUse) {
+        let Some(rule) = self.config.fix() else {
+            let used = if good_fix { FixUse::Fix } else { FixUse::NoFix };
+            return (frenet, used);
+        };
+        if good_fix {
+            return (frenet, FixUse::Fix);
+        }
+        match self.carried(odometry, rule.params().path_dead_reckoning) {
+            Ok((travelled, carried)) => (Some(carried), FixUse::Carried { travelled }),
+            Err(reason) => (None, FixUse::Lost(reason)),
+        }
+    }
+
+    /// The rejoin of this tick, after `travelled` metres of odometry: a
+    /// carried tick records its lateral error; the first good fix after
+    /// one starts a rejoin from the step between them; a rejoin whose shift
+    /// reached zero ends.
+    pub(super) fn rejoin(
+        &mut self,
+        frenet: Option<&FrenetError>,
+        used: &FixUse,
+        travelled: f64,
+    ) -> Option<Rejoin> {
+        let rule = *self.config.fix()?;
+        if let Some(r) = self.rejoining.as_mut() {
+            r.travelled += travelled;
+        }
+        match (used, frenet) {
+            (FixUse::Carried { .. }, Some(f)) => {
+                self.carried_y = Some(f.y);
+                self.rejoining = None;
+            }
+            (FixUse::Fix, Some(f)) => {
+                if let Some(before) = self.carried_y.take() {
+                    // Both finite lateral errors; a step that overflows starts nothing.
+                    self.rejoining =
+                        Meters::new(f.y.get() - before.get())
+                            .ok()
+                            .map(|start| Rejoin {
+                                start,
+                                travelled: 0.0,
+                            });
+                }
+            }
+            _ => {}
+        }
+        if self
+            .rejoining
+            .is_some_and(|r| rule.rejoin_offset(r.start, r.travelled()).get() == 0.0)
+        {
+            self.rejoining = None;
+        }
+        self.rejoining
+    }
+
+    /// Path tracking's error on `frenet`: to the path shifted by the rejoin
+    /// in progress, else as GD-ENTRY and GD-HANDOVER give it.
+    pub(super) fn rejoined_error(
+        &self,
+        frenet: &FrenetError,
+        rejoin: Option<Rejoin>,
+        reference: Option<(Meters, Meters)>,
+        approach: Option<(Meters, f64)>,
+    ) -> Result<TrackingError, Precondition> {
+        match (self.config.fix(), rejoin) {
+            (Some(rule), Some(r)) => {
+                rule.rejoin_error(&frenet.tracking_error(), r.start, r.travelled())
+            }
+            _ => self.path_error(frenet, reference, approach),
+        }
+    }
+
+    /// The shift of the rejoin `rejoin`, if one is in progress.
+    pub(super) fn rejoin_shift(&self, rejoin: Option<Rejoin>) -> Option<Meters> {
+        let rule = self.config.fix()?;
+        rejoin.map(|r| rule.rejoin_offset(r.start, r.travelled()))
+    }
+}
