@@ -10,7 +10,7 @@
 //! Pierre 2022 assumes an RTK-fixed pose; a float fix 0.3-1 m off or a
 //! single-point one would steer path tracking beside the path by that much.
 
-use super::handover::shifted_error;
+use super::handover::{shifted_error, Active};
 use super::Guidance;
 use crate::control::ControlLaw;
 use crate::error::Precondition;
@@ -209,19 +209,8 @@ pub enum FixUse {
 }
 
 /// A rejoin in progress: the shift it started with and the odometry
-/// distance since.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Rejoin {
-    pub(super) start: Meters,
-    pub(super) travelled: f64,
-}
-
-impl Rejoin {
-    /// The odometry distance since the rejoin, saturated to a finite value.
-    pub(super) fn travelled(&self) -> Meters {
-        Meters::new(self.travelled.min(f64::MAX)).unwrap_or(Meters::ZERO)
-    }
-}
+/// distance since (the hand-over's record, GD-HANDOVER).
+pub(super) type Rejoin = Active;
 
 impl<const PATH: usize, D, L, const K: usize> Guidance<'_, PATH, D, L, K>
 where
