@@ -8,6 +8,7 @@
 //! re-attaching never move a model and never allocate.
 
 use heapless::Vec;
+
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro128PlusPlus;
 
@@ -811,7 +812,7 @@ impl<const N: usize> Ruby<N> {
         for _ in 0..p.iterations {
             let (best, candidate) = pair(&mut self.sets, self.kept);
             candidate.copy_from(best, n);
-            search(candidate, points, &mut self.rng, &p);
+            let drew = search(candidate, points, &mut self.rng, &p);
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
             let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
             let gone = delete(candidate, &candidate_stats, &p);
@@ -825,6 +826,10 @@ impl<const N: usize> Ruby<N> {
                 best_energy = e;
                 stats = candidate_stats;
                 accepted = accepted.saturating_add(1);
+            } else if !drew {
+                // The next iterations would start from the same set with the
+                // generator where it was: the same set, discarded again.
+                break;
             }
         }
 
@@ -896,9 +901,13 @@ fn energy<const N: usize>(
     let mut neighbour = 0.0;
     for (w, pair) in weights.iter().zip(masks.windows(2)) {
         if let [m, q] = pair {
-            if (m & set.alive) != (q & set.alive) {
-                neighbour += w;
-            }
+            // A select rather than a branch on the points' models; adding
+            // +0 leaves the sum as it was, bit for bit.
+            neighbour += if (m & set.alive) != (q & set.alive) {
+                *w
+            } else {
+                0.0
+            };
         }
     }
     let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
@@ -927,7 +936,7 @@ fn search<const N: usize>(
     points: &[RowPoint],
     rng: &mut Xoshiro128PlusPlus,
     p: &RubyParams,
-) {
+) -> bool {
     set.seeded = 0;
     if p.variant.split_sides() {
         //= spec/guyonneau2022.md#ruby-split-sides-seeds-left-and-right
@@ -935,10 +944,11 @@ fn search<const N: usize>(
         //# robot (y > 0), then on those right of it (y < 0), each with half
         //# the iteration's model budget, rounded up.
         let budget = p.models_per_iteration.div_ceil(2);
-        search_side(set, points, rng, p, budget, |y| y > 0.0);
-        search_side(set, points, rng, p, budget, |y| y < 0.0);
+        let left = search_side(set, points, rng, p, budget, |y| y > 0.0);
+        let right = search_side(set, points, rng, p, budget, |y| y < 0.0);
+        left || right
     } else {
-        search_side(set, points, rng, p, p.models_per_iteration, |_| true);
+        search_side(set, points, rng, p, p.models_per_iteration, |_| true)
     }
 }
 
@@ -949,7 +959,7 @@ fn search_side<const N: usize>(
     p: &RubyParams,
     budget: u16,
     side: impl Fn(f64) -> bool,
-) {
+) -> bool {
     let mut outliers: Vec<u16, N> = Vec::new();
     for (i, (pt, &m)) in points.iter().zip(set.masks.iter()).enumerate() {
         if m & set.alive == 0 && side(pt.position.y()) {
@@ -998,6 +1008,7 @@ fn search_side<const N: usize>(
             }
         }
     }
+    added > 0
 }
 
 /// Whether two models are one (Alg. 1, line 13).
