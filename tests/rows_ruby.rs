@@ -762,9 +762,9 @@ fn seeds_are_three_outliers() {
 //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
 //= type=test
 //# A model's line MUST be fitted to its points by iteratively reweighted
-//# least squares: a least-squares start (FIT-LINE), then the configured
-//# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
-//# point's residual in y to the line before.
+//# least squares: a least-squares start, then the configured number of
+//# weighted fits with w = 1 / max(|r|, 1 mm), r the point's residual in y
+//# to the line before.
 //= spec/guyonneau2022.md#ruby-merge-close-models-merged
 //= type=test
 //# Every model MUST be refitted by least squares to its points in each

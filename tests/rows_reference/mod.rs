@@ -24,7 +24,7 @@
     clippy::unwrap_used
 )]
 
-use fieldguide::geometry::fit::{fit_line, fit_line_weighted};
+use fieldguide::geometry::fit::MIN_RELATIVE_X_SPREAD;
 use fieldguide::perception::rows::points::RowPoint;
 use fieldguide::perception::rows::ruby::{RubyParams, LAD_FLOOR, MAX_MODELS, SEED_POINTS};
 use fieldguide::{Point2, Robot};
@@ -51,26 +51,52 @@ impl Line {
     }
 
     /// Least squares, then `rounds` re-weightings by 1 / max(|r|, 1 mm)
-    /// (RUBY-FIT).
+    /// (RUBY-FIT), each the weighted least-squares line of the sums about
+    /// the first point.
     fn fit(points: &[Point2<Robot>], rounds: u8) -> Option<Self> {
-        let mut line = fit_line(points.iter().copied()).ok()?;
+        let first = points.first()?;
+        let (x0, y0) = (first.x(), first.y());
+        let shifted: Vec<(f64, f64)> = points.iter().map(|p| (p.x() - x0, p.y() - y0)).collect();
+        let mut weights = vec![1.0; points.len()];
+        let (mut a, mut c) = weighted_line(&shifted, &weights)?;
         for _ in 0..rounds {
-            let weighted = points.iter().map(|p| {
-                let r = (p.y() - line.a * p.x() - line.b).abs();
-                (*p, 1.0 / r.max(LAD_FLOOR))
-            });
-            match fit_line_weighted(weighted) {
-                Ok(next) => line = next,
-                Err(_) => break,
+            for (w, &(u, v)) in weights.iter_mut().zip(&shifted) {
+                *w = 1.0 / (v - a * u - c).abs().max(LAD_FLOOR);
+            }
+            if weights.iter().any(|&w| w <= 0.0 || w.is_nan()) {
+                break;
+            }
+            match weighted_line(&shifted, &weights) {
+                Some(next) => (a, c) = next,
+                None => break,
             }
         }
-        Self::new(line.a, line.b)
+        Self::new(a, y0 + c - a * x0)
     }
 
     fn same(&self, other: &Self, p: &RubyParams) -> bool {
         (self.a - other.a).abs() < p.parallel_slope
             && (self.b - other.b).abs() < p.same_intercept.get()
     }
+}
+
+/// The weighted least-squares line v = a u + c through `points` (u, v),
+/// as (a, c), from Σ w, Σ w u, Σ w v, Σ w u², Σ w u v summed in point order
+/// (RUBY-FIT); none when the u are all the same (to MIN_RELATIVE_X_SPREAD)
+/// or a result is not finite.
+fn weighted_line(points: &[(f64, f64)], weights: &[f64]) -> Option<(f64, f64)> {
+    let (mut sw, mut su, mut sv, mut suu, mut suv) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (&(u, v), &w) in points.iter().zip(weights) {
+        sw += w;
+        su += w * u;
+        sv += w * v;
+        suu += w * u * u;
+        suv += w * u * v;
+    }
+    let det = sw * suu - su * su;
+    let a = (sw * suv - su * sv) / det;
+    let c = (sv - a * su) / sw;
+    (det > MIN_RELATIVE_X_SPREAD * sw * suu && a.is_finite() && c.is_finite()).then_some((a, c))
 }
 
 /// One model returned: line, points, energy.
@@ -350,6 +376,10 @@ fn search_side(
         if let Some(line) = Line::fit(&three, 0) {
             set.lines[slot] = Some(line);
             set.fitted |= bit(slot);
+            // The slot's fit mask is the new model's: its seeds.
+            for f in &mut set.fit_masks {
+                *f &= !bit(slot);
+            }
             for i in seed {
                 set.masks[i] = bit(slot);
                 set.fit_masks[i] = bit(slot);

@@ -8,6 +8,7 @@
 //! re-attaching never move a model and never allocate.
 
 use heapless::Vec;
+
 use rand_core::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro128PlusPlus;
 
@@ -300,96 +301,90 @@ impl Line {
     /// start (RUBY-FIT), if determined.
     //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
     //# A model's line MUST be fitted to its points by iteratively reweighted
-    //# least squares: a least-squares start (FIT-LINE), then the configured
-    //# number of weighted fits (FIT-WEIGHTS) with w = 1 / max(|r|, 1 mm), r the
-    //# point's residual in y to the line before.
+    //# least squares: a least-squares start, then the configured number of
+    //# weighted fits with w = 1 / max(|r|, 1 mm), r the point's residual in y
+    //# to the line before.
+    //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
+    //# Each fit MUST be the weighted least-squares line of the sums about the
+    //# model's first point (x₀, y₀) in ray order: with u = x − x₀ and v = y − y₀,
+    //# S = Σ w, S_u = Σ w u, S_v = Σ w v, S_uu = Σ w u u and S_uv = Σ w u v summed
+    //# in ray order (w u computed once per point), D = S S_uu − S_u S_u, the slope
+    //# a = (S S_uv − S_u S_v) / D, c = (S_v − a S_u) / S and the intercept
+    //# b = y₀ + c − a x₀; the least-squares start has every w = 1, and a fit with
+    //# D ≤ 10⁻¹² S S_uu (the points' x the same) or a result not finite MUST give
+    //# no line (the start) or end the re-weighting with the line before.
     ///
-    /// `weights` is as long as the columns at least (the fit is refused
-    /// where it is shorter). The arithmetic is that of
-    /// `geometry::fit::fit_line` and `fit_line_weighted`, operation for
-    /// operation in their order (weighted means and the spread of x, then
-    /// sums over the centred and scaled points), so that the line is the
-    /// same, bit for bit: `fit_line` is the weighted fit with every weight 1,
-    /// and the spread of x, the same in every round, is found once.
-    fn fit(xs: &[f64], ys: &[f64], rounds: u8, weights: &mut [f64]) -> Option<Self> {
-        let weights = weights.get_mut(..xs.len())?;
-        let (mut min_x, mut max_x) = (f64::INFINITY, f64::NEG_INFINITY);
-        let (mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64);
-        for ((&x, &y), w) in xs.iter().zip(ys).zip(weights.iter_mut()) {
-            *w = 1.0;
-            sum_x += x;
-            sum_y += y;
-            // The points are finite: as `f64::min` and `f64::max` (a zero's
-            // sign aside, which leaves the spread the same).
-            if x < min_x {
-                min_x = x;
-            }
-            if x > max_x {
-                max_x = x;
-            }
+    /// Each fit is one pass over the points (RUBY-FIT's sums about the first
+    /// point, in its order): no division by the spread of x, and a
+    /// re-weighting computes its weights in the pass that sums them.
+    fn fit(xs: &[f64], ys: &[f64], rounds: u8) -> Option<Self> {
+        let (&x0, &y0) = (xs.first()?, ys.first()?);
+        let mut sums = Moments::ZERO;
+        for (&x, &y) in xs.iter().zip(ys) {
+            sums.add(1.0, x - x0, y - y0);
         }
-        let spread = (min_x, max_x);
-        let sums = (count_f64(xs.len()), sum_x, sum_y);
-        let (mut a, mut b) = centred_fit(xs, ys, weights, sums, spread)?;
+        let (mut a, mut c) = sums.line()?;
         for _ in 0..rounds {
-            let (mut weight, mut sum_x, mut sum_y) = (0.0_f64, 0.0_f64, 0.0_f64);
+            let mut sums = Moments::ZERO;
             // A weight is finite, and > 0 unless the residual overflows.
             let mut valid = true;
-            for ((&x, &y), w) in xs.iter().zip(ys).zip(weights.iter_mut()) {
-                let r = libm::fabs(y - a * x - b);
-                *w = 1.0 / if r > LAD_FLOOR { r } else { LAD_FLOOR };
-                valid &= *w > 0.0;
-                weight += *w;
-                sum_x += *w * x;
-                sum_y += *w * y;
+            for (&x, &y) in xs.iter().zip(ys) {
+                let (u, v) = (x - x0, y - y0);
+                let r = libm::fabs(v - a * u - c);
+                let w = 1.0 / if r > LAD_FLOOR { r } else { LAD_FLOOR };
+                valid &= w > 0.0;
+                sums.add(w, u, v);
             }
-            if !valid {
-                break;
-            }
-            match centred_fit(xs, ys, weights, (weight, sum_x, sum_y), spread) {
-                Some(next) => (a, b) = next,
+            match sums.line().filter(|_| valid) {
+                Some(next) => (a, c) = next,
                 None => break,
             }
         }
-        Self::new(a, b)
+        Self::new(a, y0 + c - a * x0)
     }
 }
 
-/// The weighted least-squares line y = a x + b through the points of
-/// columns `xs`, `ys` with `weights` (FIT-WEIGHTS), from the sums of the
-/// weights and of the weighted x and y and the least and greatest x: the
-/// second pass of `geometry::fit::fit_line_weighted`, its checks included
-/// (`None` where it gives an error).
-fn centred_fit(
-    xs: &[f64],
-    ys: &[f64],
-    weights: &[f64],
-    (weight, sum_x, sum_y): (f64, f64, f64),
-    (min_x, max_x): (f64, f64),
-) -> Option<(f64, f64)> {
-    if xs.len() < 2 {
-        return None;
+/// The weighted sums of a fit about its first point (x₀, y₀) (RUBY-FIT):
+/// Σ w, Σ w u, Σ w v, Σ w u², Σ w u v with u = x − x₀, v = y − y₀.
+#[derive(Debug, Clone, Copy)]
+struct Moments {
+    w: f64,
+    u: f64,
+    v: f64,
+    uu: f64,
+    uv: f64,
+}
+
+impl Moments {
+    const ZERO: Self = Self {
+        w: 0.0,
+        u: 0.0,
+        v: 0.0,
+        uu: 0.0,
+        uv: 0.0,
+    };
+
+    /// Adds the point (u, v) with weight `w`, in RUBY-FIT's order.
+    #[inline]
+    fn add(&mut self, w: f64, u: f64, v: f64) {
+        let wu = w * u;
+        self.w += w;
+        self.u += wu;
+        self.v += w * v;
+        self.uu += wu * u;
+        self.uv += wu * v;
     }
-    let mean_x = sum_x / weight;
-    let mean_y = sum_y / weight;
-    let h = (max_x - mean_x).max(mean_x - min_x);
-    if !(mean_x.is_finite() && mean_y.is_finite() && h.is_finite())
-        || h < MIN_RELATIVE_X_SPREAD * mean_x.abs().max(1.0)
-    {
-        return None;
+
+    /// The line v = a u + c of least weighted squares, as (a, c): `None`
+    /// when the points' x are the same to [`MIN_RELATIVE_X_SPREAD`] or an
+    /// operation overflows (RUBY-FIT).
+    fn line(&self) -> Option<(f64, f64)> {
+        let det = self.w * self.uu - self.u * self.u;
+        let determined = det > MIN_RELATIVE_X_SPREAD * self.w * self.uu;
+        let a = (self.w * self.uv - self.u * self.v) / det;
+        let c = (self.v - a * self.u) / self.w;
+        (determined && a.is_finite() && c.is_finite()).then_some((a, c))
     }
-    let (mut suu, mut suv) = (0.0_f64, 0.0_f64);
-    for ((&x, &y), &w) in xs.iter().zip(ys).zip(weights) {
-        let (u, v) = ((x - mean_x) / h, y - mean_y);
-        suu += w * u * u;
-        suv += w * u * v;
-    }
-    if suu.is_nan() || suu <= 0.0 {
-        return None;
-    }
-    let a = suv / suu / h;
-    let b = mean_y - a * mean_x;
-    (a.is_finite() && b.is_finite()).then_some((a, b))
 }
 
 /// One model of a set, with its points' count and energy (eq. 6).
@@ -488,23 +483,24 @@ struct ModelSet<const N: usize> {
     /// models moved since may be out of date.
     dist: [f64; N],
     rank: [f64; N],
-    /// Models seeded by this iteration's search, and each one's points in
-    /// ray order (valid until the merge that follows the search).
+    /// Models seeded by this iteration's search (until the merge that
+    /// follows it).
     seeded: u64,
-    seeds: [[usize; SEED_POINTS]; MAX_MODELS],
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
 #[derive(Debug, Clone, Copy)]
+/// Slot `MAX_MODELS` is a sink for the outliers' sums, never read, so that
+/// a pass over the points adds every point without a branch.
 struct Stats {
-    count: [usize; MAX_MODELS],
-    energy: [f64; MAX_MODELS],
+    count: [usize; MAX_MODELS + 1],
+    energy: [f64; MAX_MODELS + 1],
 }
 
 impl Stats {
     const ZERO: Self = Self {
-        count: [0; MAX_MODELS],
-        energy: [0.0; MAX_MODELS],
+        count: [0; MAX_MODELS + 1],
+        energy: [0.0; MAX_MODELS + 1],
     };
 
     fn add(&mut self, k: usize, distance: f64) {
@@ -534,7 +530,6 @@ impl<const N: usize> ModelSet<N> {
         dist: [0.0; N],
         rank: [NO_RANK; N],
         seeded: 0,
-        seeds: [[0; SEED_POINTS]; MAX_MODELS],
     };
 
     fn line(&self, k: usize) -> Line {
@@ -558,35 +553,6 @@ impl<const N: usize> ModelSet<N> {
         copy_first(&mut self.rank, &other.rank, n);
     }
 
-    /// The line fitted to the points of indices `members`, ascending
-    /// (RUBY-FIT), their coordinates taken from `cols` into `scratch`.
-    fn fit_points(
-        &self,
-        members: &[usize],
-        cols: &Columns<N>,
-        scratch: &mut Scratch<N>,
-        rounds: u8,
-    ) -> Option<Line> {
-        let mut count = 0_usize;
-        for &i in members {
-            if let (Some(&x), Some(&y), Some(mx), Some(my)) = (
-                cols.xs.get(i),
-                cols.ys.get(i),
-                scratch.xs.get_mut(count),
-                scratch.ys.get_mut(count),
-            ) {
-                (*mx, *my) = (x, y);
-                count = count.saturating_add(1);
-            }
-        }
-        Line::fit(
-            scratch.xs.get(..count).unwrap_or(&[]),
-            scratch.ys.get(..count).unwrap_or(&[]),
-            rounds,
-            &mut scratch.weights,
-        )
-    }
-
     /// The line of model `k` fitted to its points (RUBY-FIT), the points'
     /// coordinates taken from `cols` (the first `n`) into `scratch`.
     fn fit(
@@ -602,20 +568,18 @@ impl<const N: usize> ModelSet<N> {
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
         let masks = self.masks.get(..n).unwrap_or(&[]);
+        // Every point written at the end of the list, which grows by the
+        // points of the model: no branch on the masks.
         for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
-            if m & b != 0 {
-                if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count))
-                {
-                    (*mx, *my) = (x, y);
-                    count = count.saturating_add(1);
-                }
+            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
+                (*mx, *my) = (x, y);
             }
+            count = count.saturating_add(usize::from(m & b != 0));
         }
         Line::fit(
             scratch.xs.get(..count).unwrap_or(&[]),
             scratch.ys.get(..count).unwrap_or(&[]),
             rounds,
-            &mut scratch.weights,
         )
     }
 }
@@ -630,12 +594,11 @@ fn copy_first<T: Copy, const N: usize>(to: &mut [T; N], from: &[T; N], n: usize)
     }
 }
 
-/// Room for one model's fit: its points' coordinates and their weights.
+/// Room for one model's fit: its points' coordinates.
 #[derive(Debug, Clone)]
 struct Scratch<const N: usize> {
     xs: [f64; N],
     ys: [f64; N],
-    weights: [f64; N],
 }
 
 /// Ruby's line finder with its seeded generator and the set it carries from
@@ -679,7 +642,6 @@ impl<const N: usize> Ruby<N> {
             scratch: Scratch {
                 xs: [0.0; N],
                 ys: [0.0; N],
-                weights: [0.0; N],
             },
             columns: Columns {
                 xs: [0.0; N],
@@ -811,7 +773,7 @@ impl<const N: usize> Ruby<N> {
         for _ in 0..p.iterations {
             let (best, candidate) = pair(&mut self.sets, self.kept);
             candidate.copy_from(best, n);
-            search(candidate, points, &mut self.rng, &p);
+            let drew = search(candidate, points, &mut self.rng, &p);
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
             let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
             let gone = delete(candidate, &candidate_stats, &p);
@@ -825,6 +787,10 @@ impl<const N: usize> Ruby<N> {
                 best_energy = e;
                 stats = candidate_stats;
                 accepted = accepted.saturating_add(1);
+            } else if !drew {
+                // The next iterations would start from the same set with the
+                // generator where it was: the same set, discarded again.
+                break;
             }
         }
 
@@ -896,9 +862,9 @@ fn energy<const N: usize>(
     let mut neighbour = 0.0;
     for (w, pair) in weights.iter().zip(masks.windows(2)) {
         if let [m, q] = pair {
-            if (m & set.alive) != (q & set.alive) {
-                neighbour += w;
-            }
+            // Without a branch on the points' models: w · 1 is w and adding
+            // w · 0 = +0 leaves the sum as it was, bit for bit.
+            neighbour += w * f64::from(u8::from((m & set.alive) != (q & set.alive)));
         }
     }
     let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
@@ -927,7 +893,7 @@ fn search<const N: usize>(
     points: &[RowPoint],
     rng: &mut Xoshiro128PlusPlus,
     p: &RubyParams,
-) {
+) -> bool {
     set.seeded = 0;
     if p.variant.split_sides() {
         //= spec/guyonneau2022.md#ruby-split-sides-seeds-left-and-right
@@ -935,10 +901,11 @@ fn search<const N: usize>(
         //# robot (y > 0), then on those right of it (y < 0), each with half
         //# the iteration's model budget, rounded up.
         let budget = p.models_per_iteration.div_ceil(2);
-        search_side(set, points, rng, p, budget, |y| y > 0.0);
-        search_side(set, points, rng, p, budget, |y| y < 0.0);
+        let left = search_side(set, points, rng, p, budget, |y| y > 0.0);
+        let right = search_side(set, points, rng, p, budget, |y| y < 0.0);
+        left || right
     } else {
-        search_side(set, points, rng, p, p.models_per_iteration, |_| true);
+        search_side(set, points, rng, p, p.models_per_iteration, |_| true)
     }
 }
 
@@ -949,7 +916,7 @@ fn search_side<const N: usize>(
     p: &RubyParams,
     budget: u16,
     side: impl Fn(f64) -> bool,
-) {
+) -> bool {
     let mut outliers: Vec<u16, N> = Vec::new();
     for (i, (pt, &m)) in points.iter().zip(set.masks.iter()).enumerate() {
         if m & set.alive == 0 && side(pt.position.y()) {
@@ -975,14 +942,8 @@ fn search_side<const N: usize>(
         if let [Some(a), Some(b), Some(c)] = seeds {
             let xs = [a.x(), b.x(), c.x()];
             let ys = [a.y(), b.y(), c.y()];
-            if let (Some(line), Some(l), Some(points)) = (
-                Line::fit(&xs, &ys, 0, &mut [0.0; SEED_POINTS]),
-                set.lines.get_mut(slot),
-                set.seeds.get_mut(slot),
-            ) {
+            if let (Some(line), Some(l)) = (Line::fit(&xs, &ys, 0), set.lines.get_mut(slot)) {
                 *l = line;
-                *points = seed;
-                points.sort_unstable();
                 set.seeded |= bit(slot);
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
@@ -998,11 +959,13 @@ fn search_side<const N: usize>(
             }
         }
     }
+    added > 0
 }
 
 /// Whether two models are one (Alg. 1, line 13).
 fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
-    libm::fabs(x.a - y.a) < p.parallel_slope && libm::fabs(x.b - y.b) < p.same_intercept.get()
+    // Both tests evaluated, without a branch between them.
+    (libm::fabs(x.a - y.a) < p.parallel_slope) & (libm::fabs(x.b - y.b) < p.same_intercept.get())
 }
 
 /// Merges models that are the same and refits every model to its points
@@ -1016,7 +979,9 @@ fn same(x: &Line, y: &Line, p: &RubyParams) -> bool {
 //# merged set changes nothing.
 //= spec/guyonneau2022.md#ruby-merge-close-models-merged
 //# Every model MUST be refitted by least squares to its points in each
-//# iteration's first merge pass, merged or not.
+//# iteration's first merge pass, merged or not, except a model seeded by
+//# this iteration's search, which keeps the least-squares line of its seeds
+//# unless it absorbs another.
 fn merge<const N: usize>(
     set: &mut ModelSet<N>,
     cols: &Columns<N>,
@@ -1024,7 +989,9 @@ fn merge<const N: usize>(
     scratch: &mut Scratch<N>,
     p: &RubyParams,
 ) {
-    // Models whose points changed since they were fitted.
+    // Models whose points changed since they were fitted. A model seeded by
+    // the search holds the seeds its line was fitted to, whatever bits an
+    // older model of its slot left in the fit masks (RUBY-MERGE).
     let changed = set
         .masks
         .get(..n)
@@ -1032,7 +999,7 @@ fn merge<const N: usize>(
         .iter()
         .zip(set.fit_masks.get(..n).unwrap_or(&[]))
         .fold(0_u64, |acc, (m, f)| acc | (m ^ f));
-    set.fitted &= !changed;
+    set.fitted &= !changed | set.seeded;
     // The first pass refits; each later pass but the last merges, removing
     // a model: at most MAX_MODELS + 1 passes.
     for pass in 0..=MAX_MODELS {
@@ -1044,9 +1011,7 @@ fn merge<const N: usize>(
             let mut absorbed = 0_u64;
             let lj = set.line(j);
             for k in slots(set.alive & !bit(j)).filter(|&k| k > j) {
-                if same(&lj, &set.line(k), p) {
-                    absorbed |= bit(k);
-                }
+                absorbed |= bit(k) & 0_u64.wrapping_sub(u64::from(same(&lj, &set.line(k), p)));
             }
             if absorbed != 0 {
                 merged_any = true;
@@ -1059,17 +1024,7 @@ fn merge<const N: usize>(
                 set.moved |= bit(j);
             }
             if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                // A model seeded by the search holds its seeds alone until
-                // it absorbs another.
-                let seeds = set
-                    .seeds
-                    .get(j)
-                    .filter(|_| absorbed == 0 && set.seeded & bit(j) != 0);
-                let fitted = match seeds {
-                    Some(&seeds) => set.fit_points(&seeds, cols, scratch, p.fit_rounds),
-                    None => set.fit(j, cols, n, scratch, p.fit_rounds),
-                };
-                if let Some(line) = fitted {
+                if let Some(line) = set.fit(j, cols, n, scratch, p.fit_rounds) {
                     if let Some(l) = set.lines.get_mut(j) {
                         // A line moved may now be the same as one before it.
                         if *l != line {
@@ -1367,11 +1322,10 @@ fn reattach<const N: usize>(
             }
         }
         for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
+            // An outlier (slot `MAX_MODELS`) goes to the sink.
             let k = slot_of(r);
             *m = bit(k);
-            if k < MAX_MODELS {
-                stats.add(k, best);
-            }
+            stats.add(k, best);
         }
     }
     set.moved = 0;
@@ -1464,6 +1418,110 @@ mod tests {
                 .map_or(0, |(_, k)| bit(k));
             assert_eq!(set.masks[i], expected, "point {i} at ({x}, {y})");
         }
+    }
+
+    //= spec/guyonneau2022.md#ruby-fit-models-fitted-by-least-absolute-deviations
+    //= type=test
+    //# Each fit MUST be the weighted least-squares line of the sums about the
+    //# model's first point (x₀, y₀) in ray order: with u = x − x₀ and v = y − y₀,
+    //# S = Σ w, S_u = Σ w u, S_v = Σ w v, S_uu = Σ w u u and S_uv = Σ w u v summed
+    //# in ray order (w u computed once per point), D = S S_uu − S_u S_u, the slope
+    //# a = (S S_uv − S_u S_v) / D, c = (S_v − a S_u) / S and the intercept
+    //# b = y₀ + c − a x₀; the least-squares start has every w = 1, and a fit with
+    //# D ≤ 10⁻¹² S S_uu (the points' x the same) or a result not finite MUST give
+    //# no line (the start) or end the re-weighting with the line before.
+    #[test]
+    fn a_fit_is_the_line_of_the_sums_about_the_first_point() {
+        use crate::geometry::fit::fit_line;
+        // Points on y = 0.3 x − 1.2 far from the origin: the line itself.
+        let xs = [100.0, 100.5, 101.25, 102.0, 103.5];
+        let ys = xs.map(|x| 0.3 * x - 1.2);
+        let line = Line::fit(&xs, &ys, 4);
+        assert!(line.is_some_and(|l| (l.a - 0.3).abs() < 1e-12 && (l.b + 1.2).abs() < 1e-9));
+        // The start is the least-squares line of FIT-LINE, to rounding.
+        let noisy = [0.3, -0.2, 0.25, 0.0, -0.1];
+        let ys: [f64; 5] = core::array::from_fn(|i| ys[i] + noisy[i]);
+        let points: [Point2<Robot>; 5] =
+            core::array::from_fn(|i| Point2::new(xs[i], ys[i]).unwrap());
+        let lsq = fit_line(points);
+        let start = Line::fit(&xs, &ys, 0);
+        assert!(matches!((lsq, start), (Ok(q), Some(l))
+            if (l.a - q.a).abs() < 1e-9 && (l.b - q.b).abs() < 1e-7));
+        // Re-weighting pulls the line to the points on it: three on
+        // y = 0.3 x − 1.2, one 1 m off, a fifth 0.5 m off.
+        let ys = [
+            0.3 * 100.0 - 1.2,
+            0.3 * 100.5 - 1.2,
+            0.3 * 101.25 - 1.2 + 1.0,
+            0.3 * 102.0 - 1.2,
+            0.3 * 103.5 - 1.2 - 0.5,
+        ];
+        let lad = Line::fit(&xs, &ys, 4);
+        let ls = Line::fit(&xs, &ys, 0);
+        let off = |l: Line| (l.a * 100.5 + l.b - (0.3 * 100.5 - 1.2)).abs();
+        assert!(matches!((lad, ls), (Some(lad), Some(ls)) if off(lad) < off(ls) / 2.0));
+        // The same x: no line.
+        assert!(Line::fit(&[2.0; 4], &[0.0, 1.0, 2.0, 3.0], 4).is_none());
+    }
+
+    //= spec/guyonneau2022.md#ruby-merge-close-models-merged
+    //= type=test
+    //# Every model MUST be refitted by least squares to its points in each
+    //# iteration's first merge pass, merged or not, except a model seeded by
+    //# this iteration's search, which keeps the least-squares line of its seeds
+    //# unless it absorbs another.
+    #[test]
+    fn a_seed_keeps_its_line_wherever_it_is_stored() -> Result<(), Precondition> {
+        let p = RubyParams::authors(Variant::Rgop);
+        // Seeds (0, 0), (1, 0.1), (2, 0.05) in slot 1, whose fit masks an
+        // older model of slot 1 left on points 3-5; slot 0 a far row whose
+        // points did not change.
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.1),
+            (2.0, 0.05),
+            (0.5, 3.0),
+            (1.5, 3.0),
+            (2.5, 3.0),
+        ];
+        let mut cols = Columns::<N> {
+            xs: [0.0; N],
+            ys: [0.0; N],
+        };
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            cols.xs[i] = x;
+            cols.ys[i] = y;
+        }
+        let seed = Line::fit(&cols.xs[..3], &cols.ys[..3], 0)
+            .ok_or(Precondition::new("RUBY-FIT", "a seed's line"))?;
+        let row = Line::new(0.0, 3.0).ok_or(Precondition::new("RUBY-FIT", "a finite line"))?;
+        let mut set = ModelSet::<N> {
+            alive: 0b11,
+            fitted: 0b11,
+            moved: 0b10,
+            seeded: 0b10,
+            ..ModelSet::EMPTY
+        };
+        set.lines[0] = row;
+        set.lines[1] = seed;
+        set.masks[..6].copy_from_slice(&[2, 2, 2, 1, 1, 1]);
+        set.fit_masks[..6].copy_from_slice(&[2, 2, 2, 3, 3, 3]);
+        let mut scratch = Scratch::<N> {
+            xs: [0.0; N],
+            ys: [0.0; N],
+        };
+        merge(&mut set, &cols, pts.len(), &mut scratch, &p);
+        // The seed keeps its least-squares line; re-weighted, its three
+        // points would give another.
+        assert_eq!(set.lines[1], seed);
+        assert_ne!(
+            Line::fit(&cols.xs[..3], &cols.ys[..3], p.fit_rounds),
+            Some(seed)
+        );
+        // The row, whose points changed since its fit (the old bits), is
+        // refitted to its points: y = 3.
+        assert!((set.lines[0].b - 3.0).abs() < 1e-12 && set.lines[0].a.abs() < 1e-12);
+        Ok(())
     }
 
     //= spec/guyonneau2022.md#ruby-reattach-points-re-attached
