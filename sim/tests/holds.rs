@@ -449,8 +449,8 @@ fn a_row_of_trunks_is_one_structure() {
 //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
 //= type=test
 //# While the valid detections of that behaviour put at least 3 anchors
-//# spanning at least three quarters of the bridge length within the bridge
-//# length of odometry up to the newest anchor, the line carried MUST be the
+//# spanning at least a quarter of the bridge length within two bridge
+//# lengths of odometry up to the newest anchor, the line carried MUST be the
 //# structure line instead of the latest valid line.
 #[test]
 fn a_ragged_hedge_with_gaps_is_followed_on_its_envelope() {
