@@ -248,7 +248,8 @@ pub struct BehaviourStatus {
     /// The plan-consistency flag given to the machine (GD-PLAN).
     pub plan_consistent: bool,
     /// When the estimate is the last valid line carried across a scan that
-    /// found nothing (GD-BRIDGE): the odometry distance since that line's scan.
+    /// found nothing (GD-BRIDGE), or whose line disagreed with the structure
+    /// line (GD-BRIDGE-AGREE): the odometry distance since that line's scan.
     pub bridged: Option<Meters>,
     /// The behaviour's law on its error, run only for a valid estimate.
     pub law: LawOutcome,
@@ -362,9 +363,16 @@ impl<D: Detector> Slot<D> {
             }
             (Some(_), _) => bridge::ScanOutcome::Refused,
         };
-        self.bridge
+        let disagreed = self
+            .bridge
             .record(outcome, &carry.odometry, carry.travelled, bridge);
-        if !carry.active || estimate.verdict.estimate_is_valid() {
+        // A valid line that disagrees with the structure line is bridged
+        // over like a gap until the next scan (GD-BRIDGE-AGREE).
+        //= spec/guidance.md#gd-bridge-agree-a-line-that-disagrees-with-the-structure-line-is-bridged
+        //# Until the behaviour's next scan, the
+        //# behaviour of the active specialised mode MUST then report Hold with the
+        //# error of GD-BRIDGE, as for a scan that found nothing.
+        if !carry.active || (estimate.verdict.estimate_is_valid() && !disagreed) {
             return estimate;
         }
         match self.bridge.carried(&carry.odometry, bridge) {

@@ -302,6 +302,7 @@ proptest! {
             max_link: values[9],
             max_turn: values[10],
             min_points,
+            ..EdgeParameters::PIERRE2022
         };
         match EdgeConfig::new(&params) {
             Err(e) => prop_assert!(e.requirement == "EDGE-CONFIG" || e.requirement == "SW-THRESHOLDS"),

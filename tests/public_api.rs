@@ -777,7 +777,7 @@ proptest! {
 
 /// Edge parameters: Table 1's, one of them replaced by anything.
 fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
-    (0..13_usize, raw(), 0..8_usize)
+    (0..15_usize, raw(), 0..8_usize)
         .prop_map(|(field, v, points)| {
             let mut p = EdgeParameters::PIERRE2022;
             match field {
@@ -793,6 +793,8 @@ fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
                 9 => p.sigma_enter = v,
                 10 => p.sigma_exit = v,
                 11 => p.min_points = points,
+                12 => p.min_end_chain_length = v,
+                13 => p.max_start_ahead = v,
                 _ => {}
             }
             p
@@ -841,6 +843,8 @@ proptest! {
         check!("perception::edge::config::EdgeConfig::max_width", config.max_width());
         check!("perception::edge::config::EdgeConfig::min_points", config.min_points());
         check!("perception::edge::config::EdgeConfig::thresholds", config.thresholds());
+        check!("perception::edge::config::EdgeConfig::min_end_chain_length", config.min_end_chain_length());
+        check!("perception::edge::config::EdgeConfig::max_start_ahead", config.max_start_ahead());
         check!("perception::edge::config::Side::sign", s.sign());
         check!("perception::edge::config::Side::mirrored", s.mirrored());
         check!("perception::edge::chain::translation_contact", translation_contact(q, s, radius));

@@ -392,6 +392,10 @@ fn sweep_pass(name: &str, bridge: bool, envelope_line: bool) -> PassFigures {
                             if bridge {
                                 t
                             } else {
+                                // The piece-end rule needs the bridge: without
+                                // it, the paper's detector.
+                                let t = common::without_key(&t, "end_chain_length_m");
+                                let t = common::without_key(&t, "max_start_ahead_m");
                                 common::without_key(&t, "bridge_m")
                             }
                         });
@@ -441,16 +445,17 @@ fn a_row_of_trunks_is_one_structure() {
 /// The true line of a ragged hedge is its envelope's offset line: the face
 /// the robot must keep clear of, and the one the rolling circle (radius r)
 /// of the detector traces. Against it the robot keeps far closer than
-/// against the nominal face's offset line. Without the bridge the gaps
-/// switch modes 12-14 times a pass; with it (4 m, GD-BRIDGE-STEADY) at most
-/// 6 times, most passes twice, but the single scans' lines bent at the
-/// pieces' ends still take the robot up to about 0.35 m off (README,
+/// against the nominal face's offset line. Without the bridge (and the
+/// piece-end rule) the gaps switch modes 12-14 times a pass; with the
+/// bridge (6 m, GD-BRIDGE-STEADY, GD-BRIDGE-AGREE) and the piece-end rule
+/// (EDGE-PIECE-END) at most twice, but the straight structure line keeps
+/// the robot only within about 0.43 m of the envelope's wiggles (README,
 /// stress campaign, "Open").
 //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
 //= type=test
 //# While the valid detections of that behaviour put at least 3 anchors
-//# spanning at least three quarters of the bridge length within the bridge
-//# length of odometry up to the newest anchor, the line carried MUST be the
+//# spanning at least a quarter of the bridge length within two bridge
+//# lengths of odometry up to the newest anchor, the line carried MUST be the
 //# structure line instead of the latest valid line.
 #[test]
 fn a_ragged_hedge_with_gaps_is_followed_on_its_envelope() {
@@ -459,9 +464,6 @@ fn a_ragged_hedge_with_gaps_is_followed_on_its_envelope() {
     assert!(without.nominal_mean_m > 2.0 * without.mean_m, "{without:?}");
     assert!(without.switches <= 14, "{without:?}");
     let with = sweep_pass("hedge-ragged", true, true);
-    assert!(
-        with.switches <= 6 && with.switches * 2 < without.switches,
-        "{with:?}"
-    );
-    assert!(with.mean_m < 0.08 && with.max_m < 0.4, "{with:?}");
+    assert!(with.switches <= 2, "{with:?}");
+    assert!(with.mean_m < 0.09 && with.max_m < 0.45, "{with:?}");
 }

@@ -26,9 +26,27 @@ const ANCHORS_PER_BRIDGE: f64 = 16.0;
 /// The fewest anchors of a structure line.
 const MIN_ANCHORS: f64 = 3.0;
 
+/// The structure line is fitted to the anchors of this many bridge lengths
+/// of odometry up to the newest one (GD-BRIDGE-STEADY).
+const WINDOW_BRIDGES: f64 = 2.0;
+
+/// The fewest bridge lengths the anchors of a structure line must span
+/// (GD-BRIDGE-STEADY).
+const MIN_SPAN_BRIDGES: f64 = 0.25;
+
 /// Anchors farther than this from the first fit are outliers, left out of
 /// the refit (GD-BRIDGE-STEADY), m.
 const OUTLIER_M: f64 = 0.15;
+
+/// The largest difference in lateral error, at the robot, between a valid
+/// detection and the structure line for the detection to agree with it
+/// (GD-BRIDGE-AGREE), m.
+pub(super) const AGREE_M: f64 = 0.15;
+
+/// The largest difference in angular deviation between a valid detection
+/// and the structure line for the detection to agree with it
+/// (GD-BRIDGE-AGREE), rad.
+pub(super) const AGREE_RAD: f64 = 0.15;
 
 /// A behaviour's latest valid detection (Enter or Hold, steady): its
 /// tracking error at its scan's pose, where the robot was then, and the
@@ -101,33 +119,45 @@ pub(super) struct Bridge {
     last: Option<LastValid>,
     anchors: Deque<Anchor, ANCHOR_CAPACITY>,
     odometer: f64,
+    /// Whether the latest scan was a valid detection that disagreed with
+    /// the structure line (GD-BRIDGE-AGREE): held until the next scan.
+    disagreed: bool,
 }
 
 impl Bridge {
     /// Updates the bridge after a tick whose odometry pose is `odometry`,
     /// the robot having moved `travelled` metres since the previous tick: a
-    /// valid detection becomes the last valid line and an anchor, a refused
-    /// scan ends both (a failing sensor is not a gap), otherwise the
-    /// distance grows.
+    /// valid detection becomes an anchor, and the last valid line when it
+    /// agrees with the structure line (GD-BRIDGE-AGREE); a refused scan ends both
+    /// (a failing sensor is not a gap), otherwise the distance grows.
+    /// Returns `true` while the latest scan (this tick's or the one held
+    /// since) was a valid detection that disagreed with the structure line:
+    /// bridged over like a gap until the next scan.
     pub(super) fn record<L>(
         &mut self,
         scan: ScanOutcome<'_, L>,
         odometry: &Pose2<Odom>,
         travelled: f64,
         bridge: Meters,
-    ) {
+    ) -> bool {
         self.odometer += travelled;
         if let Some(l) = self.last.as_mut() {
             l.travelled += travelled;
         }
+        if !matches!(scan, ScanOutcome::None) {
+            self.disagreed = false;
+        }
         match scan {
             ScanOutcome::Read(d) if d.verdict.estimate_is_valid() => {
-                self.last = d.error.map(|error| LastValid {
-                    error,
-                    odom: *odometry,
-                    travelled: 0.0,
-                });
                 if let Some(error) = d.error {
+                    self.disagreed = self.disagrees(&error, odometry, bridge);
+                    if !self.disagreed {
+                        self.last = Some(LastValid {
+                            error,
+                            odom: *odometry,
+                            travelled: 0.0,
+                        });
+                    }
                     self.push(Anchor::of(&error, odometry, self.odometer), bridge);
                 }
             }
@@ -137,6 +167,36 @@ impl Bridge {
             }
             ScanOutcome::Read(_) | ScanOutcome::None => {}
         }
+        self.disagreed
+    }
+
+    /// Whether `error`, a valid detection's error at `odometry`, differs
+    /// from the structure line's there by more than [`AGREE_M`] laterally or
+    /// [`AGREE_RAD`] in heading, while the bridge could carry that line (its
+    /// last valid line at most `bridge` metres back). Without a structure
+    /// line, or past the bridge, every detection agrees.
+    //= spec/guidance.md#gd-bridge-agree-a-line-that-disagrees-with-the-structure-line-is-bridged
+    //# While the bridge could carry the structure line (GD-BRIDGE-STEADY), a
+    //# valid detection whose tracking error at the current pose differs from
+    //# the structure line's by more than 0.15 m in lateral error or by more
+    //# than 0.15 rad in angular deviation MUST NOT become the latest valid
+    //# line; it still puts its anchor.
+    fn disagrees(&self, error: &TrackingError, odometry: &Pose2<Odom>, bridge: Meters) -> bool {
+        if self
+            .last
+            .as_ref()
+            .is_none_or(|l| l.travelled > bridge.get())
+        {
+            return false;
+        }
+        let Some(held) = self.structure(bridge).and_then(|s| s.error_at(odometry)) else {
+            return false;
+        };
+        let dy = libm::fabs(error.y.get() - held.y.get());
+        let dt = libm::fabs(wrap_raw(
+            error.angular_deviation.get() - held.angular_deviation.get(),
+        ));
+        !(dy <= AGREE_M && dt <= AGREE_RAD)
     }
 
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
@@ -164,18 +224,18 @@ impl Bridge {
 
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
     //# The structure line MUST be the
-    //# least-squares straight line through the anchors within the bridge length of
+    //# least-squares straight line through the anchors within two bridge lengths of
     //# odometry up to the newest one, refitted once without the anchors farther
     //# than 0.15 m from the first fit.
     /// The structure line (GD-BRIDGE-STEADY): the least-squares straight
-    /// line through the anchors of the `bridge` metres of odometry up to the
+    /// line through the anchors of two `bridge` lengths of odometry up to the
     /// newest one, fitted in the newest anchor's frame, then refitted
     /// without the anchors farther than 0.15 m from it; `None` with fewer
-    /// than 3 anchors or a span under three quarters of `bridge`.
+    /// than 3 anchors or a span under a quarter of `bridge`.
     fn structure(&self, bridge: Meters) -> Option<StructureLine> {
         let newest = *self.anchors.back()?;
         let (s, c) = (libm::sin(newest.heading), libm::cos(newest.heading));
-        let from = newest.at - bridge.get();
+        let from = newest.at - WINDOW_BRIDGES * bridge.get();
         let frame = |a: &Anchor| {
             let (dx, dy) = (a.x - newest.x, a.y - newest.y);
             (dx * c + dy * s, -dx * s + dy * c)
@@ -207,8 +267,8 @@ impl Bridge {
     //# estimate MUST be that of GD-SCAN-AGE.
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
     //# While the valid detections of that behaviour put at least 3 anchors
-    //# spanning at least three quarters of the bridge length within the bridge
-    //# length of odometry up to the newest anchor, the line carried MUST be the
+    //# spanning at least a quarter of the bridge length within two bridge
+    //# lengths of odometry up to the newest anchor, the line carried MUST be the
     //# structure line instead of the latest valid line.
     pub(super) fn carried(
         &self,
@@ -233,7 +293,7 @@ impl Bridge {
 /// The least-squares line v = m u + q through `points` (u along the newest
 /// anchor's heading, v to its left), leaving out the points farther than
 /// 0.15 m from `first` when given; `None` with fewer than 3 points, a span
-/// of less than three quarters of `bridge`, or a degenerate fit.
+/// of less than a quarter of `bridge`, or a degenerate fit.
 fn fit(
     points: impl Iterator<Item = (f64, f64)>,
     bridge: Meters,
@@ -253,7 +313,7 @@ fn fit(
         low = low.min(u);
         high = high.max(u);
     }
-    if n < MIN_ANCHORS || high - low < 0.75 * bridge.get() {
+    if n < MIN_ANCHORS || high - low < MIN_SPAN_BRIDGES * bridge.get() {
         return None;
     }
     let denominator = n * suu - su * su;
@@ -312,7 +372,7 @@ mod tests {
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
     //= type=test
     //# The structure line MUST be the
-    //# least-squares straight line through the anchors within the bridge length of
+    //# least-squares straight line through the anchors within two bridge lengths of
     //# odometry up to the newest one, refitted once without the anchors farther
     //# than 0.15 m from the first fit.
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
@@ -325,12 +385,12 @@ mod tests {
     fn noisy_headings_and_a_bent_piece_end_give_the_true_line() -> Result<(), Precondition> {
         let length = Meters::new(4.0)?;
         let mut bridge = Bridge::default();
-        // Headings off by ±0.2 rad scan to scan, offsets by ±2 cm, and the
+        // Headings off by ±0.12 rad scan to scan, offsets by ±2 cm, and the
         // last 0.3 m a piece end bent 0.25 m off.
         let last = drive(&mut bridge, length, 6.0, |x, even| {
             let sign = if even { 1.0 } else { -1.0 };
             let bend = if x > 5.7 { 0.25 } else { 0.0 };
-            (0.02 * sign + bend, 0.2 * sign)
+            (0.02 * sign + bend, 0.12 * sign)
         })?;
         // One anchor per 0.25 m (7 steps of 0.04 m) over 6 m.
         assert_eq!(bridge.anchors.len(), 22);
@@ -361,16 +421,16 @@ mod tests {
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
     //= type=test
     //# While the valid detections of that behaviour put at least 3 anchors
-    //# spanning at least three quarters of the bridge length within the bridge
-    //# length of odometry up to the newest anchor, the line carried MUST be the
+    //# spanning at least a quarter of the bridge length within two bridge
+    //# lengths of odometry up to the newest anchor, the line carried MUST be the
     //# structure line instead of the latest valid line.
     #[test]
     fn too_short_a_span_carries_the_latest_line() -> Result<(), Precondition> {
         let length = Meters::new(4.0)?;
         let mut bridge = Bridge::default();
-        // 2 m of detections (half the bridge), the last one 0.2 rad off.
-        let last = drive(&mut bridge, length, 2.0, |x, _| {
-            if x >= 2.0 - 1e-9 {
+        // 0.8 m of detections (a fifth of the bridge), the last one 0.2 rad off.
+        let last = drive(&mut bridge, length, 0.8, |x, _| {
+            if x >= 0.8 - 1e-9 {
                 (0.0, 0.2)
             } else {
                 (0.0, 0.0)
@@ -387,6 +447,107 @@ mod tests {
         // A refused scan clears the anchors and the line.
         bridge.record(ScanOutcome::<()>::Refused, &last, 0.04, length);
         assert!(bridge.anchors.is_empty() && bridge.carried(&last, length).is_none());
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-agree-a-line-that-disagrees-with-the-structure-line-is-bridged
+    //= type=test
+    //# While the bridge could carry the structure line (GD-BRIDGE-STEADY), a
+    //# valid detection whose tracking error at the current pose differs from
+    //# the structure line's by more than 0.15 m in lateral error or by more
+    //# than 0.15 rad in angular deviation MUST NOT become the latest valid
+    //# line; it still puts its anchor.
+    //= spec/guidance.md#gd-bridge-agree-a-line-that-disagrees-with-the-structure-line-is-bridged
+    //= type=test
+    //# Until the behaviour's next scan, the
+    //# behaviour of the active specialised mode MUST then report Hold with the
+    //# error of GD-BRIDGE, as for a scan that found nothing.
+    #[test]
+    fn a_piece_end_line_is_bridged_and_still_anchored() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+        let before = bridge.last.map(|l| l.odom);
+        let anchors = bridge.anchors.len();
+        // One more step: the piece end's line, 0.4 m and 0.5 rad off.
+        let next = |dx: f64| {
+            Pose2::new(
+                last.position.x() + dx,
+                0.1 * libm::sin(last.position.x() + dx),
+                0.1 * libm::cos(last.position.x() + dx),
+            )
+        };
+        let pose = next(0.3)?;
+        let truth =
+            |p: &Pose2<Odom>| (p.position.y() * libm::cos(p.heading.get()), p.heading.get());
+        let (y, theta) = truth(&pose);
+        assert!(bridge.record(
+            ScanOutcome::Read(&valid(y + 0.4, theta - 0.5)),
+            &pose,
+            0.3,
+            length
+        ));
+        assert_eq!(bridge.last.map(|l| l.odom), before);
+        assert_eq!(bridge.anchors.len(), anchors + 1);
+        // Until the next scan the flag holds, and what is carried is the
+        // structure line: the truth, not the piece end's line.
+        let pose = next(0.34)?;
+        assert!(bridge.record(ScanOutcome::<()>::None, &pose, 0.04, length));
+        let (error, _) = bridge
+            .carried(&pose, length)
+            .ok_or_else(|| Precondition::new("T", "not carried"))?;
+        let (y, theta) = truth(&pose);
+        assert!((error.y.get() - y).abs() < 0.02, "{error:?}");
+        assert!(
+            (error.angular_deviation.get() - theta).abs() < 0.02,
+            "{error:?}"
+        );
+        // Lines just inside both bounds agree and become the latest line.
+        let pose = next(0.38)?;
+        let (y, theta) = truth(&pose);
+        assert!(!bridge.record(
+            ScanOutcome::Read(&valid(y + 0.13, theta - 0.13)),
+            &pose,
+            0.04,
+            length
+        ));
+        assert_eq!(bridge.last.map(|l| l.odom), Some(pose));
+        // Either bound alone makes a line disagree.
+        for (dy, dt) in [(0.17, 0.0), (0.0, 0.17), (-0.17, 0.0), (0.0, -0.17)] {
+            let mut copy = bridge.clone();
+            assert!(copy.record(
+                ScanOutcome::Read(&valid(y + dy, theta + dt)),
+                &pose,
+                0.0,
+                length
+            ));
+        }
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-agree-a-line-that-disagrees-with-the-structure-line-is-bridged
+    //= type=test
+    //# While the bridge could carry the structure line (GD-BRIDGE-STEADY), a
+    //# valid detection whose tracking error at the current pose differs from
+    //# the structure line's by more than 0.15 m in lateral error or by more
+    //# than 0.15 rad in angular deviation MUST NOT become the latest valid
+    //# line; it still puts its anchor.
+    #[test]
+    fn past_the_bridge_length_every_line_is_taken_again() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+        // 4.5 m of scans that found nothing: the bridge has lapsed.
+        let pose = Pose2::new(last.position.x() + 4.5, 0.0, 0.0)?;
+        assert!(!bridge.record(ScanOutcome::<()>::None, &pose, 4.5, length));
+        assert!(bridge.carried(&pose, length).is_none());
+        // A line 0.4 m off the old structure line is taken: a structure
+        // that really moved is followed.
+        assert!(!bridge.record(ScanOutcome::Read(&valid(0.4, 0.0)), &pose, 0.04, length));
+        assert_eq!(bridge.last.map(|l| l.odom), Some(pose));
+        // A refused scan clears the flag with the rest.
+        bridge.record(ScanOutcome::Read(&valid(5.0, 0.0)), &pose, 0.04, length);
+        assert!(!bridge.record(ScanOutcome::<()>::Refused, &pose, 0.04, length));
         Ok(())
     }
 }

@@ -804,6 +804,14 @@ pub struct EdgeSection {
     pub enter_residual_m: f64,
     /// σ_path, residual standard deviation above which it must leave, metres (Table 1: 0.5).
     pub exit_residual_m: f64,
+    /// l_end: a chain stopped by a gap, a corner or the rotation limit must
+    /// be longer than this to be followed (EDGE-PIECE-END), metres; absent: 0, never.
+    #[serde(default)]
+    pub end_chain_length_m: f64,
+    /// x_ahead: a chain whose first point lies farther ahead of the robot
+    /// is not followed (EDGE-PIECE-END), metres; absent: never.
+    #[serde(default)]
+    pub max_start_ahead_m: Option<f64>,
 }
 
 fn default_period_s() -> f64 {

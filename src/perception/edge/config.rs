@@ -78,6 +78,14 @@ pub struct EdgeParameters {
     /// σ_path: residual standard deviation above which edge following is
     /// left, metres (Table 1: 0.5 m).
     pub sigma_exit: f64,
+    /// l_end, metres, ≥ 0: a chain stopped by a break of the edge (a gap, a
+    /// corner, the rotation limit) must be longer than l_end to be followed
+    /// (EDGE-PIECE-END; not in the paper). 0 never acts.
+    pub min_end_chain_length: f64,
+    /// x_ahead, metres, > 0: a chain whose first point lies farther ahead
+    /// of the robot than x_ahead starts at a piece's end face and is not
+    /// followed (EDGE-PIECE-END; not in the paper). `f64::MAX` never acts.
+    pub max_start_ahead: f64,
 }
 
 impl EdgeParameters {
@@ -85,7 +93,8 @@ impl EdgeParameters {
     /// choices for the values the paper does not give: θ_max = π/2,
     /// l_min = 1.5 m, w_max = 1 m, 5 points at least (`spec/pierre2022.md`,
     /// EDGE-CONFIG), and the rules beyond the paper: l_link = 1 m (EDGE-GAP)
-    /// and φ_turn = π/4 (EDGE-CORNER).
+    /// and φ_turn = π/4 (EDGE-CORNER); the piece-end rule is off
+    /// (EDGE-PIECE-END: l_end = 0, x_ahead = `f64::MAX`).
     pub const PIERRE2022: Self = Self {
         radius: 1.0,
         max_rotation: FRAC_PI_2,
@@ -99,6 +108,8 @@ impl EdgeParameters {
         min_points: 5,
         sigma_enter: 0.15,
         sigma_exit: 0.5,
+        min_end_chain_length: 0.0,
+        max_start_ahead: f64::MAX,
     };
 }
 
@@ -117,6 +128,8 @@ pub struct EdgeConfig {
     max_width: f64,
     min_points: usize,
     thresholds: QualityThresholds,
+    min_end_chain_length: f64,
+    max_start_ahead: f64,
 }
 
 fn require(ok: bool, violated: &'static str) -> Result<(), Precondition> {
@@ -133,7 +146,8 @@ impl EdgeConfig {
     /// Errors with `EDGE-CONFIG` naming the failed condition (every value
     /// finite; `r > 0`; `0 < θ_max < 2π`; `l_max > 0`; search distance > 0;
     /// `D ≥ 0`; `0 ≤ l_min < l_max`; `l_link > 0`; `0 < φ_turn ≤ π`;
-    /// `w_max > 0`; at least 4 points; `σ_edge > 0`), and with
+    /// `w_max > 0`; at least 4 points; `σ_edge > 0`; `l_end ≥ 0`;
+    /// `x_ahead > 0`), and with
     /// `SW-THRESHOLDS` when `σ_edge < σ_path` does not hold.
     //= spec/pierre2022.md#edge-config-detector-configuration
     //# A configuration MUST be refused at construction, with an error naming
@@ -141,6 +155,9 @@ impl EdgeConfig {
     //# distance is > 0, D ≥ 0, 0 ≤ l_min < l_max, l_link > 0,
     //# 0 < φ_turn ≤ π, w_max > 0, the fewest chain points is at least 4 and
     //# 0 < σ_edge < σ_path, every value being finite.
+    //= spec/pierre2022.md#edge-piece-end-a-chain-at-a-piece-s-end-is-not-followed
+    //# A configuration MUST be refused with `EDGE-CONFIG` unless l_end ≥ 0 and
+    //# x_ahead > 0, both finite.
     pub fn new(p: &EdgeParameters) -> Result<Self, Precondition> {
         let values = [
             p.radius,
@@ -154,6 +171,8 @@ impl EdgeConfig {
             p.max_width,
             p.sigma_enter,
             p.sigma_exit,
+            p.min_end_chain_length,
+            p.max_start_ahead,
         ];
         require(
             values.iter().all(|v| v.is_finite()),
@@ -179,6 +198,14 @@ impl EdgeConfig {
         require(p.max_width > 0.0, "w_max must be > 0")?;
         require(p.min_points >= 4, "the fewest chain points must be >= 4")?;
         require(p.sigma_enter > 0.0, "sigma_edge must be > 0")?;
+        require(
+            p.min_end_chain_length >= 0.0,
+            "the piece-end chain length l_end must be >= 0",
+        )?;
+        require(
+            p.max_start_ahead > 0.0,
+            "the farthest chain start ahead x_ahead must be > 0",
+        )?;
         let thresholds = QualityThresholds::new(p.sigma_enter, p.sigma_exit, Better::Lower)?;
         Ok(Self {
             radius: p.radius,
@@ -198,6 +225,8 @@ impl EdgeConfig {
             max_width: p.max_width,
             min_points: p.min_points,
             thresholds,
+            min_end_chain_length: p.min_end_chain_length,
+            max_start_ahead: p.max_start_ahead,
         })
     }
 
@@ -269,6 +298,19 @@ impl EdgeConfig {
     #[must_use]
     pub const fn min_points(&self) -> usize {
         self.min_points
+    }
+
+    /// l_end, the length a chain stopped by a break must exceed (EDGE-PIECE-END).
+    #[must_use]
+    pub const fn min_end_chain_length(&self) -> Meters {
+        Meters(self.min_end_chain_length)
+    }
+
+    /// x_ahead, the farthest a chain's first point may lie ahead of the
+    /// robot (EDGE-PIECE-END).
+    #[must_use]
+    pub const fn max_start_ahead(&self) -> Meters {
+        Meters(self.max_start_ahead)
     }
 
     /// σ_edge / σ_path hysteresis on the residual standard deviation.

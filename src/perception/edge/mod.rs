@@ -201,6 +201,7 @@ fn evaluate<const M: usize>(
         None
     };
     let verdict = match &fit {
+        Some(_) if at_piece_end(chain, config) => Verdict::Exit,
         Some(f) => f.quality.grade(config),
         None => Verdict::Absent,
     };
@@ -211,6 +212,26 @@ fn evaluate<const M: usize>(
         chain_end: chain.end(),
         chain_points: chain.len(),
     }
+}
+
+/// Whether `chain` sees a piece's end (EDGE-PIECE-END): it stopped at a
+/// break of the edge (a gap, a corner, the rotation limit) while not longer
+/// than l_end, or its first point lies more than x_ahead ahead of the robot.
+//= spec/pierre2022.md#edge-piece-end-a-chain-at-a-piece-s-end-is-not-followed
+//# A fitted chain MUST be graded Exit when it stopped at a gap, a corner or
+//# the rotation limit while its length is not greater than l_end, or when
+//# its first point lies more than x_ahead ahead of the robot (p_x > x_ahead).
+fn at_piece_end<const M: usize>(chain: &Chain<M>, config: &EdgeConfig) -> bool {
+    let at_break = matches!(
+        chain.end(),
+        ChainEnd::Gap | ChainEnd::Corner | ChainEnd::RotationLimit
+    );
+    let short = chain.length().get() <= config.min_end_chain_length().get();
+    let ahead = chain
+        .points()
+        .first()
+        .is_some_and(|p| p.x() > config.max_start_ahead().get());
+    (at_break && short) || ahead
 }
 
 /// The result of one edge detection: the chain, the fit when there is one,

@@ -92,6 +92,16 @@ pub(super) fn edge(
         min_points,
         sigma_enter: enter,
         sigma_exit: exit,
+        min_end_chain_length: check.range(
+            "edge.end_chain_length_m",
+            e.end_chain_length_m,
+            0.0,
+            1000.0,
+        )?,
+        max_start_ahead: match e.max_start_ahead_m {
+            Some(v) => check.open_range("edge.max_start_ahead_m", v, 0.0, 1000.0)?,
+            None => f64::MAX,
+        },
     };
     // Every value was range-checked above; what the core still refuses is
     // reported against the section, with the requirement it names.
