@@ -337,6 +337,32 @@ mod tests {
     }
 
     #[test]
+    fn the_receiver_reports_float_with_its_spread_and_fixed_with_its_noise() {
+        let errors = GnssErrors {
+            drift: Some(Drift::RandomWalk {
+                sigma_m: 0.1,
+                time_constant_s: 20.0,
+            }),
+            float: Some(FloatFix {
+                spans: Spans::new(vec![(1.0, 2.0)], Vec::new()),
+                noise_m: 0.1,
+                jump_m: 0.3,
+            }),
+            ..GnssErrors::default()
+        };
+        let mut s = GnssErrorState::new(&errors, 7);
+        let fixed = s.step(0.5, 0.0, 0.1).quality(0.015);
+        assert_eq!(fixed.kind, FixKind::RtkFixed);
+        // The drift is not in a receiver's sigma: the white noise alone.
+        assert_eq!(fixed.accuracy.map(Meters::get), Some(0.015));
+        let float = s.step(1.5, 0.0, 0.1).quality(0.015);
+        assert_eq!(float.kind, FixKind::RtkFloat);
+        let sigma = (0.015_f64.powi(2) + 0.1_f64.powi(2) + 0.3_f64.powi(2)).sqrt();
+        assert!((float.accuracy.map_or(0.0, Meters::get) - sigma).abs() < 1e-12);
+        assert_eq!(s.step(2.5, 0.0, 0.1).quality(0.015).kind, FixKind::RtkFixed);
+    }
+
+    #[test]
     fn a_float_span_jumps_once_and_adds_noise() {
         let errors = GnssErrors {
             float: Some(FloatFix {

@@ -1251,3 +1251,58 @@ fn the_speed_schedule_and_the_steering_lag_are_checked() {
     let e = scheduled_error_of(|t| t.replace(schedule_end, "max_speed_m_s = 3.0\nrate = 1"));
     assert!(e.to_string().contains("rate"), "{e}");
 }
+
+/// The fix rule (GD-FIX-QUALITY): its kind, carry and slope need its
+/// largest accuracy; each out-of-range value is named; off by default.
+#[test]
+fn fix_rule_fields_are_checked_and_named() {
+    let with = |section: &'static str| move |t: String| format!("{t}\n[switching]\n{section}\n");
+    let e = error_of(with("fix_dead_reckoning_m = 10.0"));
+    assert_field(&e, "switching.fix_max_accuracy_m", "largest accuracy");
+    let e = error_of(with("fix_worst_kind = \"rtk_float\""));
+    assert_field(&e, "switching.fix_max_accuracy_m", "largest accuracy");
+    for (text, field) in [
+        ("fix_max_accuracy_m = 0.0", "switching.fix_max_accuracy_m"),
+        ("fix_max_accuracy_m = -0.1", "switching.fix_max_accuracy_m"),
+        ("fix_max_accuracy_m = nan", "switching.fix_max_accuracy_m"),
+        (
+            "fix_max_accuracy_m = 0.05\nfix_dead_reckoning_m = -1.0",
+            "switching.fix_dead_reckoning_m",
+        ),
+        (
+            "fix_max_accuracy_m = 0.05\nfix_rejoin_slope = 0.0",
+            "switching.fix_rejoin_slope",
+        ),
+        (
+            "fix_max_accuracy_m = 0.05\nfix_rejoin_slope = 1.5",
+            "switching.fix_rejoin_slope",
+        ),
+    ] {
+        let e = error_of(move |t: String| format!("{t}\n[switching]\n{text}\n"));
+        assert_field(&e, field, "");
+    }
+    let e = error_of(with(
+        "fix_max_accuracy_m = 0.05\nfix_worst_kind = \"rtk_bad\"",
+    ));
+    assert!(e.to_string().contains("fix_worst_kind"), "{e}");
+    // Off by default; set, its defaults: RTK fixed, no carry, slope 0.1.
+    let setup = |text: String| {
+        let source = Source {
+            origin: "edited.toml".into(),
+            text,
+            base_dir: None,
+        };
+        source.setup(&mut SimRng::from_seed(1)).unwrap().switching
+    };
+    assert!(setup(builtin_text()).fix.is_none());
+    let fix = setup(format!(
+        "{}\n[switching]\nfix_max_accuracy_m = 0.05\n",
+        builtin_text()
+    ))
+    .fix
+    .unwrap();
+    assert_eq!(fix.worst_kind, fieldguide::guidance::FixKind::RtkFixed);
+    assert_eq!(fix.path_dead_reckoning.get(), 0.0);
+    assert!((fix.rejoin_slope - 0.1).abs() < 1e-15);
+    assert!((fix.max_accuracy.get() - 0.05).abs() < 1e-15);
+}

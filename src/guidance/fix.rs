@@ -312,3 +312,48 @@ where
         rejoin.map(|r| rule.rejoin_offset(r.start, r.travelled()))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! The rejoin's smoothstep (GD-FIX-QUALITY): it starts at the step with
+    //! a zero rate, ends at zero with a zero rate at D = 1.5 |o₀| / k, and
+    //! its rate peaks at the slope k halfway.
+
+    use super::*;
+
+    fn rule(slope: f64) -> Result<FixRule, Precondition> {
+        FixRule::new(&FixRuleParams {
+            worst_kind: FixKind::RtkFixed,
+            max_accuracy: Meters::new(0.05)?,
+            path_dead_reckoning: Meters::new(10.0)?,
+            rejoin_slope: slope,
+        })
+    }
+
+    #[test]
+    fn the_rejoin_starts_and_ends_flat_and_never_outruns_its_slope() -> Result<(), Precondition> {
+        for (o0, k) in [(0.3, 0.1), (-0.5, 0.2), (0.05, 1.0), (-1.2, 0.05)] {
+            let r = rule(k)?;
+            let start = Meters::new(o0)?;
+            let length = 1.5 * libm::fabs(o0) / k;
+            let (o, rate) = r.rejoin_shape(start, Meters::ZERO);
+            assert!(o == start && rate == 0.0);
+            let (_, rate) = r.rejoin_shape(start, Meters::new(length / 2.0)?);
+            assert!(libm::fabs(libm::fabs(rate) - k) < 1e-12, "peak {rate}");
+            let (o, rate) = r.rejoin_shape(start, Meters::new(length)?);
+            assert!(o == Meters::ZERO && rate == 0.0);
+            // Monotone toward zero, never past it, rate within k.
+            let mut previous = o0;
+            for i in 1..=100_u32 {
+                let d = length * f64::from(i) / 100.0;
+                let (o, rate) = r.rejoin_shape(start, Meters::new(d)?);
+                assert!(libm::fabs(o.get()) <= libm::fabs(previous) && o.get() * o0 >= 0.0);
+                assert!(libm::fabs(rate) <= k + 1e-12);
+                previous = o.get();
+            }
+            // A negative distance counts as none.
+            assert!(r.rejoin_offset(start, Meters::new(-1.0)?) == start);
+        }
+        Ok(())
+    }
+}
