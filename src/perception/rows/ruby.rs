@@ -612,6 +612,9 @@ pub struct Ruby<const N: usize> {
     /// The set kept and the candidate, by index (never moved: a swap of
     /// two sets would copy their masks).
     sets: [ModelSet<N>; 2],
+    /// Each set's |P(L)| and E_L(L), by the same index (read for the live
+    /// models alone: a re-attachment clears theirs).
+    stats: [Stats; 2],
     /// Which of `sets` is the kept one.
     kept: usize,
     /// w_pq of each pair of consecutive points (eq. 5).
@@ -637,6 +640,7 @@ impl<const N: usize> Ruby<N> {
             rng: Xoshiro128PlusPlus::seed_from_u64(config.params.seed),
             models: Vec::new(),
             sets: [empty.clone(), empty],
+            stats: [Stats::ZERO; 2],
             kept: 0,
             weights: [0.0; N],
             scratch: Scratch {
@@ -763,29 +767,30 @@ impl<const N: usize> Ruby<N> {
         }
         // The previous lines, refitted to the points they attach on this
         // scan (RUBY-ITERATION).
-        reattach(best, points, &mut self.columns, &p);
+        let (stats, _) = pair(&mut self.stats, self.kept);
+        reattach(best, points, &mut self.columns, &p, stats);
         merge(best, &self.columns, n, &mut self.scratch, &p);
-        let mut stats = reattach(best, points, &mut self.columns, &p);
-        let start_energy = energy(best, &stats, n, &self.weights, &p);
+        reattach(best, points, &mut self.columns, &p, stats);
+        let start_energy = energy(best, stats, n, &self.weights, &p);
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
 
         for _ in 0..p.iterations {
             let (best, candidate) = pair(&mut self.sets, self.kept);
+            let (_, candidate_stats) = pair(&mut self.stats, self.kept);
             candidate.copy_from(best, n);
             let drew = search(candidate, points, &mut self.rng, &p);
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
-            let mut candidate_stats = reattach(candidate, points, &mut self.columns, &p);
-            let gone = delete(candidate, &candidate_stats, &p);
-            reattach_deleted(candidate, gone, points, &mut candidate_stats, &p);
-            let e = energy(candidate, &candidate_stats, n, &self.weights, &p);
+            reattach(candidate, points, &mut self.columns, &p, candidate_stats);
+            let gone = delete(candidate, candidate_stats, &p);
+            reattach_deleted(candidate, gone, points, candidate_stats, &p);
+            let e = energy(candidate, candidate_stats, n, &self.weights, &p);
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
             //# before it MUST be discarded (Alg. 1, lines 26-27).
             if e <= best_energy {
                 self.kept = 1_usize.saturating_sub(self.kept);
                 best_energy = e;
-                stats = candidate_stats;
                 accepted = accepted.saturating_add(1);
             } else if !drew {
                 // The next iterations would start from the same set with the
@@ -795,6 +800,7 @@ impl<const N: usize> Ruby<N> {
         }
 
         let (best, _) = pair(&mut self.sets, self.kept);
+        let (stats, _) = pair(&mut self.stats, self.kept);
         self.models.clear();
         for k in slots(best.alive) {
             let line = best.line(k);
@@ -830,11 +836,8 @@ impl<const N: usize> Ruby<N> {
     }
 }
 
-/// The kept set and the candidate among `sets`.
-fn pair<const N: usize>(
-    sets: &mut [ModelSet<N>; 2],
-    kept: usize,
-) -> (&mut ModelSet<N>, &mut ModelSet<N>) {
+/// The kept one and the candidate among `sets` (of models, or their stats).
+fn pair<T>(sets: &mut [T; 2], kept: usize) -> (&mut T, &mut T) {
     let [first, second] = sets;
     if kept == 0 {
         (first, second)
@@ -1194,7 +1197,8 @@ fn reattach<const N: usize>(
     points: &[RowPoint],
     cols: &mut Columns<N>,
     p: &RubyParams,
-) -> Stats {
+    stats: &mut Stats,
+) {
     let limit = p.outlier_distance.get();
     let n = points.len();
     let moved = set.moved & set.alive;
@@ -1209,7 +1213,12 @@ fn reattach<const N: usize>(
         }
     }
     let xy = cols.xs.iter().zip(cols.ys.iter()).take(n);
-    let mut stats = Stats::ZERO;
+    // The sums of the live models and the sink start again; no other slot's
+    // is read.
+    for k in slots(set.alive) {
+        stats.clear(k);
+    }
+    stats.clear(MAX_MODELS);
     if p.variant.shared_points() {
         // Models that did not move keep their points; the moved ones take
         // those within the limit.
@@ -1332,8 +1341,7 @@ fn reattach<const N: usize>(
     let few = slots(set.alive)
         .filter(|&k| stats.count.get(k).copied().unwrap_or(0) < SEED_POINTS)
         .fold(0_u64, |acc, k| acc | bit(k));
-    reattach_deleted(set, few, points, &mut stats, p);
-    stats
+    reattach_deleted(set, few, points, stats, p);
 }
 
 #[cfg(test)]
@@ -1402,7 +1410,8 @@ mod tests {
                 set.masks[i] = bit(0);
             }
         }
-        let _ = reattach(&mut set, &points, &mut cols, &p);
+        let mut stats = Stats::ZERO;
+        reattach(&mut set, &points, &mut cols, &p, &mut stats);
         Ok((set, pts))
     }
 
