@@ -9,7 +9,7 @@
     clippy::panic
 )]
 
-use fieldguide_sim::stress::{self, Bound, Case};
+use fieldguide_sim::stress::{self, Bound, Case, Known};
 use fieldguide_sim::sweep::Seeds;
 
 /// The seeds of the reduced campaign.
@@ -90,4 +90,44 @@ fn the_campaign_writes_its_table_and_keeps_each_worst_seed() {
 fn an_unknown_class_is_refused_with_the_list() {
     let e = stress::select(Some("speeds")).unwrap_err().to_string();
     assert!(e.contains("speed-offset") && e.contains("crops"), "{e}");
+}
+
+/// A case that holds on every seed (a tracking run cannot crush a plant).
+const HOLDS: Case = Case {
+    scenario: "tracking-v1-offset",
+    bounds: &[Bound::NoPlantCrushed],
+    known_failure: None,
+};
+
+#[test]
+fn a_finding_of_a_few_seeds_is_expected_on_exactly_those_seeds() {
+    // Broken on every seed but known on seed 3 only: seed 4 is a new failure.
+    let broken = Case {
+        known_failure: Known::on_seeds(&[3], "seed 3's finding"),
+        ..IMPOSSIBLE
+    };
+    let r = stress::run_case("test", &broken, Seeds::new(3, 4).unwrap(), |_| {}).unwrap();
+    assert_eq!(r.failed_seeds(), vec![3, 4]);
+    assert_eq!(r.expected_failures, vec![3]);
+    assert!(!r.as_expected());
+    let r = stress::run_case("test", &broken, Seeds::new(3, 3).unwrap(), |_| {}).unwrap();
+    assert!(r.as_expected() && r.shows_known_failure());
+    assert!(stress::table_md(&[r]).contains("known FAIL (seeds 3)"));
+    // Holding on every seed: expected where the known seed is not run,
+    // not expected where it is (the finding went away: update the case).
+    let holds = Case {
+        known_failure: Known::on_seeds(&[9], "seed 9's finding"),
+        ..HOLDS
+    };
+    let r = stress::run_case("test", &holds, Seeds::new(3, 4).unwrap(), |_| {}).unwrap();
+    assert!(r.as_expected() && !r.shows_known_failure());
+    let r = stress::run_case("test", &holds, Seeds::new(9, 9).unwrap(), |_| {}).unwrap();
+    assert!(!r.as_expected());
+    // A finding of most seeds is expected whenever a seed breaks a bound.
+    let most = Case {
+        known_failure: Known::most_seeds("most seeds"),
+        ..HOLDS
+    };
+    let r = stress::run_case("test", &most, Seeds::new(3, 3).unwrap(), |_| {}).unwrap();
+    assert!(!r.as_expected());
 }

@@ -36,7 +36,36 @@ pub struct Case {
     /// Why the case is known to break a bound (an open finding the README
     /// states); `None` for a case that must hold. A known failure that
     /// starts to hold fails the campaign's test until this is updated.
-    pub known_failure: Option<&'static str>,
+    pub known_failure: Option<Known>,
+}
+
+/// A finding a case is known to show: why, and on which seeds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Known {
+    /// Why the case breaks a bound.
+    pub why: &'static str,
+    /// The seeds that break it, when the finding is a few seeds' (the others
+    /// must hold); `None` when it is seen on most seeds (at least one of any
+    /// seeds run must break a bound).
+    pub seeds: Option<&'static [u64]>,
+}
+
+impl Known {
+    /// A finding seen on most seeds.
+    #[must_use]
+    pub const fn most_seeds(why: &'static str) -> Option<Self> {
+        Some(Self { why, seeds: None })
+    }
+
+    /// A finding of exactly `seeds`: run over a range without them, the
+    /// case must hold; with them, exactly they must break a bound.
+    #[must_use]
+    pub const fn on_seeds(seeds: &'static [u64], why: &'static str) -> Option<Self> {
+        Some(Self {
+            why,
+            seeds: Some(seeds),
+        })
+    }
 }
 
 /// A class of stress fields: what it stresses and its cases.
@@ -224,14 +253,14 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "gnss-drift-random-walk.toml",
                 bounds: CROPS,
-                known_failure: Some(
+                known_failure: Known::most_seeds(
                     "the float fix is kept from path tracking (fix rule); left, 13 plants over seeds 1-20, none over the float span: the drift at the hand-overs of the beans' bare stretch and end (seeds 8, 12, 13), a bean line 0.1 m off (seed 5) and the maize entry (seed 14), the last two also without drift",
                 ),
             },
             Case {
                 scenario: "gnss-outage-distance.toml",
                 bounds: CROPS,
-                known_failure: Some(
+                known_failure: Known::most_seeds(
                     "seed 5: the bean detector's line 0.1 m off swings the front axle onto a plant, with or without the outages",
                 ),
             },
@@ -251,23 +280,31 @@ pub const CLASSES: &[Class] = &[
         name: "rows-off-the-path",
         stresses: "crop rows 0.1-0.3 m beside a straight path and bending 0.25-0.3 m from it, hand-over rule on; entry rule on but in rows-offset-handover",
         cases: &[
-            Case { scenario: "rows-offset-handover.toml", bounds: ROWS_OFF, known_failure: None },
+            Case {
+                scenario: "rows-offset-handover.toml",
+                bounds: ROWS_OFF,
+                known_failure: Known::on_seeds(&[11], "seed 11: the bean detector's line wobbles 0.1 m 5 m into the plot, where beans leave 0.13 m: a front wheel runs over one plant"),
+            },
             Case {
                 scenario: "rows-offset-maize-beans.toml",
                 bounds: ROWS_OFF,
-                known_failure: Some("entering rows 0.2 m off, the first line comes when the front axle is 0.3 m before the first plant, at times 0.1-0.2 m off and tilted: a front wheel runs over a row's first metre, O enters up to 0.11 m off"),
+                known_failure: Known::most_seeds("entering rows 0.2 m off, the first line comes when the front axle is 0.3 m before the first plant, at times 0.1-0.2 m off and tilted: a front wheel runs over a row's first metre, O enters up to 0.11 m off"),
             },
             Case {
                 scenario: "rows-offset-entry.toml",
                 bounds: ROWS_OFF,
-                known_failure: Some("entering rows 0.3 m off, the first line comes when the front axle is 0.3 m before the first plant: the front wheel runs over the far row's first metre, O enters up to 0.16 m off"),
+                known_failure: Known::most_seeds("entering rows 0.3 m off, the first line comes when the front axle is 0.3 m before the first plant: the front wheel runs over the far row's first metre, O enters up to 0.16 m off"),
             },
             Case {
                 scenario: "rows-offset-right-slow.toml",
                 bounds: ROWS_OFF,
-                known_failure: Some("entering rows 0.3 m off to the right at 0.5 m/s, the first line comes when the front axle is 0.3 m before the first plant: a front wheel runs over the far row's first metre, O enters up to 0.14 m off"),
+                known_failure: Known::most_seeds("entering rows 0.3 m off to the right at 0.5 m/s, the first line comes when the front axle is 0.3 m before the first plant: a front wheel runs over the far row's first metre, O enters up to 0.14 m off"),
             },
-            Case { scenario: "rows-offset-beans-fast.toml", bounds: ROWS_OFF, known_failure: None },
+            Case {
+                scenario: "rows-offset-beans-fast.toml",
+                bounds: ROWS_OFF,
+                known_failure: Known::on_seeds(&[12, 18], "seeds 12 and 18: the detector's first line is 0.15-0.25 m off and tilted 4-7 degrees, and the entry follows it for a metre"),
+            },
         ],
     },
     Class {
@@ -280,12 +317,12 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "hedge-gappy.toml",
                 bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
-                known_failure: Some("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but up to 0.22 m off the envelope's wiggles (0.15 m allowed) in 10 of 20 seeds"),
+                known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but up to 0.22 m off the envelope's wiggles (0.15 m allowed) in 10 of 20 seeds"),
             },
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
-                known_failure: Some("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but the structure line, straight, is up to 0.43 m off the envelope's wiggles (0.15 m allowed), 0.087 m on average (0.05 m)"),
+                known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but the structure line, straight, is up to 0.43 m off the envelope's wiggles (0.15 m allowed), 0.087 m on average (0.05 m)"),
             },
         ],
     },
@@ -343,7 +380,10 @@ pub struct Worst {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CaseResult {
     /// Why the case is known to break a bound, if it is.
-    pub known_failure: Option<&'static str>,
+    pub known_failure: Option<Known>,
+    /// The seeds the known failure is expected on in this run (the known
+    /// seeds among those run, or every seed run for a finding of most seeds).
+    pub expected_failures: Vec<u64>,
     /// The class's name.
     pub class: &'static str,
     /// The scenario.
@@ -364,11 +404,36 @@ impl CaseResult {
         self.bounds.iter().all(|w| w.failed_seeds.is_empty())
     }
 
-    /// Whether the case came out as expected: holding, or breaking a bound
-    /// when it is a known failure.
+    /// The seeds that broke any bound, in order.
+    #[must_use]
+    pub fn failed_seeds(&self) -> Vec<u64> {
+        let mut seeds: Vec<u64> = self
+            .bounds
+            .iter()
+            .flat_map(|w| w.failed_seeds.iter().copied())
+            .collect();
+        seeds.sort_unstable();
+        seeds.dedup();
+        seeds
+    }
+
+    /// Whether the case came out as expected: holding where no failure is
+    /// known; breaking a bound on some seed for a finding of most seeds;
+    /// breaking one on exactly the known seeds run for a finding of a few.
     #[must_use]
     pub fn as_expected(&self) -> bool {
-        self.pass() != self.known_failure.is_some()
+        match self.known_failure {
+            None => self.pass(),
+            Some(Known { seeds: None, .. }) => !self.pass(),
+            Some(Known { seeds: Some(_), .. }) => self.failed_seeds() == self.expected_failures,
+        }
+    }
+
+    /// Whether the run shows a known failure (some seed breaks a bound the
+    /// case is known to break).
+    #[must_use]
+    pub fn shows_known_failure(&self) -> bool {
+        self.known_failure.is_some() && !self.pass()
     }
 }
 
@@ -441,8 +506,16 @@ pub fn run_case(
         .map(|(seed, judged)| (*seed, judged.iter().map(ratio).fold(0.0, f64::max)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map_or(seeds.first(), |(seed, _)| seed);
+    let expected_failures = match case.known_failure {
+        None => Vec::new(),
+        Some(Known { seeds: None, .. }) => all.clone(),
+        Some(Known {
+            seeds: Some(known), ..
+        }) => all.iter().copied().filter(|s| known.contains(s)).collect(),
+    };
     Ok(CaseResult {
         known_failure: case.known_failure,
+        expected_failures,
         class,
         scenario: case.scenario,
         seeds: seeds.to_string(),

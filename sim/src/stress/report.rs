@@ -28,7 +28,11 @@ pub fn table_md(results: &[CaseResult]) -> String {
     );
     for r in results {
         for w in &r.bounds {
-            let known = if r.known_failure.is_some() {
+            let known = if r.known_failure.is_some()
+                && w.failed_seeds
+                    .iter()
+                    .all(|s| r.expected_failures.contains(s))
+            {
                 "known "
             } else {
                 ""
