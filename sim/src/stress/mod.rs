@@ -309,7 +309,7 @@ pub const CLASSES: &[Class] = &[
     },
     Class {
         name: "hedges-and-trunks",
-        stresses: "a row of 0.1 m trunks every metre (a thin hedge, and posts), posts along a bent hedge, ragged hedges with 1-3 m and 0.5-1 m gaps",
+        stresses: "a row of 0.1 m trunks every metre (a thin hedge, and posts), posts along a bent hedge, ragged hedges with 1-3 m and 0.5-1 m gaps, and with 2-4 m gaps at 1.2 m/s",
         cases: &[
             Case { scenario: "trunks-row.toml", bounds: &[ScenarioChecks, SwitchesAtMost(2)], known_failure: None },
             Case { scenario: "trunks-posts-hedge.toml", bounds: &[ScenarioChecks], known_failure: None },
@@ -318,6 +318,11 @@ pub const CLASSES: &[Class] = &[
                 scenario: "hedge-gappy.toml",
                 bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
                 known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but up to 0.22 m off the envelope's wiggles (0.15 m allowed) in 10 of 20 seeds"),
+            },
+            Case {
+                scenario: "hedge-sparse-fast.toml",
+                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
+                known_failure: Some("at most 2 switches, but the straight structure line is up to 0.42 m off the envelope's wiggles (0.15 m allowed), 0.076 m on average (0.05 m) in 3 of 20 seeds"),
             },
             Case {
                 scenario: "hedge-ragged.toml",
