@@ -531,3 +531,137 @@ fn bad_mounts_and_windows_are_refused() {
     assert!(ScanWindow::new(rad(1.6)).is_err());
     assert!(ScanWindow::new(rad(0.2)).is_ok());
 }
+
+/// The first line on two rows: with FUR-LINE alone, 0.3 m of travel (11
+/// scans of 0.028 m) before the points span the minimum extent; with
+/// FUR-FIRST-LINE, at the fifth scan (`min_points`), along the heading, and
+/// on the rows' centre.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# The row line MUST be the (a, b) that minimises
+//# Σ (a p_x + b − p_y)² + Λ (a − tan φ)² over the row's accumulated points,
+//# with φ the first-line heading read in the current robot frame,
+//# Λ = n max(E² − D², 0) / 12, n the number of points, D their extent along x
+//# and E the larger of the minimum extent and 1 m.
+#[test]
+fn the_first_line_comes_with_the_fifth_scan_on_the_rows_centre() {
+    let params = FurrowParams::table2();
+    for y0 in [-0.15, 0.12, 0.0] {
+        let (d4, _) = drive(&params, &rows(0.3), y0, 0.0, 4);
+        assert_eq!(d4.verdict, Verdict::Absent, "{y0}");
+        let (d5, _) = drive(&params, &rows(0.3), y0, 0.0, 5);
+        assert_eq!(d5.verdict, Verdict::Enter, "{y0}");
+        let e = d5.error.unwrap();
+        // Four scans of 0.028 m: 0.11 m of points, well under E = 0.3 m. The
+        // rows' centre within 0.02 m (the near row is seen on its inner face,
+        // 0.08 m wide), and where the line settles after 60 scans within 5 mm.
+        let (settled, _) = drive(&params, &rows(0.3), y0, 0.0, 60);
+        let settled = settled.error.unwrap().y.get();
+        assert!((e.y.get() - y0).abs() < 0.02, "{y0}: {}", e.y.get());
+        assert!(
+            (e.y.get() - settled).abs() < 0.005,
+            "{y0}: {} vs {settled}",
+            e.y.get()
+        );
+        assert!(
+            e.angular_deviation.get().abs() < 0.01,
+            "{y0}: {}",
+            e.angular_deviation.get()
+        );
+    }
+}
+
+/// A robot turning as it first sees the rows gets no first line: the line
+/// waits for the points to span the minimum extent, as with FUR-LINE alone.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# While the points span less than E, the detector MUST give no line before
+//# the first-line heading is set, and none once the accumulation has held its
+//# capacity of selections since it was last empty.
+#[test]
+fn no_first_line_while_the_robot_turns() {
+    let params = FurrowParams::table2();
+    let l = lidar();
+    for (rate, first_line_at) in [(0.004, 12), (-0.004, 12), (0.002, 5), (0.0, 5)] {
+        let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
+        let mut pose = (0.0_f64, 0.1_f64, -0.01_f64);
+        let mut first = None;
+        for tick in 1..=14 {
+            let ranges = ridge_scan(&params, &l, pose, &rows(0.3));
+            let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+            let d = det.detect(&scan(&ranges, &l), &odom).unwrap();
+            if first.is_none() && d.verdict != Verdict::Absent {
+                first = Some(tick);
+            }
+            pose = (
+                pose.0 + 0.028 * pose.2.cos(),
+                pose.1 + 0.028 * pose.2.sin(),
+                pose.2 + rate,
+            );
+        }
+        // 0.004 rad a scan: 0.016 rad over the first five, no line before the
+        // points span 0.3 m (11 steps of 0.028 m); 0.002: 0.008 rad, the
+        // fifth scan.
+        let first = first.unwrap();
+        if first_line_at == 5 {
+            assert_eq!(first, 5, "rate {rate}");
+        } else {
+            assert!(first >= first_line_at, "rate {rate}: {first}");
+        }
+    }
+}
+
+/// The first-line heading is the robot's once it goes straight, and the line
+/// stays put while the robot turns afterwards; a robot standing still after
+/// its accumulation was full gets no line from the points of one spot.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# The first-line heading MUST be the odometry heading of the newest kept
+//# selection at the first tick at which the robot's heading changed by at
+//# most 0.01 rad over its last `min_points` kept selections.
+#[test]
+fn the_first_line_keeps_the_heading_of_the_straight_entry() {
+    let params = FurrowParams::table2();
+    let l = lidar();
+    let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
+    // Straight for five scans at 0.1 m left of the centre, then turning
+    // right by 0.01 rad a scan: the line, fixed in odometry, is the rows'
+    // (θ̃ the robot's heading, y its offset), not turned with the robot.
+    let mut pose = (0.0_f64, 0.1_f64, 0.0_f64);
+    for tick in 1..=10 {
+        let ranges = ridge_scan(&params, &l, pose, &rows(0.3));
+        let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+        let d = det.detect(&scan(&ranges, &l), &odom).unwrap();
+        if tick >= 5 {
+            let e = d.error.unwrap();
+            // y within the inner faces' share of a heading (the 0.08 m
+            // half width, as in the two-row test); θ̃ the robot's heading,
+            // 0.05 rad at the end: a line turned with the robot would give 0.
+            assert!((e.y.get() - pose.1).abs() < 0.03, "{tick}: {}", e.y.get());
+            assert!(
+                (e.angular_deviation.get() - pose.2).abs() < 0.005,
+                "{tick}: {e:?}"
+            );
+        }
+        let turn = if tick >= 5 { -0.01 } else { 0.0 };
+        pose = (
+            pose.0 + 0.028 * pose.2.cos(),
+            pose.1 + 0.028 * pose.2.sin(),
+            pose.2 + turn,
+        );
+    }
+    // Standing still once the 25 selections were held: the points gather on
+    // one spot, and no line comes of them.
+    let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
+    let mut pose = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut last = None;
+    for tick in 0..80 {
+        let ranges = ridge_scan(&params, &l, pose, &rows(0.3));
+        let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+        last = Some(det.detect(&scan(&ranges, &l), &odom).unwrap().verdict);
+        if tick < 30 {
+            pose.0 += 0.028;
+        }
+    }
+    assert_eq!(last, Some(Verdict::Absent));
+}

@@ -14,10 +14,11 @@
 use fieldguide::geometry::fit::fit_line;
 use fieldguide::perception::furrow::accumulation::{Accumulator, Selected};
 use fieldguide::perception::furrow::lines::{
-    fit_row_line, mean_tracking_error, tracking_error, RowLine,
+    fit_row_line, fit_row_line_toward, mean_tracking_error, tracking_error, RowLine,
+    FIRST_LINE_MAX_TURN,
 };
 use fieldguide::perception::furrow::selection::Pair;
-use fieldguide::{Meters, Odom, Point2, Pose2, Robot};
+use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Robot};
 use proptest::prelude::*;
 
 fn m(v: f64) -> Meters {
@@ -316,4 +317,112 @@ proptest! {
         prop_assert!((e.y.get() - lateral).abs() < 1e-9);
         prop_assert!((e.angular_deviation.get() - psi).abs() < 1e-9);
     }
+}
+
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# The row line MUST be the (a, b) that minimises
+//# Σ (a p_x + b − p_y)² + Λ (a − tan φ)² over the row's accumulated points,
+//# with φ the first-line heading read in the current robot frame,
+//# Λ = n max(E² − D², 0) / 12, n the number of points, D their extent along x
+//# and E the larger of the minimum extent and 1 m.
+#[test]
+fn first_lines_lean_on_the_heading_until_the_points_spread() {
+    let rad = |v: f64| Radians::new(v).unwrap();
+    // Five points on one plant 3.4 m ahead, 0.66 m left: the line through
+    // their mean along the heading φ, whatever the points' own slope.
+    let plant = pts(&[
+        (3.40, 0.66),
+        (3.41, 0.67),
+        (3.39, 0.65),
+        (3.40, 0.665),
+        (3.41, 0.655),
+    ]);
+    for phi in [0.0, 0.05, -0.1] {
+        let line = fit_row_line_toward(plant.iter(), rad(phi), m(0.3)).unwrap();
+        // Λ = 5 (0.09 − 0.0004) / 12 ≈ 0.037 against Σ(x − x̄)² = 0.0004: the
+        // heading carries 99 % of the slope.
+        assert!(
+            (line.slope() - phi.tan()).abs() < 0.02 * (1.0 + phi.tan().abs()),
+            "{phi}: {}",
+            line.slope()
+        );
+        let mean = (3.402, 0.66);
+        assert!((line.y_at(mean.0).unwrap() - mean.1).abs() < 1e-9);
+    }
+    // The minimiser by hand: a = (Sxy + Λ tan φ) / (Sxx + Λ), b = ȳ − a x̄.
+    let p = pts(&[(3.0, 0.5), (3.1, 0.52), (3.2, 0.5), (3.25, 0.55)]);
+    let (n, e, phi) = (4.0, 0.6, 0.02_f64);
+    let xm = (3.0 + 3.1 + 3.2 + 3.25) / n;
+    let ym = (0.5 + 0.52 + 0.5 + 0.55) / n;
+    let sxx: f64 = p.iter().map(|q| (q.x() - xm).powi(2)).sum();
+    let sxy: f64 = p.iter().map(|q| (q.x() - xm) * (q.y() - ym)).sum();
+    let lambda = n * (e * e - 0.25_f64 * 0.25) / 12.0;
+    let a = (sxy + lambda * phi.tan()) / (sxx + lambda);
+    let line = fit_row_line_toward(p.iter(), rad(phi), m(e)).unwrap();
+    assert!((line.slope() - a).abs() < 1e-12);
+    assert!((line.intercept().get() - (ym - a * xm)).abs() < 1e-12);
+    // Points spanning E or more: eq. 15's least-squares line, exactly.
+    let spread = pts(&[(2.0, 0.1), (2.5, 0.15), (3.0, 0.18), (3.4, 0.26)]);
+    for e in [0.0, 0.3, 1.4] {
+        let toward = fit_row_line_toward(spread.iter(), rad(0.3), m(e)).unwrap();
+        let plain = fit_row_line(spread.iter()).unwrap();
+        assert_eq!(toward, plain, "E = {e}");
+    }
+}
+
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# A fit over no point, or whose direction φ is π/4 or more from the robot's
+//# current heading, MUST be refused with an error naming FUR-FIRST-LINE.
+#[test]
+fn first_lines_need_a_point_and_a_heading_within_a_quarter_turn() {
+    let rad = |v: f64| Radians::new(v).unwrap();
+    let none: Vec<Point2<Robot>> = Vec::new();
+    assert_eq!(
+        fit_row_line_toward(none.iter(), rad(0.0), m(0.3))
+            .unwrap_err()
+            .requirement,
+        "FUR-FIRST-LINE"
+    );
+    let one = pts(&[(3.0, 0.4)]);
+    for phi in [FIRST_LINE_MAX_TURN, -FIRST_LINE_MAX_TURN, 1.0, -3.0] {
+        assert_eq!(
+            fit_row_line_toward(one.iter(), rad(phi), m(0.3))
+                .unwrap_err()
+                .requirement,
+            "FUR-FIRST-LINE"
+        );
+    }
+    // Just inside the quarter turn, one point is enough: the line through it.
+    let line = fit_row_line_toward(one.iter(), rad(0.7), m(0.3)).unwrap();
+    assert!((line.y_at(3.0).unwrap() - 0.4).abs() < 1e-12);
+    assert!((line.slope() - 0.7_f64.tan()).abs() < 1e-12);
+}
+
+#[test]
+fn the_newest_heading_and_the_recent_turn() {
+    let mut acc = Accumulator::<8>::new(3, m(100.0)).unwrap();
+    let odom = |x: f64, h: f64| Pose2::<Odom>::new(x, 0.0, h).unwrap();
+    assert!(acc.newest_heading().is_none());
+    assert!(acc.recent_turn(1).is_none());
+    let s = Selected::One(Point2::<Robot>::new(3.0, 0.2).unwrap());
+    acc.push(&s, &odom(0.0, 3.1)).unwrap();
+    assert!(acc.recent_turn(2).is_none());
+    assert!(acc.recent_turn(0).is_none());
+    acc.push(&s, &odom(0.1, -3.1)).unwrap();
+    assert_eq!(acc.newest_heading().unwrap().get(), -3.1);
+    // −3.1 − 3.1 wraps to 2π − 6.2; one selection has turned by nothing.
+    let t = acc.recent_turn(2).unwrap().get();
+    assert!((t - (core::f64::consts::TAU - 6.2)).abs() < 1e-12, "{t}");
+    assert_eq!(acc.recent_turn(1).unwrap().get(), 0.0);
+    // The oldest dropped at capacity: the turn over the last three.
+    acc.push(&s, &odom(0.2, 0.0)).unwrap();
+    acc.push(&s, &odom(0.3, 0.25)).unwrap();
+    let t = acc.recent_turn(3).unwrap().get();
+    assert!(
+        (t - (0.25 + 3.1 - core::f64::consts::TAU)).abs() < 1e-12,
+        "{t}"
+    );
+    assert!(acc.recent_turn(4).is_none());
 }

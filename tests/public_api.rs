@@ -74,7 +74,8 @@ use fieldguide::perception::furrow::correlation::{
     correlate, correlate_direct, height_signal, Template,
 };
 use fieldguide::perception::furrow::lines::{
-    fit_row_line, mean_tracking_error, tracking_error as row_tracking_error, RowLine,
+    fit_row_line, fit_row_line_toward, mean_tracking_error, tracking_error as row_tracking_error,
+    RowLine,
 };
 use fieldguide::perception::furrow::quality::furrow_verdict;
 use fieldguide::perception::furrow::scan::{
@@ -1094,6 +1095,10 @@ proptest! {
         }
         check!("perception::furrow::lines::mean_tracking_error", mean_tracking_error(&rows_seen[0], &rows_seen[1]));
         check!("perception::furrow::lines::fit_row_line", fit_row_line(line_points.iter()));
+        check!(
+            "perception::furrow::lines::fit_row_line_toward",
+            fit_row_line_toward(line_points.iter(), Radians::new(x).unwrap_or(Radians::ZERO), keep)
+        );
         check!("perception::furrow::quality::furrow_verdict", furrow_verdict(config.thresholds(), fitted, weakest));
 
         // Accumulation through odometry.
@@ -1113,6 +1118,8 @@ proptest! {
             check!("perception::furrow::accumulation::Accumulator::len", kept.len());
             check!("perception::furrow::accumulation::Accumulator::is_empty", kept.is_empty());
             check!("perception::furrow::accumulation::Accumulator::newest", kept.newest(odom));
+            check!("perception::furrow::accumulation::Accumulator::newest_heading", kept.newest_heading());
+            check!("perception::furrow::accumulation::Accumulator::recent_turn", kept.recent_turn(i));
             check!(
                 "perception::furrow::accumulation::Accumulator::in_robot_frame",
                 kept.in_robot_frame(odom).collect::<Vec<_>>()

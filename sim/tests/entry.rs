@@ -80,13 +80,11 @@ fn rows_0_3_m_off_the_path_are_entered_without_a_swing() {
         println!(
             "seed {seed}: front axle past the centre {swing:.3} m, {crushed} crushed; without the rule {swing_without:.3} m, {crushed_without} crushed"
         );
-        // Without the rule the front axle swings 0.2-0.3 m past the rows'
-        // centre and its near-side wheel runs over the near row.
-        assert!(swing_without > 0.15, "seed {seed}: {swing_without}");
-        assert!(
-            swing < swing_without - 0.05,
-            "seed {seed}: {swing} {swing_without}"
-        );
+        // Without the rule the front axle swung 0.2-0.3 m past the rows'
+        // centre with FUR-LINE's late first line; with FUR-FIRST-LINE's, a
+        // metre earlier, the swing is smaller, but the near-side wheel still
+        // runs over the near row's first plants.
+        assert!(swing < 0.1, "seed {seed}: {swing}");
         assert!(crushed < crushed_without, "seed {seed}");
         with.push(crushed);
         without.push(crushed_without);

@@ -14,7 +14,7 @@ use heapless::Deque;
 use super::selection::Pair;
 use crate::error::Precondition;
 use crate::geometry::frame::{Frame, Odom, Point2, Pose2, Robot, Transform2};
-use crate::geometry::units::Meters;
+use crate::geometry::units::{wrap_angle, Meters, Radians};
 
 /// One scan's selection: one row's point, or a pair of rows' points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,10 +50,18 @@ impl<F: Frame> Selected<F> {
     }
 }
 
+/// One kept selection: its points in the odometry frame and the odometry
+/// heading of the scan that saw it (FUR-FIRST-LINE).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Kept {
+    selection: Selected<Odom>,
+    heading: Radians,
+}
+
 /// The last `limit` selections (at most `N`), stored in the odometry frame (FUR-ACCUMULATE).
 #[derive(Debug, Clone)]
 pub struct Accumulator<const N: usize> {
-    entries: Deque<Selected<Odom>, N>,
+    entries: Deque<Kept, N>,
     limit: usize,
     keep_distance: Meters,
 }
@@ -123,10 +131,13 @@ impl<const N: usize> Accumulator<N> {
         selection: &Selected<Robot>,
         odom: &Pose2<Odom>,
     ) -> Result<Option<Selected<Odom>>, Precondition> {
-        let stored = selection.moved(&odom.body_to_frame::<Robot>())?;
+        let stored = Kept {
+            selection: selection.moved(&odom.body_to_frame::<Robot>())?,
+            heading: odom.heading,
+        };
         let mut dropped = None;
         while self.entries.len() >= self.limit {
-            dropped = self.entries.pop_front();
+            dropped = self.entries.pop_front().map(|k| k.selection);
             if dropped.is_none() {
                 break;
             }
@@ -142,11 +153,12 @@ impl<const N: usize> Accumulator<N> {
     //# A selection whose reference point lies farther than the keep distance
     //# from the robot MUST be dropped.
     pub fn forget_far(&mut self, odom: &Pose2<Odom>) -> usize {
-        let mut kept = Deque::<Selected<Odom>, N>::new();
+        let mut kept = Deque::<Kept, N>::new();
         let mut dropped = 0_usize;
         while let Some(entry) = self.entries.pop_front() {
             // A distance that overflows is farther than any keep distance.
             let near = entry
+                .selection
                 .reference()
                 .distance_to(odom.position)
                 .is_ok_and(|d| d.get() <= self.keep_distance.get());
@@ -166,7 +178,27 @@ impl<const N: usize> Accumulator<N> {
         let transform = Self::odom_to_robot(odom).ok();
         self.entries
             .iter()
-            .filter_map(move |e| transform.as_ref().and_then(|t| e.moved(t).ok()))
+            .filter_map(move |e| transform.as_ref().and_then(|t| e.selection.moved(t).ok()))
+    }
+
+    /// The odometry heading of the scan that took the newest kept selection
+    /// (FUR-FIRST-LINE). `None` when nothing is kept.
+    #[must_use]
+    pub fn newest_heading(&self) -> Option<Radians> {
+        self.entries.back().map(|k| k.heading)
+    }
+
+    /// How far the robot turned over its last `count` kept selections: the
+    /// odometry heading of the newest minus that of the `count`-th newest,
+    /// wrapped to (−π, π] (FUR-FIRST-LINE). `None` when fewer than `count`
+    /// selections are kept or `count` is 0.
+    #[must_use]
+    pub fn recent_turn(&self, count: usize) -> Option<Radians> {
+        let newest = self.entries.back()?;
+        let earlier = self.entries.iter().rev().nth(count.checked_sub(1)?)?;
+        Radians::new(newest.heading.get() - earlier.heading.get())
+            .ok()
+            .map(wrap_angle)
     }
 
     /// The newest selection in the robot frame at odometry pose `odom`: the
@@ -174,6 +206,6 @@ impl<const N: usize> Accumulator<N> {
     #[must_use]
     pub fn newest(&self, odom: &Pose2<Odom>) -> Option<Selected<Robot>> {
         let t = Self::odom_to_robot(odom).ok()?;
-        self.entries.back()?.moved(&t).ok()
+        self.entries.back()?.selection.moved(&t).ok()
     }
 }

@@ -87,6 +87,103 @@ where
     RowLine::new(fit.a, Meters::new(fit.b)?)
 }
 
+/// The largest angle, rad, between the first-line heading and the robot's
+/// current one for which [`fit_row_line_toward`] still draws the rows toward
+/// it: π/4.
+pub const FIRST_LINE_MAX_TURN: f64 = core::f64::consts::FRAC_PI_4;
+
+/// The largest turn of the robot, rad, over its last `min_points` kept
+/// selections for which the detector takes its heading for a row's first line
+/// (FUR-FIRST-LINE): 0.01 rad. A robot turning as it first sees the rows (path
+/// tracking converging, after a turn) is not along them.
+pub const FIRST_LINE_STRAIGHT: f64 = 0.01;
+
+/// The extent along x, m, over which the detector's first line fades from the
+/// heading to the points' own direction (FUR-FIRST-LINE), unless the minimum
+/// extent is longer: 1 m. Bean plants 0.15 m apart spread the first points
+/// over 0.3 m in five scans, and a slope from 0.3 m of points, extrapolated
+/// 3 m back to O, is 0.1-0.2 m off there.
+pub const FIRST_LINE_SPREAD: f64 = 1.0;
+
+/// A row line whose direction is drawn toward the heading the robot had when
+/// it first went straight beside the rows (FUR-FIRST-LINE): the (a, b) minimising
+/// `Σ (a p_x + b − p_y)² + Λ (a − tan φ)²`, with φ = `direction` (that
+/// heading in the current robot frame) and
+/// `Λ = n max(E² − D², 0) / 12` for n points spanning D along x and
+/// E = `spread`: the heading's weight, that of n points spread evenly over
+/// E less the spread they have, vanishes once they span E.
+///
+/// At a plot's entry the scan meets each row's first plant metres ahead and
+/// sees it over many scans before the next plants come into view: the
+/// points' lateral position is known at once, their direction only once they
+/// spread along the row. Points on one plant give a line along the heading of
+/// the robot entering the rows (which path tracking keeps along the path)
+/// through their mean; points spanning E, the least-squares line of eq. 15
+/// ([`fit_row_line`]), whose errors it then returns.
+/// Errors with
+/// `FUR-FIRST-LINE` when there is no point or when `|direction|` is not below
+/// [`FIRST_LINE_MAX_TURN`]; `LIB-FINITE` on overflow.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//# The row line MUST be the (a, b) that minimises
+//# Σ (a p_x + b − p_y)² + Λ (a − tan φ)² over the row's accumulated points,
+//# with φ the first-line heading read in the current robot frame,
+//# Λ = n max(E² − D², 0) / 12, n the number of points, D their extent along x
+//# and E the larger of the minimum extent and 1 m.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//# A fit over no point, or whose direction φ is π/4 or more from the robot's
+//# current heading, MUST be refused with an error naming FUR-FIRST-LINE.
+pub fn fit_row_line_toward<I, P>(
+    points: I,
+    direction: Radians,
+    spread: Meters,
+) -> Result<RowLine, Precondition>
+where
+    I: IntoIterator<Item = P>,
+    I::IntoIter: Clone,
+    P: Borrow<Point2<Robot>>,
+{
+    let phi = direction.get();
+    // φ is finite by its type.
+    if libm::fabs(phi) >= FIRST_LINE_MAX_TURN {
+        return Err(Precondition::new(
+            "FUR-FIRST-LINE",
+            "the first-line heading is pi/4 or more from the robot's",
+        ));
+    }
+    let points = points.into_iter();
+    let (mut count, mut sx, mut sy) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in points.clone() {
+        let (x, y) = (p.borrow().x(), p.borrow().y());
+        count += 1.0;
+        sx += x;
+        sy += y;
+        lo = lo.min(x);
+        hi = hi.max(x);
+    }
+    if count < 1.0 {
+        return Err(Precondition::new("FUR-FIRST-LINE", "no point"));
+    }
+    let (e, d) = (spread.get(), hi - lo);
+    let prior = count * (e * e - d * d) / 12.0;
+    if prior.is_nan() || prior <= 0.0 {
+        return fit_row_line(points);
+    }
+    let (mx, my) = (sx / count, sy / count);
+    let (mut sxx, mut sxy) = (0.0_f64, 0.0_f64);
+    for p in points {
+        let dx = p.borrow().x() - mx;
+        sxx += dx * dx;
+        sxy += dx * (p.borrow().y() - my);
+    }
+    let slope = finite(
+        (sxy + prior * libm::tan(phi)) / (sxx + prior),
+        "first line overflows",
+    )?;
+    let intercept = finite(my - slope * mx, "first line overflows")?;
+    RowLine::new(slope, Meters::new(intercept)?)
+}
+
 /// FUR-LINE's precondition: at least two points whose x variance
 /// `(1/n) Σ (x − x̄)²` is at least [`MIN_X_VARIANCE`].
 fn check_x_spread<I, P>(points: I) -> Result<(), Precondition>

@@ -34,7 +34,10 @@ use heapless::Vec;
 
 use self::accumulation::{Accumulator, Selected};
 use self::correlation::{correlate, height_signal, Template};
-use self::lines::{fit_row_line, mean_tracking_error, tracking_error, RowLine};
+use self::lines::{
+    fit_row_line, fit_row_line_toward, mean_tracking_error, tracking_error, RowLine,
+    FIRST_LINE_SPREAD, FIRST_LINE_STRAIGHT,
+};
 use self::quality::furrow_verdict;
 use self::scan::{scan_to_points, MountPose, ScanPoint, ScanWindow, WindowRays};
 use self::selection::{
@@ -44,7 +47,7 @@ use crate::error::{finite, Precondition};
 use crate::geometry::carry::{moved_lateral, moved_line_error, straight};
 use crate::geometry::frame::{Odom, Point2, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{Meters, Radians};
+use crate::geometry::units::{wrap_angle, Meters, Radians};
 use crate::perception::detector::{Detection, Detector, HeldLine};
 use crate::perception::{Better, QualityThresholds, Scan, Verdict};
 
@@ -96,7 +99,9 @@ pub struct FurrowParams {
     pub keep_distance: Meters,
     /// Fewest points per row line (≥ 2) before a line is fitted.
     pub min_points: usize,
-    /// Shortest extent along x of a row's points before a line is fitted, m (≥ 0).
+    /// E, m (≥ 0): the extent along x of a row's points from which its line
+    /// is the plain least-squares line (FUR-LINE); below it, the robot's
+    /// heading weighs in the line's direction (FUR-FIRST-LINE).
     pub min_extent: Meters,
     /// Correlation above which the detection may enter furrow pursuing (Table 2: 0.4).
     pub enter: f64,
@@ -358,6 +363,17 @@ pub struct FurrowDetection {
 pub struct FurrowDetector<const RAYS: usize, const SCANS: usize> {
     config: FurrowConfig,
     accumulator: Accumulator<SCANS>,
+    first: FirstLine,
+}
+
+/// Where the first line of an accumulation stands (FUR-FIRST-LINE): the
+/// odometry heading the rows are taken along, once the robot went straight
+/// over `min_points` selections, and whether the accumulation has been full
+/// since it was last empty (then no first line any more).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct FirstLine {
+    heading: Option<Radians>,
+    filled: bool,
 }
 
 impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
@@ -370,6 +386,7 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         Ok(Self {
             config,
             accumulator,
+            first: FirstLine::default(),
         })
     }
 
@@ -388,6 +405,7 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     /// Forgets every accumulated selection: the next selection is a first one (t = 0).
     pub fn reset(&mut self) {
         self.accumulator.clear();
+        self.first = FirstLine::default();
     }
 
     /// The maxima of one scan (steps 1 to 3 of the module doc), without
@@ -443,6 +461,9 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     ) -> Result<FurrowDetection, Precondition> {
         let (maxima, window) = self.maxima(scan)?;
         self.accumulator.forget_far(odom);
+        if self.accumulator.is_empty() {
+            self.first = FirstLine::default();
+        }
         let previous = self.accumulator.newest(odom);
         let reference_y = previous.map_or(0.0, |p| p.reference().y());
         let (selected, quality) = match self.config.rows {
@@ -459,6 +480,7 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         if let Some(s) = &selected {
             self.accumulator.push(s, odom)?;
         }
+        self.settle_first_line();
         let estimate = self.estimate(odom);
         let verdict = furrow_verdict(&self.config.thresholds, estimate.is_some(), quality);
         Ok(FurrowDetection {
@@ -470,6 +492,35 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
             maxima: maxima.len(),
             window,
         })
+    }
+
+    /// Updates the first line's state after this tick's selection
+    /// (FUR-FIRST-LINE): the accumulation is marked filled once it holds
+    /// `averaged_scans` selections; until then, the first time the robot
+    /// turned at most [`FIRST_LINE_STRAIGHT`] over its last `min_points`
+    /// selections, the newest one's heading is kept for the first line.
+    //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+    //# The first-line heading MUST be the odometry heading of the newest kept
+    //# selection at the first tick at which the robot's heading changed by at
+    //# most 0.01 rad over its last `min_points` kept selections.
+    //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+    //# While the points span less than E, the detector MUST give no line before
+    //# the first-line heading is set, and none once the accumulation has held its
+    //# capacity of selections since it was last empty.
+    fn settle_first_line(&mut self) {
+        if self.accumulator.len() >= self.config.params.averaged_scans {
+            self.first.filled = true;
+        }
+        if self.first.filled || self.first.heading.is_some() {
+            return;
+        }
+        let straight = self
+            .accumulator
+            .recent_turn(self.config.params.min_points)
+            .is_some_and(|turn| libm::fabs(turn.get()) <= FIRST_LINE_STRAIGHT);
+        if straight {
+            self.first.heading = self.accumulator.newest_heading();
+        }
     }
 
     /// The row lines and tracking error from the accumulated selections, or
@@ -501,7 +552,10 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     }
 
     /// The line through the accumulated points that `pick` takes from each
-    /// selection, once there are `min_points` of them spanning `min_extent` in x.
+    /// selection, once there are `min_points` of them: the least-squares line
+    /// (FUR-LINE) once they span `min_extent` in x; before that, the first
+    /// line, its direction drawn toward the heading kept by
+    /// [`Self::settle_first_line`] (FUR-FIRST-LINE).
     fn row_line(
         &self,
         odom: &Pose2<Odom>,
@@ -517,13 +571,20 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
                 (lo.min(p.x()), hi.max(p.x()))
             });
-        let enough = points.len() >= self.config.params.min_points
-            && hi - lo >= self.config.params.min_extent.get();
-        if enough {
-            fit_row_line(points.iter()).ok()
-        } else {
-            None
+        if points.len() < self.config.params.min_points {
+            return None;
         }
+        let min_extent = self.config.params.min_extent;
+        let spread_enough = hi - lo >= min_extent.get();
+        // The first line until the accumulation has been full, once the robot
+        // went straight over `min_points` selections; the plain fit otherwise.
+        let heading = match self.first.heading {
+            Some(h) if !self.first.filled => h,
+            _ => return spread_enough.then(|| fit_row_line(points.iter()).ok())?,
+        };
+        let direction = wrap_angle(Radians::new(heading.get() - odom.heading.get()).ok()?);
+        let spread = Meters::new(min_extent.get().max(FIRST_LINE_SPREAD)).ok()?;
+        fit_row_line_toward(points.iter(), direction, spread).ok()
     }
 }
 

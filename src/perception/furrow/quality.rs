@@ -5,8 +5,8 @@ use crate::perception::{QualityThresholds, Verdict};
 
 /// The verdict of one tick.
 ///
-/// - `Absent` when no line could be fitted (too few accumulated points, or
-///   points not spread enough along x for a regression);
+/// - `Absent` when no line could be fitted (fewer accumulated points than
+///   the minimum, FUR-LINE and FUR-FIRST-LINE);
 /// - otherwise `Exit` when this scan selected nothing (`P = ∅`, first line of
 ///   eq. 22), and else the hysteresis classification of the selection's
 ///   weakest score: for two rows `min(c[k_l], c[k_r])`, for one row the
