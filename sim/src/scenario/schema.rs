@@ -178,7 +178,7 @@ pub struct SwitchingSection {
     /// `fix_worst_kind`, counts as no fix [off when absent].
     pub fix_max_accuracy_m: Option<f64>,
     /// Fix rule: the worst kind taken, `"rtk_fixed"`, `"rtk_float"`,
-    /// `"single"` or `"dead_reckoned"` [rtk_fixed].
+    /// `"single"` or `"dead_reckoned"` (default `"rtk_fixed"`).
     pub fix_worst_kind: Option<FixKindName>,
     /// Fix rule: how far path tracking steers on the last good fix carried
     /// by odometry, m, in [0, 1000] [0: it stops commanding at once].
