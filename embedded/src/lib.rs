@@ -62,7 +62,7 @@ const HEDGE_FROM: f64 = -5.0;
 const HEDGE_TO: f64 = 3.5;
 
 /// The crop rows start at this world x, m, and run on past the path's end.
-const ROWS_FROM: f64 = 5.5;
+const ROWS_FROM: f64 = 7.0;
 /// Lateral positions of the two rows' centre lines, m.
 const ROWS_Y: [f64; 2] = [-0.375, 0.375];
 /// Half the width of a row, m.
