@@ -1440,7 +1440,7 @@ mod tests {
     //# D ≤ 10⁻¹² S S_uu (the points' x the same) or a result not finite MUST give
     //# no line (the start) or end the re-weighting with the line before.
     #[test]
-    fn a_fit_is_the_line_of_the_sums_about_the_first_point() {
+    fn a_fit_is_the_line_of_the_sums_about_the_first_point() -> Result<(), Precondition> {
         use crate::geometry::fit::fit_line;
         // Points on y = 0.3 x − 1.2 far from the origin: the line itself.
         let xs = [100.0, 100.5, 101.25, 102.0, 103.5];
@@ -1450,8 +1450,13 @@ mod tests {
         // The start is the least-squares line of FIT-LINE, to rounding.
         let noisy = [0.3, -0.2, 0.25, 0.0, -0.1];
         let ys: [f64; 5] = core::array::from_fn(|i| ys[i] + noisy[i]);
-        let points: [Point2<Robot>; 5] =
-            core::array::from_fn(|i| Point2::new(xs[i], ys[i]).unwrap());
+        let points: [Point2<Robot>; 5] = [
+            Point2::new(xs[0], ys[0])?,
+            Point2::new(xs[1], ys[1])?,
+            Point2::new(xs[2], ys[2])?,
+            Point2::new(xs[3], ys[3])?,
+            Point2::new(xs[4], ys[4])?,
+        ];
         let lsq = fit_line(points);
         let start = Line::fit(&xs, &ys, 0);
         assert!(matches!((lsq, start), (Ok(q), Some(l))
@@ -1471,6 +1476,7 @@ mod tests {
         assert!(matches!((lad, ls), (Some(lad), Some(ls)) if off(lad) < off(ls) / 2.0));
         // The same x: no line.
         assert!(Line::fit(&[2.0; 4], &[0.0, 1.0, 2.0, 3.0], 4).is_none());
+        Ok(())
     }
 
     //= spec/guyonneau2022.md#ruby-merge-close-models-merged
