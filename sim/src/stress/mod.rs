@@ -254,17 +254,14 @@ pub const CLASSES: &[Class] = &[
                 scenario: "gnss-drift-random-walk.toml",
                 bounds: CROPS,
                 known_failure: Known::on_seeds(
-                    &[1, 5, 8, 12, 13, 15],
-                    "the float fix is kept from path tracking (fix rule); left, 12 plants over seeds 1-20, none over the float span: the drift at the hand-overs of the beans' bare stretch and end, and a bean line 0.1 m off (seed 5, also without drift)",
+                    &[1, 8, 12, 13, 15],
+                    "the float fix is kept from path tracking (fix rule); left, 10 plants in seeds 8, 12, 13 and 15, none over the float span: the drift at the hand-overs of the beans' bare stretch and end",
                 ),
             },
             Case {
                 scenario: "gnss-outage-distance.toml",
                 bounds: CROPS,
-                known_failure: Known::on_seeds(
-                    &[5],
-                    "seed 5: the bean detector's line 0.1 m off swings the front axle onto a plant, with or without the outages",
-                ),
+                known_failure: None,
             },
             Case {
                 scenario: "outage-entry-beans.toml",
@@ -288,7 +285,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "rows-offset-handover.toml",
                 bounds: ROWS_OFF,
-                known_failure: Known::on_seeds(&[11], "seed 11: the bean detector's line wobbles 0.1 m 5 m into the plot, where beans leave 0.13 m: a front wheel runs over one plant"),
+                known_failure: None,
             },
             Case {
                 scenario: "rows-offset-maize-beans.toml",
