@@ -416,6 +416,7 @@ fn bad_configurations_name_their_requirement() {
         ),
         ("FUR-ACCUMULATE", Box::new(|p| p.averaged_scans = 0)),
         ("FUR-ACCUMULATE", Box::new(|p| p.keep_distance = m(0.0))),
+        ("FUR-SPAN", Box::new(|p| p.min_span = m(-0.5))),
         ("FUR-LINE", Box::new(|p| p.min_points = 1)),
         ("FUR-LINE", Box::new(|p| p.min_extent = m(-1.0))),
         ("SW-THRESHOLDS", Box::new(|p| p.enter = 0.1)),

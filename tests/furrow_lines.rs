@@ -170,6 +170,57 @@ fn a_full_buffer_drops_the_oldest() {
     assert!(acc.is_empty() && acc.newest(&pose).is_none());
 }
 
+/// Selections every 0.25 m of travel: with n = 3 and a span of 1 m the
+/// buffer holds the 5 that span 1 m; with span 0 the 3 of the count; with
+/// 10 m the storage's 8. Whatever the span, it never holds fewer than n.
+//= spec/pierre2022.md#fur-span-the-kept-selections-span-a-distance-of-travel
+//= type=test
+//# When the buffer holds its n selections and has room for more, storing a
+//# new one MUST drop the oldest only if the robot's odometry positions at the
+//# scans of the second oldest and of the new selection are at least the
+//# configured span apart.
+#[test]
+fn the_buffer_keeps_the_selections_of_its_span() {
+    for (span, kept) in [(0.0, 3), (1.0, 5), (10.0, 8)] {
+        let mut acc = Accumulator::<8>::new(3, m(100.0))
+            .unwrap()
+            .with_span(m(span))
+            .unwrap();
+        for i in 0..20 {
+            let x = 0.25 * f64::from(i);
+            let pose = Pose2::<Odom>::new(x, 0.0, 0.0).unwrap();
+            acc.push(&Selected::One(Point2::new(3.0, 0.0).unwrap()), &pose)
+                .unwrap();
+            assert_eq!(
+                acc.len(),
+                (i as usize + 1).min(kept),
+                "span {span}, push {i}"
+            );
+        }
+        // The oldest kept was seen (kept − 1) × 0.25 m back: its point, 3 m
+        // ahead of the robot then, is 3 − that ahead now.
+        let pose = Pose2::<Odom>::new(0.25 * 19.0, 0.0, 0.0).unwrap();
+        let oldest = acc.in_robot_frame(&pose).next().unwrap().reference().x();
+        assert!(
+            (oldest - (3.0 - 0.25 * (kept as f64 - 1.0))).abs() < 1e-12,
+            "span {span}"
+        );
+    }
+}
+
+//= spec/pierre2022.md#fur-span-the-kept-selections-span-a-distance-of-travel
+//= type=test
+//# A negative span MUST be refused with an error naming FUR-SPAN.
+#[test]
+fn a_negative_span_is_refused() {
+    let acc = Accumulator::<4>::new(4, m(5.0)).unwrap();
+    assert_eq!(
+        acc.clone().with_span(m(-0.1)).unwrap_err().requirement,
+        "FUR-SPAN"
+    );
+    assert!(acc.with_span(m(0.0)).is_ok());
+}
+
 //= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
 //= type=test
 //# A selection whose reference point lies farther than the keep distance

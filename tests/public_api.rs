@@ -907,7 +907,7 @@ proptest! {
 
 /// Furrow parameters: Table 2's, one of them replaced by anything.
 fn furrow_parameters() -> BoxedStrategy<FurrowParams> {
-    (0..18_usize, raw(), 0..40_usize, any::<bool>())
+    (0..19_usize, raw(), 0..40_usize, any::<bool>())
         .prop_map(|(field, v, n, one)| {
             let mut p = FurrowParams::table2();
             let (mv, rv) = (Meters::new(v).ok(), Radians::new(v).ok());
@@ -934,6 +934,7 @@ fn furrow_parameters() -> BoxedStrategy<FurrowParams> {
                         max_spacing: m(0.9),
                     }
                 }
+                17 => p.min_span = mv.unwrap_or(p.min_span),
                 _ => {}
             }
             if one {
@@ -1103,6 +1104,9 @@ proptest! {
 
         // Accumulation through odometry.
         check!("perception::furrow::accumulation::Accumulator::new", Accumulator::<8>::new(limit, keep));
+        if let Ok(acc) = Accumulator::<8>::new(limit.clamp(1, 8), m(6.0)) {
+            check!("perception::furrow::accumulation::Accumulator::with_span", acc.with_span(keep));
+        }
         let mut kept = Accumulator::<8>::new(limit.clamp(1, 8), keep).unwrap_or(Accumulator::new(4, m(6.0)).unwrap());
         for (i, odom) in odometry.iter().enumerate() {
             let selection = if i % 2 == 0 {

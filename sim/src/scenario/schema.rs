@@ -717,6 +717,9 @@ pub struct FurrowSection {
     pub averaged_scans: u32,
     /// Selections farther than this from the robot are dropped, metres.
     pub keep_distance_m: f64,
+    /// The least travel the kept selections span, metres (FUR-SPAN; default
+    /// 0: the count alone, as Table 2).
+    pub min_span_m: Option<f64>,
     /// Fewest points of a row before its line is fitted.
     pub min_points: u32,
     /// Shortest extent along x of a row's points before its line is fitted, metres.

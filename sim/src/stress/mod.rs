@@ -248,7 +248,7 @@ pub const CLASSES: &[Class] = &[
     },
     Class {
         name: "gnss-drift-outages",
-        stresses: "a fix drifting 0.1 m (20 s random walk) and float over the headland, lost by distance in the plots, lost at a bean plot's entry at 1 m/s, float across a U-turn (0.5 m jump)",
+        stresses: "a fix drifting 0.1 m (20 s random walk) and float over the headland, lost by distance in the plots (at 0.7 and 0.5 m/s), lost at a bean plot's entry at 1 m/s, float across a U-turn (0.5 m jump)",
         cases: &[
             Case {
                 scenario: "gnss-drift-random-walk.toml",
@@ -260,6 +260,11 @@ pub const CLASSES: &[Class] = &[
             },
             Case {
                 scenario: "gnss-outage-distance.toml",
+                bounds: CROPS,
+                known_failure: None,
+            },
+            Case {
+                scenario: "gnss-outage-distance-slow.toml",
                 bounds: CROPS,
                 known_failure: None,
             },

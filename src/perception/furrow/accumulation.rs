@@ -50,20 +50,24 @@ impl<F: Frame> Selected<F> {
     }
 }
 
-/// One kept selection: its points in the odometry frame and the odometry
-/// heading of the scan that saw it (FUR-FIRST-LINE).
+/// One kept selection: its points in the odometry frame, and the odometry
+/// position (FUR-SPAN) and heading (FUR-FIRST-LINE) of the scan that saw it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Kept {
     selection: Selected<Odom>,
+    at: Point2<Odom>,
     heading: Radians,
 }
 
-/// The last `limit` selections (at most `N`), stored in the odometry frame (FUR-ACCUMULATE).
+/// The last `limit` selections, more while they span less than `span` of
+/// travel, at most `N`; stored in the odometry frame (FUR-ACCUMULATE,
+/// FUR-SPAN).
 #[derive(Debug, Clone)]
 pub struct Accumulator<const N: usize> {
     entries: Deque<Kept, N>,
     limit: usize,
     keep_distance: Meters,
+    span: Meters,
 }
 
 impl<const N: usize> Accumulator<N> {
@@ -91,7 +95,22 @@ impl<const N: usize> Accumulator<N> {
             entries: Deque::new(),
             limit,
             keep_distance,
+            span: Meters::ZERO,
         })
+    }
+
+    /// The same buffer, keeping more than its `limit` selections (up to `N`)
+    /// while they span less than `span` of the robot's travel (FUR-SPAN); 0
+    /// keeps the count alone.
+    ///
+    /// Errors with `FUR-SPAN` when `span` is negative.
+    //= spec/pierre2022.md#fur-span-the-kept-selections-span-a-distance-of-travel
+    //# A negative span MUST be refused with an error naming FUR-SPAN.
+    pub fn with_span(self, span: Meters) -> Result<Self, Precondition> {
+        if span.get() < 0.0 {
+            return Err(Precondition::new("FUR-SPAN", "the span must be >= 0"));
+        }
+        Ok(Self { span, ..self })
     }
 
     /// How many selections are kept.
@@ -133,18 +152,38 @@ impl<const N: usize> Accumulator<N> {
     ) -> Result<Option<Selected<Odom>>, Precondition> {
         let stored = Kept {
             selection: selection.moved(&odom.body_to_frame::<Robot>())?,
+            at: odom.position,
             heading: odom.heading,
         };
         let mut dropped = None;
-        while self.entries.len() >= self.limit {
+        while self.entries.len() >= self.limit
+            && (self.entries.is_full() || self.spans_without_oldest(stored.at))
+        {
             dropped = self.entries.pop_front().map(|k| k.selection);
             if dropped.is_none() {
                 break;
             }
         }
-        // `len < limit ≤ N` here, so the deque has room; a refusal would leave the buffer as it is.
+        // The deque is not full here, so it has room; a refusal would leave the buffer as it is.
         let _ = self.entries.push_back(stored);
         Ok(dropped)
+    }
+
+    /// Whether the kept selections but the oldest, with one seen at `at`,
+    /// still span the configured span of travel (FUR-SPAN). With fewer than
+    /// two kept, or a distance that overflows, they do.
+    //= spec/pierre2022.md#fur-span-the-kept-selections-span-a-distance-of-travel
+    //# When the buffer holds its n selections and has room for more, storing a
+    //# new one MUST drop the oldest only if the robot's odometry positions at the
+    //# scans of the second oldest and of the new selection are at least the
+    //# configured span apart.
+    fn spans_without_oldest(&self, at: Point2<Odom>) -> bool {
+        self.entries.iter().nth(1).is_none_or(|second| {
+            second
+                .at
+                .distance_to(at)
+                .map_or(true, |d| d.get() >= self.span.get())
+        })
     }
 
     /// Drops the selections whose reference point is farther than the keep

@@ -97,6 +97,10 @@ pub struct FurrowParams {
     pub averaged_scans: usize,
     /// Selections farther than this from the robot are dropped, m (> 0).
     pub keep_distance: Meters,
+    /// The least travel the kept selections span, m (≥ 0; 0: the count n
+    /// alone, as Table 2): past n, the oldest is kept while the rest span
+    /// less, up to the storage `SCANS` (FUR-SPAN).
+    pub min_span: Meters,
     /// Fewest points per row line (≥ 2) before a line is fitted.
     pub min_points: usize,
     /// E, m (≥ 0): the extent along x of a row's points from which its line
@@ -137,6 +141,7 @@ impl FurrowParams {
             },
             averaged_scans: 25,
             keep_distance: Meters(6.0),
+            min_span: Meters(0.0),
             min_points: 5,
             min_extent: Meters(0.3),
             enter: 0.4,
@@ -217,6 +222,9 @@ impl FurrowConfig {
                 "FUR-ACCUMULATE",
                 "need n >= 1 kept selections and a keep distance > 0",
             ));
+        }
+        if params.min_span.get() < 0.0 {
+            return Err(Precondition::new("FUR-SPAN", "the span must be >= 0"));
         }
         if params.min_points < 2 || params.min_extent.get() < 0.0 {
             return Err(Precondition::new(
@@ -382,7 +390,8 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     /// Errors with `FUR-ACCUMULATE` when `averaged_scans` exceeds `SCANS`.
     pub fn new(config: FurrowConfig) -> Result<Self, Precondition> {
         let accumulator =
-            Accumulator::new(config.params.averaged_scans, config.params.keep_distance)?;
+            Accumulator::new(config.params.averaged_scans, config.params.keep_distance)?
+                .with_span(config.params.min_span)?;
         Ok(Self {
             config,
             accumulator,

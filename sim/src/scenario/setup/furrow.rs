@@ -125,6 +125,7 @@ pub(super) fn furrow(
     let l = &lidar.lidar;
     let keep = check.open_range("furrow.keep_distance_m", f.keep_distance_m, 0.0, 1000.0)?;
     let extent = check.range("furrow.min_extent_m", f.min_extent_m, 0.0, 100.0)?;
+    let span = check.range("furrow.min_span_m", f.min_span_m.unwrap_or(0.0), 0.0, 100.0)?;
     let params = FurrowParams {
         mount_x: meters(check, "lidar.mount_x_m", l.mount_x)?,
         mount_y: meters(check, "lidar.mount_y_m", l.mount_y)?,
@@ -141,6 +142,7 @@ pub(super) fn furrow(
         rows,
         averaged_scans: scans,
         keep_distance: meters(check, "furrow.keep_distance_m", keep)?,
+        min_span: meters(check, "furrow.min_span_m", span)?,
         min_points,
         min_extent: meters(check, "furrow.min_extent_m", extent)?,
         enter,
