@@ -6,13 +6,12 @@
 //! 0.15 m height floor). What it reports is compared with the true centre line.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
+mod common;
+
+use common::FurrowRig;
+use fieldguide::perception::furrow::FurrowParams;
 use fieldguide::{Meters, Point2, Pose2, Radians, Verdict, World};
-use fieldguide_sim::lidar::inclined::InclinedLidar;
-use fieldguide_sim::odometry::{OdometryErrors, WheelOdometry};
-use fieldguide_sim::world::crops::{PlantIndex, PlotSpec};
-use fieldguide_sim::world::scene::Scene;
-use fieldguide_sim::world::terrain::Ground;
+use fieldguide_sim::world::crops::PlotSpec;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
 
@@ -45,31 +44,20 @@ fn entry(beans: bool, offset: f64, seed: u64) -> (f64, f64, f64) {
         .iter()
         .map(|p| p.position.x())
         .fold(f64::INFINITY, f64::min);
-    let index = PlantIndex::new(plants, 0.5);
-    let ground = Ground::default();
-    let world = Scene {
-        ground: &ground,
-        plants: &index,
-        obstacles: None,
-        obstacle_height: 2.0,
-    };
-    let lidar = InclinedLidar::furrow_default();
-    let mut det = FurrowDetector::<256, 32>::new(FurrowConfig::new(&params()).unwrap()).unwrap();
-    let mut odo = WheelOdometry::new(Pose2::new(10.0, -3.0, 1.0).unwrap(), OdometryErrors::FIELD);
+    let mut rig = FurrowRig::new(plants, &params());
     let mut pose = Pose2::<World>::new(-6.0, 0.0, 0.0).unwrap();
     let truth = -offset;
     let mut found: Option<(f64, f64)> = None;
     let mut worst = 0.0_f64;
     while pose.position.x() + WHEELBASE < first {
-        let scan = lidar.scan(&pose, &world, &mut rng);
-        let d = det.detect(&scan.as_scan().unwrap(), &odo.pose()).unwrap();
+        let d = rig.detect(&pose, &mut rng);
         if d.verdict != Verdict::Absent {
             let error = (d.error.unwrap().y.get() - truth).abs();
             worst = worst.max(error);
             found.get_or_insert((first - pose.position.x() - WHEELBASE, error));
         }
         let next = Pose2::<World>::new(pose.position.x() + 0.08, 0.0, 0.0).unwrap();
-        odo.update_between(&pose, &next, &mut rng);
+        rig.drive(&pose, &next, &mut rng);
         pose = next;
     }
     let (before, error) = found.unwrap_or((0.0, f64::INFINITY));

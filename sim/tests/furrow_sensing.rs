@@ -6,13 +6,12 @@
 //! `furrow_pursuing.rs`, on the `furrow-pursuing` scenario.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector, FurrowParams};
+mod common;
+
+use common::FurrowRig;
+use fieldguide::perception::furrow::FurrowParams;
 use fieldguide::{Point2, Pose2, Verdict, World};
-use fieldguide_sim::lidar::inclined::InclinedLidar;
-use fieldguide_sim::odometry::{OdometryErrors, WheelOdometry};
-use fieldguide_sim::world::crops::{scatter_grass, PlantIndex, PlotSpec, Spread};
-use fieldguide_sim::world::scene::Scene;
-use fieldguide_sim::world::terrain::Ground;
+use fieldguide_sim::world::crops::{scatter_grass, PlotSpec, Spread};
 use fieldguide_sim::world::Plant;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
@@ -34,25 +33,12 @@ struct Tick {
 /// Drives along x from `(0, y0)` at heading `psi` for `distance` m among `plants`.
 fn drive(plants: Vec<Plant>, y0: f64, psi: f64, distance: f64, seed: u64) -> Vec<Tick> {
     let mut rng = StdRng::seed_from_u64(seed);
-    let index = PlantIndex::new(plants, 0.5);
-    let ground = Ground::default();
-    let world = Scene {
-        ground: &ground,
-        plants: &index,
-        obstacles: None,
-        obstacle_height: 2.0,
-    };
-    let lidar = InclinedLidar::furrow_default();
-    let mut det =
-        FurrowDetector::<256, 32>::new(FurrowConfig::new(&FurrowParams::table2()).unwrap())
-            .unwrap();
-    let mut odo = WheelOdometry::new(Pose2::new(10.0, -3.0, 1.0).unwrap(), OdometryErrors::FIELD);
+    let mut rig = FurrowRig::new(plants, &FurrowParams::table2());
     let step = 0.7 / RATE;
     let mut pose = Pose2::<World>::new(0.0, y0, psi).unwrap();
     let mut ticks = Vec::new();
     while pose.position.x() < distance {
-        let scan = lidar.scan(&pose, &world, &mut rng);
-        let d = det.detect(&scan.as_scan().unwrap(), &odo.pose()).unwrap();
+        let d = rig.detect(&pose, &mut rng);
         ticks.push(Tick {
             x: pose.position.x(),
             y: pose.position.y(),
@@ -66,7 +52,7 @@ fn drive(plants: Vec<Plant>, y0: f64, psi: f64, distance: f64, seed: u64) -> Vec
             psi,
         )
         .unwrap();
-        odo.update_between(&pose, &next, &mut rng);
+        rig.drive(&pose, &next, &mut rng);
         pose = next;
     }
     ticks

@@ -171,3 +171,65 @@ pub fn assert_commands_from_fresh_valid_estimates(
     }
     verdicts
 }
+
+/// An open-loop furrow rig: plants on flat ground, the simulated inclined
+/// LiDAR, drifting wheel odometry (`OdometryErrors::FIELD`) and a furrow
+/// detector, for tests that drive the robot along known poses and compare
+/// what the detector reports with the true rows.
+pub struct FurrowRig {
+    index: fieldguide_sim::world::crops::PlantIndex,
+    ground: fieldguide_sim::world::terrain::Ground,
+    lidar: fieldguide_sim::lidar::inclined::InclinedLidar,
+    odometry: fieldguide_sim::odometry::WheelOdometry,
+    /// The detector under test.
+    pub detector: fieldguide::perception::furrow::FurrowDetector<256, 32>,
+}
+
+impl FurrowRig {
+    /// `plants` seen by the default inclined LiDAR, detected with `params`.
+    pub fn new(
+        plants: Vec<fieldguide_sim::world::Plant>,
+        params: &fieldguide::perception::furrow::FurrowParams,
+    ) -> Self {
+        use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector};
+        use fieldguide_sim::odometry::{OdometryErrors, WheelOdometry};
+        Self {
+            index: fieldguide_sim::world::crops::PlantIndex::new(plants, 0.5),
+            ground: fieldguide_sim::world::terrain::Ground::default(),
+            lidar: fieldguide_sim::lidar::inclined::InclinedLidar::furrow_default(),
+            odometry: WheelOdometry::new(
+                fieldguide::Pose2::new(10.0, -3.0, 1.0).unwrap(),
+                OdometryErrors::FIELD,
+            ),
+            detector: FurrowDetector::new(FurrowConfig::new(params).unwrap()).unwrap(),
+        }
+    }
+
+    /// What the detector makes of a scan cast from the true pose `pose`.
+    pub fn detect(
+        &mut self,
+        pose: &fieldguide::Pose2<World>,
+        rng: &mut impl rand::Rng,
+    ) -> fieldguide::perception::furrow::FurrowDetection {
+        let world = fieldguide_sim::world::scene::Scene {
+            ground: &self.ground,
+            plants: &self.index,
+            obstacles: None,
+            obstacle_height: 2.0,
+        };
+        let scan = self.lidar.scan(pose, &world, rng);
+        self.detector
+            .detect(&scan.as_scan().unwrap(), &self.odometry.pose())
+            .unwrap()
+    }
+
+    /// The odometry's reading of the true motion from `from` to `to`.
+    pub fn drive(
+        &mut self,
+        from: &fieldguide::Pose2<World>,
+        to: &fieldguide::Pose2<World>,
+        rng: &mut impl rand::Rng,
+    ) {
+        self.odometry.update_between(from, to, rng);
+    }
+}
