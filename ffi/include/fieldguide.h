@@ -19,6 +19,18 @@
 // The behaviour id of furrow pursuing; the core's `presets::FURROW`.
 #define FG_BEHAVIOUR_FURROW 2
 
+// A fix kind: RTK with the ambiguities fixed (GGA quality 4).
+#define FG_FIX_RTK_FIXED 0
+
+// A fix kind: RTK float (GGA quality 5).
+#define FG_FIX_RTK_FLOAT 1
+
+// A fix kind: single point or differential code (GGA quality 1 or 2).
+#define FG_FIX_SINGLE 2
+
+// A fix kind: the receiver's own dead reckoning (GGA quality 6).
+#define FG_FIX_DEAD_RECKONED 3
+
 // What a call did.
 typedef enum FgStatus {
   // Done.
@@ -95,6 +107,22 @@ typedef struct FgError {
   char message[128];
 } FgError;
 
+// Which fixes are good enough, and how far path tracking carries the last
+// good one by odometry (GD-FIX-QUALITY).
+typedef struct FgFixRule {
+  // The worst kind accepted, an `FG_FIX_*` kind (`FG_FIX_RTK_FIXED`
+  // between crop rows).
+  uint8_t worst_kind;
+  // The largest σ accepted, m (> 0).
+  double max_accuracy_m;
+  // How far path tracking goes on the last good fix carried by odometry,
+  // m (≥ 0); then localisation is lost and the machine stops.
+  double path_dead_reckoning_m;
+  // How fast a returning good fix is taken up, m of lateral change per m
+  // travelled, in (0, 1].
+  double rejoin_slope;
+} FgFixRule;
+
 // One LiDAR scan and the behaviour whose detector reads it.
 typedef struct FgScan {
   // [`FG_BEHAVIOUR_EDGE`] or [`FG_BEHAVIOUR_FURROW`].
@@ -150,6 +178,17 @@ typedef struct FgTickOutput {
   double lateral_error_m;
 } FgTickOutput;
 
+// What the receiver says of the tick's GNSS fix (GD-FIX-QUALITY).
+typedef struct FgFix {
+  // One of `FG_FIX_RTK_FIXED`, `FG_FIX_RTK_FLOAT`, `FG_FIX_SINGLE`,
+  // `FG_FIX_DEAD_RECKONED`; any other value is refused.
+  uint8_t kind;
+  // Whether `accuracy_m` holds the receiver's horizontal σ.
+  bool has_accuracy;
+  // The horizontal σ the receiver claims, m.
+  double accuracy_m;
+} FgFix;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -173,6 +212,22 @@ enum FgStatus fg_pipeline_new(const struct FgConfig *config,
                               struct FgPipeline **pipeline,
                               struct FgError *error);
 
+// As `fg_pipeline_new`, with the fix rule `*rule` judging the fixes given
+// to `fg_pipeline_step_with_fix` (GD-FIX-QUALITY); a null `rule` takes
+// every fix. A rule the core refuses (σ ≤ 0, a negative carry, a slope
+// outside (0, 1], an unknown kind) gives `FG_STATUS_REFUSED` naming
+// `GD-FIX-QUALITY` or `LIB-FINITE`.
+//
+// # Safety
+// As `fg_pipeline_new`; `rule` is null or points to one readable
+// `FgFixRule`.
+enum FgStatus fg_pipeline_new_with_fix_rule(const struct FgConfig *config,
+                                            const struct FgPoint *waypoints,
+                                            size_t waypoint_count,
+                                            const struct FgFixRule *rule,
+                                            struct FgPipeline **pipeline,
+                                            struct FgError *error);
+
 // One control tick: the scans that arrived, the GNSS pose if valid and the
 // odometry pose in; the command, the mode and the path error out. Allocates
 // nothing.
@@ -194,6 +249,19 @@ enum FgStatus fg_pipeline_step(struct FgPipeline *pipeline,
                                const struct FgTickInput *input,
                                struct FgTickOutput *output,
                                struct FgError *error);
+
+// As `fg_pipeline_step`, the GNSS pose (when `gnss_valid`) with the
+// quality `*fix` the receiver reports: with a fix rule, a fix it refuses
+// counts as no fix (GD-FIX-QUALITY). An unknown kind or a non-finite σ is
+// refused (`GD-FIX-QUALITY`, `LIB-FINITE`) and the pipeline is as it was.
+//
+// # Safety
+// As `fg_pipeline_step`; `fix` points to one readable `FgFix`.
+enum FgStatus fg_pipeline_step_with_fix(struct FgPipeline *pipeline,
+                                        const struct FgTickInput *input,
+                                        const struct FgFix *fix,
+                                        struct FgTickOutput *output,
+                                        struct FgError *error);
 
 // Frees a pipeline made by `fg_pipeline_new`; null is accepted and ignored.
 //

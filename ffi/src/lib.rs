@@ -14,6 +14,9 @@
 //!   a message, never a panic across the boundary (the crate builds with
 //!   `panic = "abort"` and its code does not panic).
 //! - Creating a pipeline allocates it once; a tick allocates nothing.
+//! - A GNSS fix may come with its quality (`fg_pipeline_step_with_fix`),
+//!   judged by a fix rule given at creation (`fg_pipeline_new_with_fix_rule`,
+//!   GD-FIX-QUALITY); `fg_pipeline_step` takes every fix as RTK fixed.
 //! - `unsafe` is confined to this crate, each block with the argument that
 //!   makes it sound beside it; the pointers' contracts are in each
 //!   function's documentation, as C callers read them in the header.
@@ -21,6 +24,7 @@
 use core::ffi::c_char;
 
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
+use fieldguide::guidance::fix::{FixKind, FixQuality, FixRuleParams};
 use fieldguide::guidance::{BehaviourId, Guidance, GuidanceConfig, Mode, RoutedScan, TickInput};
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::Side;
@@ -38,6 +42,18 @@ pub const FG_BEHAVIOUR_EDGE: u16 = 1;
 
 /// The behaviour id of furrow pursuing; the core's `presets::FURROW`.
 pub const FG_BEHAVIOUR_FURROW: u16 = 2;
+
+/// A fix kind: RTK with the ambiguities fixed (GGA quality 4).
+pub const FG_FIX_RTK_FIXED: u8 = 0;
+
+/// A fix kind: RTK float (GGA quality 5).
+pub const FG_FIX_RTK_FLOAT: u8 = 1;
+
+/// A fix kind: single point or differential code (GGA quality 1 or 2).
+pub const FG_FIX_SINGLE: u8 = 2;
+
+/// A fix kind: the receiver's own dead reckoning (GGA quality 6).
+pub const FG_FIX_DEAD_RECKONED: u8 = 3;
 
 /// What a call did.
 #[repr(C)]
@@ -154,6 +170,37 @@ pub struct FgTickInput {
     pub sideslip_rear_rad: f64,
 }
 
+/// What the receiver says of the tick's GNSS fix (GD-FIX-QUALITY).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FgFix {
+    /// One of `FG_FIX_RTK_FIXED`, `FG_FIX_RTK_FLOAT`, `FG_FIX_SINGLE`,
+    /// `FG_FIX_DEAD_RECKONED`; any other value is refused.
+    pub kind: u8,
+    /// Whether `accuracy_m` holds the receiver's horizontal σ.
+    pub has_accuracy: bool,
+    /// The horizontal σ the receiver claims, m.
+    pub accuracy_m: f64,
+}
+
+/// Which fixes are good enough, and how far path tracking carries the last
+/// good one by odometry (GD-FIX-QUALITY).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FgFixRule {
+    /// The worst kind accepted, an `FG_FIX_*` kind (`FG_FIX_RTK_FIXED`
+    /// between crop rows).
+    pub worst_kind: u8,
+    /// The largest σ accepted, m (> 0).
+    pub max_accuracy_m: f64,
+    /// How far path tracking goes on the last good fix carried by odometry,
+    /// m (≥ 0); then localisation is lost and the machine stops.
+    pub path_dead_reckoning_m: f64,
+    /// How fast a returning good fix is taken up, m of lateral change per m
+    /// travelled, in (0, 1].
+    pub rejoin_slope: f64,
+}
+
 /// Who commands after a tick.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -242,8 +289,46 @@ fn refuse(error: *mut FgError, e: &Precondition) -> FgStatus {
     FgStatus::Refused
 }
 
-/// The pipeline of `config` on the path through `waypoints`.
-fn build(config: &FgConfig, waypoints: &[FgPoint]) -> Result<Box<FgPipeline>, Precondition> {
+/// The core's fix kind of a C one; an unknown value is refused.
+fn kind_of(kind: u8) -> Result<FixKind, Precondition> {
+    match kind {
+        FG_FIX_RTK_FIXED => Ok(FixKind::RtkFixed),
+        FG_FIX_RTK_FLOAT => Ok(FixKind::RtkFloat),
+        FG_FIX_SINGLE => Ok(FixKind::Single),
+        FG_FIX_DEAD_RECKONED => Ok(FixKind::DeadReckoned),
+        _ => Err(Precondition::new("GD-FIX-QUALITY", "unknown fix kind")),
+    }
+}
+
+/// The core's fix rule of a C one.
+fn rule_of(rule: &FgFixRule) -> Result<FixRuleParams, Precondition> {
+    Ok(FixRuleParams {
+        worst_kind: kind_of(rule.worst_kind)?,
+        max_accuracy: Meters::new(rule.max_accuracy_m)?,
+        path_dead_reckoning: Meters::new(rule.path_dead_reckoning_m)?,
+        rejoin_slope: rule.rejoin_slope,
+    })
+}
+
+/// The core's fix quality of a C one.
+fn quality_of(fix: &FgFix) -> Result<FixQuality, Precondition> {
+    Ok(FixQuality {
+        kind: kind_of(fix.kind)?,
+        accuracy: if fix.has_accuracy {
+            Some(Meters::new(fix.accuracy_m)?)
+        } else {
+            None
+        },
+    })
+}
+
+/// The pipeline of `config` on the path through `waypoints`, with the fix
+/// rule `rule` if any.
+fn build(
+    config: &FgConfig,
+    waypoints: &[FgPoint],
+    rule: Option<&FgFixRule>,
+) -> Result<Box<FgPipeline>, Precondition> {
     let mut points: heapless::Vec<Point2<World>, FG_PATH_CAPACITY> = heapless::Vec::new();
     for w in waypoints {
         points.push(Point2::new(w.x, w.y)?).map_err(|_| {
@@ -266,12 +351,13 @@ fn build(config: &FgConfig, waypoints: &[FgPoint]) -> Result<Box<FgPipeline>, Pr
         config.edge_lidar.y,
         config.edge_lidar.heading,
     )?;
-    let params = match config.preset {
+    let mut params = match config.preset {
         FgPreset::PathTracking => pierre2022_path()?,
         FgPreset::Edge => pierre2022_edge(side, mount)?,
         FgPreset::Furrow => pierre2022_furrow()?,
         FgPreset::Both => pierre2022_both(side, mount)?,
     };
+    params.fix = rule.map(rule_of).transpose()?;
     let config = GuidanceConfig::new(&params)?;
     let path = Box::into_raw(path);
     // SAFETY: `path` is a live allocation from `Box::into_raw`, freed only
@@ -313,6 +399,37 @@ pub unsafe extern "C" fn fg_pipeline_new(
     pipeline: *mut *mut FgPipeline,
     error: *mut FgError,
 ) -> FgStatus {
+    // SAFETY: the same contract, and a null rule.
+    unsafe {
+        fg_pipeline_new_with_fix_rule(
+            config,
+            waypoints,
+            waypoint_count,
+            core::ptr::null(),
+            pipeline,
+            error,
+        )
+    }
+}
+
+/// As `fg_pipeline_new`, with the fix rule `*rule` judging the fixes given
+/// to `fg_pipeline_step_with_fix` (GD-FIX-QUALITY); a null `rule` takes
+/// every fix. A rule the core refuses (σ ≤ 0, a negative carry, a slope
+/// outside (0, 1], an unknown kind) gives `FG_STATUS_REFUSED` naming
+/// `GD-FIX-QUALITY` or `LIB-FINITE`.
+///
+/// # Safety
+/// As `fg_pipeline_new`; `rule` is null or points to one readable
+/// `FgFixRule`.
+#[no_mangle]
+pub unsafe extern "C" fn fg_pipeline_new_with_fix_rule(
+    config: *const FgConfig,
+    waypoints: *const FgPoint,
+    waypoint_count: usize,
+    rule: *const FgFixRule,
+    pipeline: *mut *mut FgPipeline,
+    error: *mut FgError,
+) -> FgStatus {
     if config.is_null() || waypoints.is_null() || pipeline.is_null() {
         return FgStatus::NullPointer;
     }
@@ -322,7 +439,9 @@ pub unsafe extern "C" fn fg_pipeline_new(
     // SAFETY: not null, and the caller's contract makes it `waypoint_count`
     // readable, initialised `FgPoint`s that nothing writes during the call.
     let waypoints = unsafe { core::slice::from_raw_parts(waypoints, waypoint_count) };
-    match build(config, waypoints) {
+    // SAFETY: null or one readable `FgFixRule` by the caller's contract.
+    let rule = unsafe { rule.as_ref() };
+    match build(config, waypoints, rule) {
         Ok(p) => {
             // SAFETY: not null, and the caller's contract makes it writable
             // for one pointer.
@@ -357,9 +476,38 @@ pub unsafe extern "C" fn fg_pipeline_step(
     output: *mut FgTickOutput,
     error: *mut FgError,
 ) -> FgStatus {
-    if pipeline.is_null() || input.is_null() || output.is_null() {
+    let fixed = FgFix {
+        kind: FG_FIX_RTK_FIXED,
+        has_accuracy: false,
+        accuracy_m: 0.0,
+    };
+    // SAFETY: the same contract, and `fixed` lives through the call.
+    unsafe { fg_pipeline_step_with_fix(pipeline, input, &fixed, output, error) }
+}
+
+/// As `fg_pipeline_step`, the GNSS pose (when `gnss_valid`) with the
+/// quality `*fix` the receiver reports: with a fix rule, a fix it refuses
+/// counts as no fix (GD-FIX-QUALITY). An unknown kind or a non-finite σ is
+/// refused (`GD-FIX-QUALITY`, `LIB-FINITE`) and the pipeline is as it was.
+///
+/// # Safety
+/// As `fg_pipeline_step`; `fix` points to one readable `FgFix`.
+#[no_mangle]
+pub unsafe extern "C" fn fg_pipeline_step_with_fix(
+    pipeline: *mut FgPipeline,
+    input: *const FgTickInput,
+    fix: *const FgFix,
+    output: *mut FgTickOutput,
+    error: *mut FgError,
+) -> FgStatus {
+    if pipeline.is_null() || input.is_null() || fix.is_null() || output.is_null() {
         return FgStatus::NullPointer;
     }
+    // SAFETY: not null, and one readable `FgFix` by the contract.
+    let quality = match quality_of(unsafe { &*fix }) {
+        Ok(q) => q,
+        Err(e) => return refuse(error, &e),
+    };
     // SAFETY: not null; made by `fg_pipeline_new` (a live `Box`) and used by
     // this call alone, by the caller's contract.
     let pipeline = unsafe { &mut *pipeline };
@@ -400,7 +548,7 @@ pub unsafe extern "C" fn fg_pipeline_step(
             );
         }
     }
-    match tick(pipeline, input, &routed) {
+    match tick(pipeline, input, &routed, &quality) {
         Ok(out) => {
             // SAFETY: not null, and writable for one `FgTickOutput` by the
             // contract.
@@ -426,6 +574,7 @@ fn tick(
     pipeline: &mut FgPipeline,
     input: &FgTickInput,
     scans: &[RoutedScan<'_>],
+    quality: &FixQuality,
 ) -> Result<FgTickOutput, Precondition> {
     let gnss = if input.gnss_valid {
         Some(Pose2::<World>::new(
@@ -437,12 +586,15 @@ fn tick(
         None
     };
     let odometry = Pose2::<Odom>::new(input.odometry.x, input.odometry.y, input.odometry.heading)?;
-    let out = pipeline.guidance.step(&TickInput {
-        scans,
-        gnss,
-        odometry,
-        extra: Sideslip::new(input.sideslip_front_rad, input.sideslip_rear_rad)?,
-    })?;
+    let out = pipeline.guidance.step_with_fix(
+        &TickInput {
+            scans,
+            gnss,
+            odometry,
+            extra: Sideslip::new(input.sideslip_front_rad, input.sideslip_rear_rad)?,
+        },
+        quality,
+    )?;
     let (mode, behaviour) = match out.mode {
         Mode::PathTracking => (FgMode::PathTracking, 0),
         Mode::Behaviour(id) => (FgMode::Behaviour, id.0),

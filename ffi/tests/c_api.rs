@@ -15,9 +15,10 @@ use std::cell::Cell;
 use std::ffi::CStr;
 
 use fieldguide_ffi::{
-    fg_pipeline_free, fg_pipeline_new, fg_pipeline_step, FgConfig, FgError, FgMode, FgPipeline,
-    FgPoint, FgPose, FgPreset, FgScan, FgStatus, FgTickInput, FgTickOutput, FG_BEHAVIOUR_EDGE,
-    FG_BEHAVIOUR_FURROW,
+    fg_pipeline_free, fg_pipeline_new, fg_pipeline_new_with_fix_rule, fg_pipeline_step,
+    fg_pipeline_step_with_fix, FgConfig, FgError, FgFix, FgFixRule, FgMode, FgPipeline, FgPoint,
+    FgPose, FgPreset, FgScan, FgStatus, FgTickInput, FgTickOutput, FG_BEHAVIOUR_EDGE,
+    FG_BEHAVIOUR_FURROW, FG_FIX_RTK_FIXED, FG_FIX_RTK_FLOAT,
 };
 
 struct Counting;
@@ -340,4 +341,138 @@ fn null_pointers_are_caught() {
 fn the_behaviour_ids_are_the_cores() {
     assert_eq!(FG_BEHAVIOUR_EDGE, fieldguide::presets::EDGE.0);
     assert_eq!(FG_BEHAVIOUR_FURROW, fieldguide::presets::FURROW.0);
+}
+
+/// Path tracking with a fix rule (RTK fixed only, σ ≤ 0.05 m, 1 m carried
+/// by odometry): a float fix 0.5 m off is refused, the pose carried from the
+/// last good fix steers, and past 1 m of travel localisation is lost and
+/// the machine stops. Without a rule the same fix is taken and the error
+/// jumps by 0.5 m.
+//= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+//= type=test
+//# A fix rule whose largest accuracy is not positive, whose path
+//# dead-reckoning distance is negative or whose rejoin slope is not in (0, 1]
+//# MUST be refused with `GD-FIX-QUALITY`.
+#[test]
+fn a_float_fix_is_judged_by_the_fix_rule() {
+    let rule = FgFixRule {
+        worst_kind: FG_FIX_RTK_FIXED,
+        max_accuracy_m: 0.05,
+        path_dead_reckoning_m: 1.0,
+        rejoin_slope: 0.1,
+    };
+    let make = |rule: Option<&FgFixRule>| -> Result<*mut FgPipeline, FgError> {
+        let mut p: *mut FgPipeline = core::ptr::null_mut();
+        let mut e = no_error();
+        let c = config(FgPreset::PathTracking);
+        let w = straight();
+        let r = rule.map_or(core::ptr::null(), |r| r as *const FgFixRule);
+        // SAFETY: live locals of the right types; `w.len()` points.
+        let s =
+            unsafe { fg_pipeline_new_with_fix_rule(&c, w.as_ptr(), w.len(), r, &mut p, &mut e) };
+        match s {
+            FgStatus::Ok => Ok(p),
+            _ => Err(e),
+        }
+    };
+    let tick = |p: *mut FgPipeline, x: f64, fix: &FgFix| -> Result<FgTickOutput, FgError> {
+        let mut i = input(
+            FgPose {
+                x,
+                y: 0.0,
+                heading: 0.0,
+            },
+            &[],
+        );
+        if fix.kind == FG_FIX_RTK_FLOAT {
+            i.gnss.y = 0.5;
+        }
+        let mut out = blank();
+        let mut e = no_error();
+        // SAFETY: `p` is a live pipeline of this test; the rest are live locals.
+        match unsafe { fg_pipeline_step_with_fix(p, &i, fix, &mut out, &mut e) } {
+            FgStatus::Ok => Ok(out),
+            _ => Err(e),
+        }
+    };
+    let fixed = FgFix {
+        kind: FG_FIX_RTK_FIXED,
+        has_accuracy: true,
+        accuracy_m: 0.02,
+    };
+    let float = FgFix {
+        kind: FG_FIX_RTK_FLOAT,
+        has_accuracy: true,
+        accuracy_m: 0.3,
+    };
+    for with_rule in [true, false] {
+        let p = make(with_rule.then_some(&rule)).unwrap();
+        // On the path at 0.01 m a tick, 1 m with RTK fixed then 2 m float.
+        let mut stopped_at = None;
+        for k in 0..300 {
+            let x = 0.01 * f64::from(k);
+            let out = tick(p, x, if k < 100 { &fixed } else { &float }).unwrap();
+            if k == 101 {
+                let expected = if with_rule { 0.0 } else { 0.5 };
+                assert!(
+                    out.has_path_error && (out.lateral_error_m - expected).abs() < 1e-6,
+                    "{out:?}"
+                );
+            }
+            if out.mode == FgMode::Stop {
+                stopped_at.get_or_insert(x);
+            }
+        }
+        // With the rule: carried 1 m, then lost, then Stop; never without.
+        match stopped_at {
+            Some(x) => assert!(with_rule && x > 2.0 && x < 3.0, "stopped at {x}"),
+            None => assert!(!with_rule),
+        }
+        free(p);
+    }
+    // Refusals: a rule with σ ≤ 0, an unknown kind, in the rule or a fix.
+    let bad = FgFixRule {
+        max_accuracy_m: 0.0,
+        ..rule
+    };
+    assert_eq!(
+        requirement(&make(Some(&bad)).unwrap_err()),
+        "GD-FIX-QUALITY"
+    );
+    let bad = FgFixRule {
+        worst_kind: 9,
+        ..rule
+    };
+    assert_eq!(
+        requirement(&make(Some(&bad)).unwrap_err()),
+        "GD-FIX-QUALITY"
+    );
+    let p = make(Some(&rule)).unwrap();
+    let odd = FgFix { kind: 4, ..fixed };
+    assert_eq!(
+        requirement(&tick(p, 0.0, &odd).unwrap_err()),
+        "GD-FIX-QUALITY"
+    );
+    let nan = FgFix {
+        accuracy_m: f64::NAN,
+        ..fixed
+    };
+    assert_eq!(requirement(&tick(p, 0.0, &nan).unwrap_err()), "LIB-FINITE");
+    // A null fix is a null pointer; the pipeline still steps afterwards.
+    let mut out = blank();
+    let i = input(
+        FgPose {
+            x: 0.0,
+            y: 0.0,
+            heading: 0.0,
+        },
+        &[],
+    );
+    // SAFETY: a live pipeline and locals, and a null fix the call must catch.
+    let s = unsafe {
+        fg_pipeline_step_with_fix(p, &i, core::ptr::null(), &mut out, core::ptr::null_mut())
+    };
+    assert_eq!(s, FgStatus::NullPointer);
+    assert!(tick(p, 0.0, &fixed).unwrap().has_command);
+    free(p);
 }
