@@ -281,6 +281,14 @@ impl Line {
         inv_norm: 1.0,
     };
 
+    /// A line farther than any point from every point (its distance is
+    /// infinite), which never takes a point in the re-attachment.
+    const FAR: Self = Self {
+        a: 0.0,
+        b: f64::INFINITY,
+        inv_norm: 1.0,
+    };
+
     fn new(a: f64, b: f64) -> Option<Self> {
         let inv_norm = 1.0 / libm::sqrt(a * a + 1.0);
         (a.is_finite() && b.is_finite() && inv_norm > 0.0).then_some(Self { a, b, inv_norm })
@@ -434,25 +442,12 @@ fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
     })
 }
 
-/// Slot `k` as the rank 2^k, an `f64` ordered as the slots are (exact for
-/// k ≤ 64; 2^64 stands for no model), so that the re-attachment's inner
-/// loop runs on one type and vectorises.
+/// The slot of a mask with one bit set, `MAX_MODELS` (the sink of
+/// [`Stats`]) for no bit.
 #[inline]
-fn rank(k: usize) -> f64 {
-    let k = u64::try_from(k).map_or(64, |k| k.min(64));
-    f64::from_bits(k.saturating_add(1023) << 52)
+fn slot_of(mask: u64) -> usize {
+    usize::try_from(mask.trailing_zeros()).map_or(MAX_MODELS, |k| k.min(MAX_MODELS))
 }
-
-/// The slot of a rank made by [`rank`] (its binary exponent): `MAX_MODELS`
-/// for no model.
-#[inline]
-fn slot_of(rank: f64) -> usize {
-    usize::try_from((rank.to_bits() >> 52).saturating_sub(1023))
-        .map_or(MAX_MODELS, |k| k.min(MAX_MODELS))
-}
-
-/// The rank of no model.
-const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
 /// The points' coordinates in columns, for the re-attachment's inner loops
 /// and the fits.
@@ -477,12 +472,10 @@ struct ModelSet<const N: usize> {
     masks: [u64; N],
     /// The masks when the models were last fitted.
     fit_masks: [u64; N],
-    /// Without shared points: each point's distance to its model and the
-    /// model's [`rank`], or the outlier distance and [`NO_RANK`] for an
-    /// outlier, as the last re-attachment left them. Only the points of
-    /// models moved since may be out of date.
+    /// Without shared points: each point's distance to its model, or the
+    /// outlier distance for an outlier, as the last re-attachment left it.
+    /// Only the points of models moved since may be out of date.
     dist: [f64; N],
-    rank: [f64; N],
     /// Models seeded by this iteration's search (until the merge that
     /// follows it).
     seeded: u64,
@@ -528,7 +521,6 @@ impl<const N: usize> ModelSet<N> {
         masks: [0; N],
         fit_masks: [0; N],
         dist: [0.0; N],
-        rank: [NO_RANK; N],
         seeded: 0,
     };
 
@@ -550,7 +542,6 @@ impl<const N: usize> ModelSet<N> {
         copy_first(&mut self.masks, &other.masks, n);
         copy_first(&mut self.fit_masks, &other.fit_masks, n);
         copy_first(&mut self.dist, &other.dist, n);
-        copy_first(&mut self.rank, &other.rank, n);
     }
 
     /// The line of model `k` fitted to its points (RUBY-FIT), the points'
@@ -743,8 +734,8 @@ impl<const N: usize> Ruby<N> {
         for m in best.fit_masks.iter_mut().take(n) {
             *m = 0;
         }
-        for (d, r) in best.dist.iter_mut().zip(best.rank.iter_mut()).take(n) {
-            (*d, *r) = (p.outlier_distance.get(), NO_RANK);
+        for d in best.dist.iter_mut().take(n) {
+            *d = p.outlier_distance.get();
         }
         for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
             if let (Some(slot), Some(line)) = (
@@ -1013,7 +1004,8 @@ fn merge<const N: usize>(
             }
             let mut absorbed = 0_u64;
             let lj = set.line(j);
-            for k in slots(set.alive & !bit(j)).filter(|&k| k > j) {
+            // The models of the slots above j.
+            for k in slots(set.alive & bit(j).wrapping_neg() & !bit(j)) {
                 absorbed |= bit(k) & 0_u64.wrapping_sub(u64::from(same(&lj, &set.line(k), p)));
             }
             if absorbed != 0 {
@@ -1142,10 +1134,10 @@ fn reattach_deleted<const N: usize>(
     for k in slots(set.alive) {
         let _ = packed.push((bit(k), k, set.line(k)));
     }
-    for ((pt, m), (dist, r)) in points
+    for ((pt, m), dist) in points
         .iter()
         .zip(set.masks.iter_mut())
-        .zip(set.dist.iter_mut().zip(set.rank.iter_mut()))
+        .zip(set.dist.iter_mut())
     {
         if *m & gone == 0 {
             continue;
@@ -1162,23 +1154,24 @@ fn reattach_deleted<const N: usize>(
             }
         }
         *m = closest.2;
-        (*dist, *r) = if closest.2 == 0 {
-            (limit, NO_RANK)
+        *dist = if closest.2 == 0 {
+            limit
         } else {
             stats.add(closest.1, closest.0);
-            (closest.0, rank(closest.1))
+            closest.0
         };
     }
 }
 
-/// After a strict pass of `models` (ranks and lines) over the points, the
-/// lowest rank among the models at each point's distance: the ties the
-/// strict pass left to the first model.
-fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], ranks: &mut [f64], models: &[(f64, Line)]) {
-    for ((&x, &y), (&best, r)) in xs.iter().zip(ys).zip(best.iter().zip(ranks.iter_mut())) {
+/// After a strict pass of `models` (bits and lines) over the points, the
+/// lowest slot among the models at each point's distance: the ties the
+/// strict pass left to the first model (an outlier's distance, the limit,
+/// is a tie with no model).
+fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], masks: &mut [u64], models: &[(u64, Line)]) {
+    for ((&x, &y), (&best, m)) in xs.iter().zip(ys).zip(best.iter().zip(masks.iter_mut())) {
         for &(k, line) in models {
-            if line.distance_xy(x, y) - best == 0.0 && k < *r {
-                *r = k;
+            if line.distance_xy(x, y) - best == 0.0 && (k < *m || *m == 0) {
+                *m = k;
             }
         }
     }
@@ -1202,12 +1195,12 @@ fn reattach<const N: usize>(
     let limit = p.outlier_distance.get();
     let n = points.len();
     let moved = set.moved & set.alive;
-    let mut changed: Vec<(u64, u8, Line), MAX_MODELS> = Vec::new();
+    let mut changed: Vec<(u64, Line), MAX_MODELS> = Vec::new();
     let mut steady: Vec<(u8, Line), MAX_MODELS> = Vec::new();
     for k in slots(set.alive) {
         let slot = u8::try_from(k).unwrap_or(u8::MAX);
         if moved & bit(k) != 0 {
-            let _ = changed.push((bit(k), slot, set.line(k)));
+            let _ = changed.push((bit(k), set.line(k)));
         } else {
             let _ = steady.push((slot, set.line(k)));
         }
@@ -1225,7 +1218,7 @@ fn reattach<const N: usize>(
         for m in set.masks.iter_mut().take(n) {
             *m &= !moved;
         }
-        for &(b, _, line) in &changed {
+        for &(b, line) in &changed {
             for ((&x, &y), m) in xy.clone().zip(set.masks.iter_mut()) {
                 if line.distance_xy(x, y) <= limit {
                     *m |= b;
@@ -1245,19 +1238,16 @@ fn reattach<const N: usize>(
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
         let best = set.dist.get_mut(..n).unwrap_or(&mut []);
-        let ranks = set.rank.get_mut(..n).unwrap_or(&mut []);
+        let masks = set.masks.get_mut(..n).unwrap_or(&mut []);
         // The points of the models that did not move, and the outliers,
-        // hold their distance and rank from the last re-attachment (the
-        // same line, the same bits); the points of a moved model start from
-        // the closest model that did not move.
+        // hold their distance from the last re-attachment (the same line,
+        // the same bits); the points of a moved model start from the
+        // closest model that did not move.
         if moved != 0 {
-            for (((&x, &y), &old), (best, r)) in xs
-                .iter()
-                .zip(ys)
-                .zip(set.masks.iter())
-                .zip(best.iter_mut().zip(ranks.iter_mut()))
+            for (((&x, &y), m), best) in
+                xs.iter().zip(ys).zip(masks.iter_mut()).zip(best.iter_mut())
             {
-                if old & moved == 0 {
+                if *m & moved == 0 {
                     continue;
                 }
                 let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
@@ -1272,35 +1262,37 @@ fn reattach<const N: usize>(
                 // beat: a moved model takes the point when within it
                 // (RUBY-REATTACH), and no test of the limit is left in the
                 // loop below.
-                (*best, *r) = if k_best < MAX_MODELS {
-                    (d_best, rank(k_best))
+                (*best, *m) = if k_best < MAX_MODELS {
+                    (d_best, bit(k_best))
                 } else {
-                    (limit, NO_RANK)
+                    (limit, 0)
                 };
             }
         }
-        // Each moved model over every point: one loop per model on f64
-        // columns alone, without branches (a minimum and a select per
-        // point), which the compiler vectorises. A point's distance to beat
-        // is never above the limit: the closest within it wins, ties to the
-        // lower slot. Two models per pass over the points, in slot order,
-        // halve the loads and stores of the columns. The pass takes a model
-        // strictly closer alone and notes whether any distance equalled the
-        // one to beat; only then does a second pass give each tied point
-        // the lowest slot among its closest (the least (distance, slot), as
-        // a scan of every model in slot order finds it).
-        let mut pairs = changed.chunks_exact(2);
-        for pair in pairs.by_ref() {
-            let [(_, k1, l1), (_, k2, l2)] = pair else {
-                continue;
+        // Each moved model over every point: one loop per model on columns
+        // alone, without branches (a minimum and a select per point), which
+        // the compiler vectorises; the masks, one bit each, are ordered as
+        // the slots are. A point's distance to beat is never above the
+        // limit: the closest within it wins, ties to the lower slot. Two
+        // models per pass over the points, in slot order, halve the loads
+        // and stores of the columns (an odd one is paired with a line no
+        // point is near). The pass takes a model strictly closer alone and
+        // notes whether any distance equalled the one to beat; only then
+        // does a second pass give each tied point the lowest slot among its
+        // closest (the least (distance, slot), as a scan of every model in
+        // slot order finds it).
+        for pair in changed.chunks(2) {
+            let (&(k1, l1), &(k2, l2)) = match pair {
+                [one, two] => (one, two),
+                [one] => (one, &(0, Line::FAR)),
+                _ => continue,
             };
-            let (k1, k2) = (rank(usize::from(*k1)), rank(usize::from(*k2)));
             let mut tie = false;
-            for ((&x, &y), (best, r)) in
-                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
+            for ((&x, &y), (best, m)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(masks.iter_mut()))
             {
                 let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
-                let (mut b, mut q) = (*best, *r);
+                let (mut b, mut q) = (*best, *m);
                 tie |= d1 - b == 0.0;
                 let take = d1 < b;
                 b = if take { d1 } else { b };
@@ -1308,33 +1300,15 @@ fn reattach<const N: usize>(
                 tie |= d2 - b == 0.0;
                 let take = d2 < b;
                 *best = if take { d2 } else { b };
-                *r = if take { k2 } else { q };
+                *m = if take { k2 } else { q };
             }
             if tie {
-                lowest_on_ties(xs, ys, best, ranks, &[(k1, *l1), (k2, *l2)]);
+                lowest_on_ties(xs, ys, best, masks, &[(k1, l1), (k2, l2)]);
             }
         }
-        for &(_, k, line) in pairs.remainder() {
-            let k = rank(usize::from(k));
-            let mut tie = false;
-            for ((&x, &y), (best, r)) in
-                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
-            {
-                let d = line.distance_xy(x, y);
-                tie |= d - *best == 0.0;
-                let take = d < *best;
-                *best = if take { d } else { *best };
-                *r = if take { k } else { *r };
-            }
-            if tie {
-                lowest_on_ties(xs, ys, best, ranks, &[(k, line)]);
-            }
-        }
-        for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
-            // An outlier (slot `MAX_MODELS`) goes to the sink.
-            let k = slot_of(r);
-            *m = bit(k);
-            stats.add(k, best);
+        // An outlier (no bit: slot `MAX_MODELS`) goes to the sink.
+        for (&m, &best) in masks.iter().zip(best.iter()) {
+            stats.add(slot_of(m), best);
         }
     }
     set.moved = 0;
@@ -1405,7 +1379,6 @@ mod tests {
             if y == 0.0 {
                 set.masks[i] = bit(1);
                 set.dist[i] = flat.distance_xy(x, y);
-                set.rank[i] = rank(1);
             } else {
                 set.masks[i] = bit(0);
             }
