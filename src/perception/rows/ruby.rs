@@ -482,9 +482,10 @@ struct ModelSet<const N: usize> {
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
+/// Slot `MAX_MODELS` is a sink for the outliers, so that a pass over the
+/// points adds every point without a branch; without shared points its
+/// count is the number of outliers (its energy is never read).
 #[derive(Debug, Clone, Copy)]
-/// Slot `MAX_MODELS` is a sink for the outliers' sums, never read, so that
-/// a pass over the points adds every point without a branch.
 struct Stats {
     count: [usize; MAX_MODELS + 1],
     energy: [f64; MAX_MODELS + 1],
@@ -762,7 +763,7 @@ impl<const N: usize> Ruby<N> {
         reattach(best, points, &mut self.columns, &p, stats);
         merge(best, &self.columns, n, &mut self.scratch, &p);
         reattach(best, points, &mut self.columns, &p, stats);
-        let start_energy = energy(best, stats, n, &self.weights, &p);
+        let start_energy = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
 
@@ -775,7 +776,14 @@ impl<const N: usize> Ruby<N> {
             reattach(candidate, points, &mut self.columns, &p, candidate_stats);
             let gone = delete(candidate, candidate_stats, &p);
             reattach_deleted(candidate, gone, points, candidate_stats, &p);
-            let e = energy(candidate, candidate_stats, n, &self.weights, &p);
+            let e = energy(
+                candidate,
+                candidate_stats,
+                n,
+                &self.weights,
+                &mut self.scratch.xs,
+                &p,
+            );
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
             //# before it MUST be discarded (Alg. 1, lines 26-27).
@@ -849,17 +857,28 @@ fn energy<const N: usize>(
     stats: &Stats,
     n: usize,
     weights: &[f64; N],
+    terms: &mut [f64; N],
     p: &RubyParams,
 ) -> f64 {
+    let alive = set.alive;
     let masks = set.masks.get(..n).unwrap_or(&[]);
-    let outliers = masks.iter().filter(|&&m| m & set.alive == 0).count();
+    // Without shared points, the re-attachments count the outliers in the
+    // sink.
+    let outliers = if p.variant.shared_points() {
+        masks.iter().filter(|&&m| m & alive == 0).count()
+    } else {
+        stats.count.get(MAX_MODELS).copied().unwrap_or(0)
+    };
+    // Each pair's term, w or +0, in a pass the compiler vectorises; then
+    // their sum in ray order, where adding +0 leaves the sum as it was,
+    // bit for bit.
+    let after = masks.get(1..).unwrap_or(&[]);
+    for ((t, &w), (&m, &q)) in terms.iter_mut().zip(weights).zip(masks.iter().zip(after)) {
+        *t = if (m & alive) == (q & alive) { 0.0 } else { w };
+    }
     let mut neighbour = 0.0;
-    for (w, pair) in weights.iter().zip(masks.windows(2)) {
-        if let [m, q] = pair {
-            // Without a branch on the points' models: w · 1 is w and adding
-            // w · 0 = +0 leaves the sum as it was, bit for bit.
-            neighbour += w * f64::from(u8::from((m & set.alive) != (q & set.alive)));
-        }
+    for &t in terms.get(..after.len()).unwrap_or(&[]) {
+        neighbour += t;
     }
     let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
     p.outlier_energy * count_f64(outliers) + p.neighbour_penalty * neighbour + models
@@ -1154,12 +1173,9 @@ fn reattach_deleted<const N: usize>(
             }
         }
         *m = closest.2;
-        *dist = if closest.2 == 0 {
-            limit
-        } else {
-            stats.add(closest.1, closest.0);
-            closest.0
-        };
+        // An outlier (slot `MAX_MODELS`) is counted in the sink.
+        *dist = if closest.2 == 0 { limit } else { closest.0 };
+        stats.add(closest.1, *dist);
     }
 }
 
