@@ -499,7 +499,8 @@ impl Stats {
 
     fn add(&mut self, k: usize, distance: f64) {
         if let (Some(c), Some(e)) = (self.count.get_mut(k), self.energy.get_mut(k)) {
-            *c = c.saturating_add(1);
+            // At most `N` points: no overflow.
+            *c = c.wrapping_add(1);
             *e += distance;
         }
     }
@@ -1212,13 +1213,12 @@ fn reattach<const N: usize>(
     let n = points.len();
     let moved = set.moved & set.alive;
     let mut changed: Vec<(u64, Line), MAX_MODELS> = Vec::new();
-    let mut steady: Vec<(u8, Line), MAX_MODELS> = Vec::new();
+    let mut steady: Vec<(u64, Line), MAX_MODELS> = Vec::new();
     for k in slots(set.alive) {
-        let slot = u8::try_from(k).unwrap_or(u8::MAX);
         if moved & bit(k) != 0 {
             let _ = changed.push((bit(k), set.line(k)));
         } else {
-            let _ = steady.push((slot, set.line(k)));
+            let _ = steady.push((bit(k), set.line(k)));
         }
     }
     let xy = cols.xs.iter().zip(cols.ys.iter()).take(n);
@@ -1266,22 +1266,24 @@ fn reattach<const N: usize>(
                 if *m & moved == 0 {
                     continue;
                 }
-                let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
+                // The first model in slot order at the least distance
+                // within the limit (at most the limit: below the float
+                // after it), by a minimum and a select.
+                let (mut d_best, mut m_best) = (limit.next_up(), 0_u64);
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
-                    let k = usize::from(k);
-                    if d <= limit && (d < d_best || (d <= d_best && k < k_best)) {
-                        (d_best, k_best) = (d, k);
-                    }
+                    let take = d < d_best;
+                    d_best = if take { d } else { d_best };
+                    m_best = if take { k } else { m_best };
                 }
                 // With no model yet, the limit stands for the distance to
                 // beat: a moved model takes the point when within it
                 // (RUBY-REATTACH), and no test of the limit is left in the
                 // loop below.
-                (*best, *m) = if k_best < MAX_MODELS {
-                    (d_best, bit(k_best))
-                } else {
+                (*best, *m) = if m_best == 0 {
                     (limit, 0)
+                } else {
+                    (d_best, m_best)
                 };
             }
         }
