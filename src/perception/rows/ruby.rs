@@ -561,13 +561,15 @@ impl<const N: usize> ModelSet<N> {
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
         let masks = self.masks.get(..n).unwrap_or(&[]);
+        let (to_x, to_y) = (&mut scratch.xs, &mut scratch.ys);
         // Every point written at the end of the list, which grows by the
-        // points of the model: no branch on the masks.
+        // points of the model: no branch on the masks (at most `N` points:
+        // no overflow).
         for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
-            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
+            if let (Some(mx), Some(my)) = (to_x.get_mut(count), to_y.get_mut(count)) {
                 (*mx, *my) = (x, y);
             }
-            count = count.saturating_add(usize::from(m & b != 0));
+            count = count.wrapping_add(usize::from(m & b != 0));
         }
         Line::fit(
             scratch.xs.get(..count).unwrap_or(&[]),
