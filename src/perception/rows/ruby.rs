@@ -1182,6 +1182,12 @@ fn reattach_deleted<const N: usize>(
     }
 }
 
+/// The float after `x` (> 0 and finite, as the outlier distance is): a
+/// distance is at most `x` when it is below it.
+fn float_after(x: f64) -> f64 {
+    f64::from_bits(x.to_bits().saturating_add(1))
+}
+
 /// After a strict pass of `models` (bits and lines) over the points, the
 /// lowest slot among the models at each point's distance: the ties the
 /// strict pass left to the first model (an outlier's distance, the limit,
@@ -1271,7 +1277,7 @@ fn reattach<const N: usize>(
                 // The first model in slot order at the least distance
                 // within the limit (at most the limit: below the float
                 // after it), by a minimum and a select.
-                let (mut d_best, mut m_best) = (limit.next_up(), 0_u64);
+                let (mut d_best, mut m_best) = (float_after(limit), 0_u64);
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
                     let take = d < d_best;
