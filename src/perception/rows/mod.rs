@@ -424,6 +424,7 @@ fn moved(a: &Pose2<Odom>, b: &Pose2<Odom>) -> f64 {
 
 /// A count (of points, models or rows) as an f64: exact below 2³², which no
 /// buffer here reaches.
+#[inline]
 pub(crate) fn count_f64(n: usize) -> f64 {
     u32::try_from(n).map_or(f64::from(u32::MAX), f64::from)
 }

@@ -281,6 +281,14 @@ impl Line {
         inv_norm: 1.0,
     };
 
+    /// A line farther than any point from every point (its distance is
+    /// infinite), which never takes a point in the re-attachment.
+    const FAR: Self = Self {
+        a: 0.0,
+        b: f64::INFINITY,
+        inv_norm: 1.0,
+    };
+
     fn new(a: f64, b: f64) -> Option<Self> {
         let inv_norm = 1.0 / libm::sqrt(a * a + 1.0);
         (a.is_finite() && b.is_finite() && inv_norm > 0.0).then_some(Self { a, b, inv_norm })
@@ -434,25 +442,12 @@ fn slots(mask: u64) -> impl Iterator<Item = usize> + Clone {
     })
 }
 
-/// Slot `k` as the rank 2^k, an `f64` ordered as the slots are (exact for
-/// k ≤ 64; 2^64 stands for no model), so that the re-attachment's inner
-/// loop runs on one type and vectorises.
+/// The slot of a mask with one bit set, `MAX_MODELS` (the sink of
+/// [`Stats`]) for no bit.
 #[inline]
-fn rank(k: usize) -> f64 {
-    let k = u64::try_from(k).map_or(64, |k| k.min(64));
-    f64::from_bits(k.saturating_add(1023) << 52)
+fn slot_of(mask: u64) -> usize {
+    usize::try_from(mask.trailing_zeros()).map_or(MAX_MODELS, |k| k.min(MAX_MODELS))
 }
-
-/// The slot of a rank made by [`rank`] (its binary exponent): `MAX_MODELS`
-/// for no model.
-#[inline]
-fn slot_of(rank: f64) -> usize {
-    usize::try_from((rank.to_bits() >> 52).saturating_sub(1023))
-        .map_or(MAX_MODELS, |k| k.min(MAX_MODELS))
-}
-
-/// The rank of no model.
-const NO_RANK: f64 = 18_446_744_073_709_551_616.0;
 
 /// The points' coordinates in columns, for the re-attachment's inner loops
 /// and the fits.
@@ -477,21 +472,20 @@ struct ModelSet<const N: usize> {
     masks: [u64; N],
     /// The masks when the models were last fitted.
     fit_masks: [u64; N],
-    /// Without shared points: each point's distance to its model and the
-    /// model's [`rank`], or the outlier distance and [`NO_RANK`] for an
-    /// outlier, as the last re-attachment left them. Only the points of
-    /// models moved since may be out of date.
+    /// Without shared points: each point's distance to its model, or the
+    /// outlier distance for an outlier, as the last re-attachment left it.
+    /// Only the points of models moved since may be out of date.
     dist: [f64; N],
-    rank: [f64; N],
     /// Models seeded by this iteration's search (until the merge that
     /// follows it).
     seeded: u64,
 }
 
 /// Per-model sums of one pass over the points: |P(L)| and E_L(L).
+/// Slot `MAX_MODELS` is a sink for the outliers, so that a pass over the
+/// points adds every point without a branch; without shared points its
+/// count is the number of outliers (its energy is never read).
 #[derive(Debug, Clone, Copy)]
-/// Slot `MAX_MODELS` is a sink for the outliers' sums, never read, so that
-/// a pass over the points adds every point without a branch.
 struct Stats {
     count: [usize; MAX_MODELS + 1],
     energy: [f64; MAX_MODELS + 1],
@@ -505,7 +499,8 @@ impl Stats {
 
     fn add(&mut self, k: usize, distance: f64) {
         if let (Some(c), Some(e)) = (self.count.get_mut(k), self.energy.get_mut(k)) {
-            *c = c.saturating_add(1);
+            // At most `N` points: no overflow.
+            *c = c.wrapping_add(1);
             *e += distance;
         }
     }
@@ -528,7 +523,6 @@ impl<const N: usize> ModelSet<N> {
         masks: [0; N],
         fit_masks: [0; N],
         dist: [0.0; N],
-        rank: [NO_RANK; N],
         seeded: 0,
     };
 
@@ -550,7 +544,6 @@ impl<const N: usize> ModelSet<N> {
         copy_first(&mut self.masks, &other.masks, n);
         copy_first(&mut self.fit_masks, &other.fit_masks, n);
         copy_first(&mut self.dist, &other.dist, n);
-        copy_first(&mut self.rank, &other.rank, n);
     }
 
     /// The line of model `k` fitted to its points (RUBY-FIT), the points'
@@ -568,13 +561,15 @@ impl<const N: usize> ModelSet<N> {
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
         let masks = self.masks.get(..n).unwrap_or(&[]);
+        let (to_x, to_y) = (&mut scratch.xs, &mut scratch.ys);
         // Every point written at the end of the list, which grows by the
-        // points of the model: no branch on the masks.
+        // points of the model: no branch on the masks (at most `N` points:
+        // no overflow).
         for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
-            if let (Some(mx), Some(my)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
+            if let (Some(mx), Some(my)) = (to_x.get_mut(count), to_y.get_mut(count)) {
                 (*mx, *my) = (x, y);
             }
-            count = count.saturating_add(usize::from(m & b != 0));
+            count = count.wrapping_add(usize::from(m & b != 0));
         }
         Line::fit(
             scratch.xs.get(..count).unwrap_or(&[]),
@@ -743,8 +738,8 @@ impl<const N: usize> Ruby<N> {
         for m in best.fit_masks.iter_mut().take(n) {
             *m = 0;
         }
-        for (d, r) in best.dist.iter_mut().zip(best.rank.iter_mut()).take(n) {
-            (*d, *r) = (p.outlier_distance.get(), NO_RANK);
+        for d in best.dist.iter_mut().take(n) {
+            *d = p.outlier_distance.get();
         }
         for (k, m) in self.models.iter().enumerate().take(MAX_MODELS) {
             if let (Some(slot), Some(line)) = (
@@ -771,7 +766,7 @@ impl<const N: usize> Ruby<N> {
         reattach(best, points, &mut self.columns, &p, stats);
         merge(best, &self.columns, n, &mut self.scratch, &p);
         reattach(best, points, &mut self.columns, &p, stats);
-        let start_energy = energy(best, stats, n, &self.weights, &p);
+        let start_energy = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
 
@@ -784,7 +779,14 @@ impl<const N: usize> Ruby<N> {
             reattach(candidate, points, &mut self.columns, &p, candidate_stats);
             let gone = delete(candidate, candidate_stats, &p);
             reattach_deleted(candidate, gone, points, candidate_stats, &p);
-            let e = energy(candidate, candidate_stats, n, &self.weights, &p);
+            let e = energy(
+                candidate,
+                candidate_stats,
+                n,
+                &self.weights,
+                &mut self.scratch.xs,
+                &p,
+            );
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
             //# before it MUST be discarded (Alg. 1, lines 26-27).
@@ -858,17 +860,28 @@ fn energy<const N: usize>(
     stats: &Stats,
     n: usize,
     weights: &[f64; N],
+    terms: &mut [f64; N],
     p: &RubyParams,
 ) -> f64 {
+    let alive = set.alive;
     let masks = set.masks.get(..n).unwrap_or(&[]);
-    let outliers = masks.iter().filter(|&&m| m & set.alive == 0).count();
+    // Without shared points, the re-attachments count the outliers in the
+    // sink.
+    let outliers = if p.variant.shared_points() {
+        masks.iter().filter(|&&m| m & alive == 0).count()
+    } else {
+        stats.count.get(MAX_MODELS).copied().unwrap_or(0)
+    };
+    // Each pair's term, w or +0, in a pass the compiler vectorises; then
+    // their sum in ray order, where adding +0 leaves the sum as it was,
+    // bit for bit.
+    let after = masks.get(1..).unwrap_or(&[]);
+    for ((t, &w), (&m, &q)) in terms.iter_mut().zip(weights).zip(masks.iter().zip(after)) {
+        *t = if (m & alive) == (q & alive) { 0.0 } else { w };
+    }
     let mut neighbour = 0.0;
-    for (w, pair) in weights.iter().zip(masks.windows(2)) {
-        if let [m, q] = pair {
-            // Without a branch on the points' models: w · 1 is w and adding
-            // w · 0 = +0 leaves the sum as it was, bit for bit.
-            neighbour += w * f64::from(u8::from((m & set.alive) != (q & set.alive)));
-        }
+    for &t in terms.get(..after.len()).unwrap_or(&[]) {
+        neighbour += t;
     }
     let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
     p.outlier_energy * count_f64(outliers) + p.neighbour_penalty * neighbour + models
@@ -1013,7 +1026,8 @@ fn merge<const N: usize>(
             }
             let mut absorbed = 0_u64;
             let lj = set.line(j);
-            for k in slots(set.alive & !bit(j)).filter(|&k| k > j) {
+            // The models of the slots above j.
+            for k in slots(set.alive & bit(j).wrapping_neg() & !bit(j)) {
                 absorbed |= bit(k) & 0_u64.wrapping_sub(u64::from(same(&lj, &set.line(k), p)));
             }
             if absorbed != 0 {
@@ -1142,10 +1156,10 @@ fn reattach_deleted<const N: usize>(
     for k in slots(set.alive) {
         let _ = packed.push((bit(k), k, set.line(k)));
     }
-    for ((pt, m), (dist, r)) in points
+    for ((pt, m), dist) in points
         .iter()
         .zip(set.masks.iter_mut())
-        .zip(set.dist.iter_mut().zip(set.rank.iter_mut()))
+        .zip(set.dist.iter_mut())
     {
         if *m & gone == 0 {
             continue;
@@ -1162,23 +1176,27 @@ fn reattach_deleted<const N: usize>(
             }
         }
         *m = closest.2;
-        (*dist, *r) = if closest.2 == 0 {
-            (limit, NO_RANK)
-        } else {
-            stats.add(closest.1, closest.0);
-            (closest.0, rank(closest.1))
-        };
+        // An outlier (slot `MAX_MODELS`) is counted in the sink.
+        *dist = if closest.2 == 0 { limit } else { closest.0 };
+        stats.add(closest.1, *dist);
     }
 }
 
-/// After a strict pass of `models` (ranks and lines) over the points, the
-/// lowest rank among the models at each point's distance: the ties the
-/// strict pass left to the first model.
-fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], ranks: &mut [f64], models: &[(f64, Line)]) {
-    for ((&x, &y), (&best, r)) in xs.iter().zip(ys).zip(best.iter().zip(ranks.iter_mut())) {
+/// The float after `x` (> 0 and finite, as the outlier distance is): a
+/// distance is at most `x` when it is below it.
+fn float_after(x: f64) -> f64 {
+    f64::from_bits(x.to_bits().saturating_add(1))
+}
+
+/// After a strict pass of `models` (bits and lines) over the points, the
+/// lowest slot among the models at each point's distance: the ties the
+/// strict pass left to the first model (an outlier's distance, the limit,
+/// is a tie with no model).
+fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], masks: &mut [u64], models: &[(u64, Line)]) {
+    for ((&x, &y), (&best, m)) in xs.iter().zip(ys).zip(best.iter().zip(masks.iter_mut())) {
         for &(k, line) in models {
-            if line.distance_xy(x, y) - best == 0.0 && k < *r {
-                *r = k;
+            if line.distance_xy(x, y) - best == 0.0 && (k < *m || *m == 0) {
+                *m = k;
             }
         }
     }
@@ -1202,14 +1220,13 @@ fn reattach<const N: usize>(
     let limit = p.outlier_distance.get();
     let n = points.len();
     let moved = set.moved & set.alive;
-    let mut changed: Vec<(u64, u8, Line), MAX_MODELS> = Vec::new();
-    let mut steady: Vec<(u8, Line), MAX_MODELS> = Vec::new();
+    let mut changed: Vec<(u64, Line), MAX_MODELS> = Vec::new();
+    let mut steady: Vec<(u64, Line), MAX_MODELS> = Vec::new();
     for k in slots(set.alive) {
-        let slot = u8::try_from(k).unwrap_or(u8::MAX);
         if moved & bit(k) != 0 {
-            let _ = changed.push((bit(k), slot, set.line(k)));
+            let _ = changed.push((bit(k), set.line(k)));
         } else {
-            let _ = steady.push((slot, set.line(k)));
+            let _ = steady.push((bit(k), set.line(k)));
         }
     }
     let xy = cols.xs.iter().zip(cols.ys.iter()).take(n);
@@ -1225,7 +1242,7 @@ fn reattach<const N: usize>(
         for m in set.masks.iter_mut().take(n) {
             *m &= !moved;
         }
-        for &(b, _, line) in &changed {
+        for &(b, line) in &changed {
             for ((&x, &y), m) in xy.clone().zip(set.masks.iter_mut()) {
                 if line.distance_xy(x, y) <= limit {
                     *m |= b;
@@ -1245,62 +1262,63 @@ fn reattach<const N: usize>(
         let xs = cols.xs.get(..n).unwrap_or(&[]);
         let ys = cols.ys.get(..n).unwrap_or(&[]);
         let best = set.dist.get_mut(..n).unwrap_or(&mut []);
-        let ranks = set.rank.get_mut(..n).unwrap_or(&mut []);
+        let masks = set.masks.get_mut(..n).unwrap_or(&mut []);
         // The points of the models that did not move, and the outliers,
-        // hold their distance and rank from the last re-attachment (the
-        // same line, the same bits); the points of a moved model start from
-        // the closest model that did not move.
+        // hold their distance from the last re-attachment (the same line,
+        // the same bits); the points of a moved model start from the
+        // closest model that did not move.
         if moved != 0 {
-            for (((&x, &y), &old), (best, r)) in xs
-                .iter()
-                .zip(ys)
-                .zip(set.masks.iter())
-                .zip(best.iter_mut().zip(ranks.iter_mut()))
+            for (((&x, &y), m), best) in
+                xs.iter().zip(ys).zip(masks.iter_mut()).zip(best.iter_mut())
             {
-                if old & moved == 0 {
+                if *m & moved == 0 {
                     continue;
                 }
-                let (mut d_best, mut k_best) = (f64::INFINITY, MAX_MODELS);
+                // The first model in slot order at the least distance
+                // within the limit (at most the limit: below the float
+                // after it), by a minimum and a select.
+                let (mut d_best, mut m_best) = (float_after(limit), 0_u64);
                 for &(k, line) in &steady {
                     let d = line.distance_xy(x, y);
-                    let k = usize::from(k);
-                    if d <= limit && (d < d_best || (d <= d_best && k < k_best)) {
-                        (d_best, k_best) = (d, k);
-                    }
+                    let take = d < d_best;
+                    d_best = if take { d } else { d_best };
+                    m_best = if take { k } else { m_best };
                 }
                 // With no model yet, the limit stands for the distance to
                 // beat: a moved model takes the point when within it
                 // (RUBY-REATTACH), and no test of the limit is left in the
                 // loop below.
-                (*best, *r) = if k_best < MAX_MODELS {
-                    (d_best, rank(k_best))
+                (*best, *m) = if m_best == 0 {
+                    (limit, 0)
                 } else {
-                    (limit, NO_RANK)
+                    (d_best, m_best)
                 };
             }
         }
-        // Each moved model over every point: one loop per model on f64
-        // columns alone, without branches (a minimum and a select per
-        // point), which the compiler vectorises. A point's distance to beat
-        // is never above the limit: the closest within it wins, ties to the
-        // lower slot. Two models per pass over the points, in slot order,
-        // halve the loads and stores of the columns. The pass takes a model
-        // strictly closer alone and notes whether any distance equalled the
-        // one to beat; only then does a second pass give each tied point
-        // the lowest slot among its closest (the least (distance, slot), as
-        // a scan of every model in slot order finds it).
-        let mut pairs = changed.chunks_exact(2);
-        for pair in pairs.by_ref() {
-            let [(_, k1, l1), (_, k2, l2)] = pair else {
-                continue;
+        // Each moved model over every point: one loop per model on columns
+        // alone, without branches (a minimum and a select per point), which
+        // the compiler vectorises; the masks, one bit each, are ordered as
+        // the slots are. A point's distance to beat is never above the
+        // limit: the closest within it wins, ties to the lower slot. Two
+        // models per pass over the points, in slot order, halve the loads
+        // and stores of the columns (an odd one is paired with a line no
+        // point is near). The pass takes a model strictly closer alone and
+        // notes whether any distance equalled the one to beat; only then
+        // does a second pass give each tied point the lowest slot among its
+        // closest (the least (distance, slot), as a scan of every model in
+        // slot order finds it).
+        for pair in changed.chunks(2) {
+            let (&(k1, l1), &(k2, l2)) = match pair {
+                [one, two] => (one, two),
+                [one] => (one, &(0, Line::FAR)),
+                _ => continue,
             };
-            let (k1, k2) = (rank(usize::from(*k1)), rank(usize::from(*k2)));
             let mut tie = false;
-            for ((&x, &y), (best, r)) in
-                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
+            for ((&x, &y), (best, m)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(masks.iter_mut()))
             {
                 let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
-                let (mut b, mut q) = (*best, *r);
+                let (mut b, mut q) = (*best, *m);
                 tie |= d1 - b == 0.0;
                 let take = d1 < b;
                 b = if take { d1 } else { b };
@@ -1308,33 +1326,15 @@ fn reattach<const N: usize>(
                 tie |= d2 - b == 0.0;
                 let take = d2 < b;
                 *best = if take { d2 } else { b };
-                *r = if take { k2 } else { q };
+                *m = if take { k2 } else { q };
             }
             if tie {
-                lowest_on_ties(xs, ys, best, ranks, &[(k1, *l1), (k2, *l2)]);
+                lowest_on_ties(xs, ys, best, masks, &[(k1, l1), (k2, l2)]);
             }
         }
-        for &(_, k, line) in pairs.remainder() {
-            let k = rank(usize::from(k));
-            let mut tie = false;
-            for ((&x, &y), (best, r)) in
-                xs.iter().zip(ys).zip(best.iter_mut().zip(ranks.iter_mut()))
-            {
-                let d = line.distance_xy(x, y);
-                tie |= d - *best == 0.0;
-                let take = d < *best;
-                *best = if take { d } else { *best };
-                *r = if take { k } else { *r };
-            }
-            if tie {
-                lowest_on_ties(xs, ys, best, ranks, &[(k, line)]);
-            }
-        }
-        for (m, (&best, &r)) in set.masks.iter_mut().zip(best.iter().zip(ranks.iter())) {
-            // An outlier (slot `MAX_MODELS`) goes to the sink.
-            let k = slot_of(r);
-            *m = bit(k);
-            stats.add(k, best);
+        // An outlier (no bit: slot `MAX_MODELS`) goes to the sink.
+        for (&m, &best) in masks.iter().zip(best.iter()) {
+            stats.add(slot_of(m), best);
         }
     }
     set.moved = 0;
@@ -1405,7 +1405,6 @@ mod tests {
             if y == 0.0 {
                 set.masks[i] = bit(1);
                 set.dist[i] = flat.distance_xy(x, y);
-                set.rank[i] = rank(1);
             } else {
                 set.masks[i] = bit(0);
             }
