@@ -451,9 +451,9 @@ fn a_row_of_trunks_is_one_structure() {
 /// against the nominal face's offset line. Without the bridge (and the
 /// piece-end rule) the gaps switch modes 12-14 times a pass; with the
 /// bridge (6 m, GD-BRIDGE-STEADY, GD-BRIDGE-AGREE) and the piece-end rule
-/// (EDGE-PIECE-END) at most twice, but the straight structure line keeps
-/// the robot only within about 0.43 m of the envelope's wiggles (README,
-/// stress campaign, "Open").
+/// (EDGE-PIECE-END, x_ahead only) at most twice, but the straight structure
+/// line keeps the robot only within 0.35 m of the envelope's wiggles
+/// (0.073 m on average; seeds 1-20 in the README's stress campaign, "Open").
 //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
 //= type=test
 //# While the valid detections of that behaviour put at least 3 anchors
@@ -468,5 +468,48 @@ fn a_ragged_hedge_with_gaps_is_followed_on_its_envelope() {
     assert!(without.switches <= 14, "{without:?}");
     let with = sweep_pass("hedge-ragged", true, true);
     assert!(with.switches <= 2, "{with:?}");
-    assert!(with.mean_m < 0.09 && with.max_m < 0.45, "{with:?}");
+    assert!(with.mean_m < 0.08 && with.max_m < 0.4, "{with:?}");
+}
+
+/// How far a straight line must be from a ragged hedge's true line: the
+/// offset line of the face's envelope, where the hedge is present, against
+/// its own least-squares straight line, largest deviation over the pass, m.
+fn envelope_off_its_straight_line(setup: &Setup) -> f64 {
+    let spec = &setup.world.hedges[0].spec;
+    let face = envelope::near_face(setup);
+    let line: Vec<(f64, f64)> = (0..=(spec.length * 50.0) as usize)
+        .map(|k| k as f64 / 50.0)
+        .filter(|&u| spec.is_present(u))
+        .filter_map(|u| envelope::envelope(&face, CIRCLE_M, u).map(|e| (u, e)))
+        .collect();
+    let n = line.len() as f64;
+    let (su, se) = line.iter().fold((0.0, 0.0), |a, (u, e)| (a.0 + u, a.1 + e));
+    let (mu, me) = (su / n, se / n);
+    let (suu, sue) = line.iter().fold((0.0, 0.0), |a, (u, e)| {
+        (a.0 + (u - mu) * (u - mu), a.1 + (u - mu) * (e - me))
+    });
+    let slope = sue / suu;
+    line.iter()
+        .map(|(u, e)| (e - me - slope * (u - mu)).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Why the straight structure line cannot hold the ragged hedge within
+/// 0.15 m (README, stress campaign, "Open"): on most seeds the envelope's
+/// line itself strays more than that from its best straight line, so the
+/// robot must follow its wiggles from valid lines, and a bridge across a
+/// gap and the piece ends beside it can only carry a straight line.
+#[test]
+fn a_ragged_hedge_envelope_is_not_a_straight_line() {
+    let devs: Vec<f64> = (1..=20_u64)
+        .map(|seed| {
+            let source = common::stress_source("hedge-ragged");
+            let (setup, _) = runner::prepare_with_seed(&source, seed).unwrap();
+            envelope_off_its_straight_line(&setup)
+        })
+        .collect();
+    eprintln!("hedge-ragged, seeds 1-20: envelope's line off its straight line by {devs:.4?} m");
+    let over = devs.iter().filter(|d| **d > 0.15).count();
+    assert!(over >= 10, "{devs:?}");
+    assert!(devs.iter().all(|d| (0.1..0.25).contains(d)), "{devs:?}");
 }

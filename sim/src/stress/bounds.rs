@@ -101,6 +101,10 @@ pub enum Bound {
     EnvelopeMax(f64),
     /// Mean |error to that line| below this, metres.
     EnvelopeMean(f64),
+    /// Largest error to that line towards the hedge (the clearance lost
+    /// inside the offset), below this, metres: the side the robot must keep
+    /// clear of, judged alone since [`Bound::EnvelopeMax`] counts both.
+    EnvelopeTowards(f64),
 }
 
 /// A bound's figure on one run: the value measured and the limit it must
@@ -267,6 +271,19 @@ impl Bound {
                 let what = if max { "max" } else { "mean" };
                 judged(
                     format!("{what} |y| to the envelope's line (m)"),
+                    value,
+                    limit,
+                )
+            }
+            Self::EnvelopeTowards(limit) => {
+                let errors = super::envelope::envelope_errors(setup, trace);
+                let value = if errors.is_empty() {
+                    f64::INFINITY
+                } else {
+                    errors.iter().map(|e| -e).fold(0.0, f64::max)
+                };
+                judged(
+                    "max towards the hedge from the envelope's line (m)".to_owned(),
                     value,
                     limit,
                 )

@@ -60,8 +60,9 @@ pub fn envelope(face: &[(f64, f64)], radius: f64, u: f64) -> Option<f64> {
 /// The errors of the robot's controlled point to the envelope's offset
 /// line of hedge 0's right face (the robot follows it on its left), over
 /// the ticks in edge following at least [`SETTLED_M`] after entering it with
-/// the hedge present abeam, metres, positive towards the hedge; empty
-/// without a hedge or edge following.
+/// the hedge present abeam, metres, positive away from the hedge (clearance
+/// beyond the offset), negative towards it; empty without a hedge or edge
+/// following.
 #[must_use]
 pub fn envelope_errors(setup: &Setup, trace: &[TickRecord]) -> Vec<f64> {
     let (Some(hedge), Some(edge)) = (setup.world.hedges.first(), setup.edge.as_ref()) else {

@@ -80,8 +80,9 @@ pub struct Class {
 }
 
 use Bound::{
-    ConvergesInTime, CurvatureStep, EnvelopeMax, EnvelopeMean, InPlotMax, MaxFrom, NoPlantCrushed,
-    Overshoot, ScenarioChecks, SettledBefore, SettledInBand, SlipStep, SwitchesAtMost,
+    ConvergesInTime, CurvatureStep, EnvelopeMax, EnvelopeMean, EnvelopeTowards, InPlotMax, MaxFrom,
+    NoPlantCrushed, Overshoot, ScenarioChecks, SettledBefore, SettledInBand, SlipStep,
+    SwitchesAtMost,
 };
 
 const STRAIGHT_FROM_0_8: &[Bound] = &[ConvergesInTime, Overshoot(0.10), SettledInBand];
@@ -323,18 +324,18 @@ pub const CLASSES: &[Class] = &[
             Case { scenario: "trunks-posts.toml", bounds: &[ScenarioChecks, SwitchesAtMost(2)], known_failure: None },
             Case {
                 scenario: "hedge-gappy.toml",
-                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
-                known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but up to 0.22 m off the envelope's wiggles (0.15 m allowed) in 10 of 20 seeds"),
+                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15), EnvelopeTowards(0.15)],
+                known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but up to 0.215 m off the envelope's line (0.15 m allowed) in 6 of 20 seeds, on the side away from the hedge, beside gaps after the straight structure line bridged them"),
             },
             Case {
                 scenario: "hedge-sparse-fast.toml",
-                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
-                known_failure: Known::most_seeds("at most 2 switches, but the straight structure line is up to 0.42 m off the envelope's wiggles (0.15 m allowed) in 16 of 20 seeds, 0.076 m on average (0.05 m) in 3"),
+                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15), EnvelopeTowards(0.15)],
+                known_failure: Known::most_seeds("at most 2 switches, but the straight structure line bridging the gaps leaves the robot up to 0.28 m off the envelope's line (0.15 m allowed) in 14 of 20 seeds, 0.052 m on average (0.05 m) in 2"),
             },
             Case {
                 scenario: "hedge-ragged.toml",
-                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15)],
-                known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but the structure line, straight, is up to 0.43 m off the envelope's wiggles (0.15 m allowed), 0.087 m on average (0.05 m)"),
+                bounds: &[ScenarioChecks, SwitchesAtMost(2), EnvelopeMean(0.05), EnvelopeMax(0.15), EnvelopeTowards(0.15)],
+                known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but the structure line, straight, is up to 0.42 m off the envelope's line (0.15 m allowed), 0.074 m on average (0.05 m); the envelope's line itself strays 0.13-0.21 m from its best straight line, over 0.15 m in 13 of 20 seeds (sim/tests/holds.rs)"),
             },
         ],
     },
