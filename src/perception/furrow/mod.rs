@@ -618,10 +618,11 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         let e = min_extent.get().max(FIRST_LINE_SPREAD);
         let n = self.config.params.averaged_scans;
         let beyond = self.first.kept.saturating_sub(n);
+        let count = |k: usize| u32::try_from(k).map_or(f64::from(u32::MAX), f64::from);
         let weight = if n == 0 {
             0.0
         } else {
-            (1.0 - beyond as f64 / n as f64).clamp(0.0, 1.0)
+            (1.0 - count(beyond) / count(n)).clamp(0.0, 1.0)
         };
         let d = hi - lo;
         let faded = libm::sqrt(d * d + weight * (e * e - d * d).max(0.0));
