@@ -576,9 +576,9 @@ fn the_first_line_comes_with_the_fifth_scan_on_the_rows_centre() {
 /// waits for the points to span the minimum extent, as with FUR-LINE alone.
 //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
 //= type=test
-//# While the points span less than E, the detector MUST give no line before
-//# the first-line heading is set, and none once the accumulation has held its
-//# capacity of selections since it was last empty.
+//# While the points span less than the minimum extent, the detector MUST give
+//# no line before the first-line heading is set, and none once the accumulation
+//# has held its capacity of selections since it was last empty.
 #[test]
 fn no_first_line_while_the_robot_turns() {
     let params = FurrowParams::table2();
@@ -665,4 +665,52 @@ fn the_first_line_keeps_the_heading_of_the_straight_entry() {
         }
     }
     assert_eq!(last, Some(Verdict::Absent));
+}
+
+/// A robot slower than its accumulation (0.028 m a scan: 25 scans span
+/// 0.7 m, less than E = 1 m) driving straight at 0.05 rad to the rows: the
+/// line does not jump when the accumulation fills (the first line carries
+/// on, its prior fading over the next 25 scans), and after twice its
+/// capacity it is FUR-LINE's, the rows' own direction rather than the
+/// robot's heading. Ending at the fill or at twice it, θ̃ jumped 0.018 rad.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# The first line MUST be given from the tick the first-line heading is set
+//# until the first tick, after the accumulation has held its capacity, at which
+//# the kept selections' reference points span E along x, or at which twice its
+//# capacity of selections have been kept since it was last empty; after that,
+//# the line MUST be FUR-LINE's.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# Once the accumulation has held its capacity c, Λ MUST be multiplied by
+//# 1 − k/c, k the number of selections kept beyond c since it was last empty.
+#[test]
+fn the_first_line_ends_without_a_jump_when_the_accumulation_fills() {
+    let params = FurrowParams::table2();
+    let l = lidar();
+    let psi = 0.05_f64;
+    let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
+    let mut pose = (0.0_f64, 0.1_f64, psi);
+    let mut errors = Vec::new();
+    for _ in 0..60 {
+        let ranges = ridge_scan(&params, &l, pose, &rows(0.3));
+        let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+        let d = det.detect(&scan(&ranges, &l), &odom).unwrap();
+        errors.push(d.error.map(|e| (e.y.get(), e.angular_deviation.get())));
+        pose = (pose.0 + 0.028 * psi.cos(), pose.1 + 0.028 * psi.sin(), psi);
+    }
+    // From the fifth scan on, one scan turns the line by at most 0.008 rad
+    // (the ridges' faces move the fit by up to 0.005 rad a scan).
+    assert!(errors[3].is_none());
+    for k in 5..60 {
+        let (a, b) = (errors[k - 1].unwrap(), errors[k].unwrap());
+        assert!(
+            (b.1 - a.1).abs() < 0.008,
+            "θ̃ at scan {}: {a:?} -> {b:?}",
+            k + 1
+        );
+    }
+    // After 50 selections, the plain fit: the robot's heading to the rows.
+    let last = errors[59].unwrap();
+    assert!((last.1 - psi).abs() < 0.01, "{last:?}");
 }

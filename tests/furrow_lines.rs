@@ -237,12 +237,44 @@ fn far_selections_are_dropped() {
     acc.push(&pair, &start).unwrap();
     acc.push(&Selected::One(Point2::new(1.0, 0.0).unwrap()), &start)
         .unwrap();
-    // 6.5 m further on, the point is 5.5 m behind (dropped), the pair 2.5 m (kept).
-    let later = Pose2::<Odom>::new(6.5, 0.0, 0.0).unwrap();
+    // 2 m back, the pair is 6 m ahead (dropped), the point 3 m (kept).
+    let back = Pose2::<Odom>::new(-2.0, 0.0, 0.0).unwrap();
+    assert_eq!(acc.forget_far(&back), 1);
+    assert_eq!(acc.len(), 1);
+    let newest = acc.newest(&back).unwrap();
+    assert!((newest.reference().x() - 3.0).abs() < 1e-12);
+}
+
+/// Points the robot has passed are dropped even within the keep distance:
+/// they are no row ahead of it (a plot left behind in the headland).
+//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+//= type=test
+//# A selection whose reference point lies behind the robot (x < 0 in the
+//# current robot frame) MUST be dropped.
+#[test]
+fn selections_behind_the_robot_are_dropped() {
+    let mut acc = Accumulator::<8>::new(8, m(6.0)).unwrap();
+    let start = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
+    let pair = Selected::Two(Pair {
+        left: Point2::<Robot>::new(4.0, 0.4).unwrap(),
+        right: Point2::<Robot>::new(4.0, -0.4).unwrap(),
+    });
+    acc.push(&pair, &start).unwrap();
+    acc.push(&Selected::One(Point2::new(1.0, 0.0).unwrap()), &start)
+        .unwrap();
+    // On O: both kept (x = 0 is not behind).
+    let on = Pose2::<Odom>::new(1.0, 0.0, 0.0).unwrap();
+    assert_eq!(acc.forget_far(&on), 0);
+    // 2 m on, the point is 1 m behind (dropped, 1 m from the robot), the pair 2 m ahead.
+    let later = Pose2::<Odom>::new(2.0, 0.0, 0.0).unwrap();
     assert_eq!(acc.forget_far(&later), 1);
     assert_eq!(acc.len(), 1);
     let newest = acc.newest(&later).unwrap();
-    assert!((newest.reference().x() + 2.5).abs() < 1e-12);
+    assert!((newest.reference().x() - 2.0).abs() < 1e-12);
+    // Turned half a turn on the spot: the pair is now behind, and dropped.
+    let turned = Pose2::<Odom>::new(2.0, 0.0, core::f64::consts::PI).unwrap();
+    assert_eq!(acc.forget_far(&turned), 1);
+    assert!(acc.is_empty());
 }
 
 proptest! {

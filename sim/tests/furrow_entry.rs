@@ -70,9 +70,9 @@ fn entry(beans: bool, offset: f64, seed: u64) -> (f64, f64, f64) {
 /// before it, 0.06-0.09 m off. Rows 0.3 m left, 0.3 m right, and ahead.
 //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
 //= type=test
-//# While the points span less than E, the detector MUST give no line before
-//# the first-line heading is set, and none once the accumulation has held its
-//# capacity of selections since it was last empty.
+//# While the points span less than the minimum extent, the detector MUST give
+//# no line before the first-line heading is set, and none once the accumulation
+//# has held its capacity of selections since it was last empty.
 #[test]
 fn the_first_line_comes_a_metre_before_the_first_plant_on_the_rows() {
     for beans in [false, true] {

@@ -187,21 +187,29 @@ impl<const N: usize> Accumulator<N> {
     }
 
     /// Drops the selections whose reference point is farther than the keep
-    /// distance from the robot at odometry pose `odom`; returns how many.
+    /// distance from the robot at odometry pose `odom`, or behind its rear
+    /// axle; returns how many.
     //= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
     //# A selection whose reference point lies farther than the keep distance
     //# from the robot MUST be dropped.
+    //= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+    //# A selection whose reference point lies behind the robot (x < 0 in the
+    //# current robot frame) MUST be dropped.
     pub fn forget_far(&mut self, odom: &Pose2<Odom>) -> usize {
         let mut kept = Deque::<Kept, N>::new();
         let mut dropped = 0_usize;
+        let to_robot = Self::odom_to_robot(odom).ok();
         while let Some(entry) = self.entries.pop_front() {
-            // A distance that overflows is farther than any keep distance.
-            let near = entry
-                .selection
-                .reference()
+            let reference = entry.selection.reference();
+            // A distance or transform that overflows is farther than any keep distance.
+            let near = reference
                 .distance_to(odom.position)
                 .is_ok_and(|d| d.get() <= self.keep_distance.get());
-            if near {
+            let ahead = to_robot
+                .as_ref()
+                .and_then(|t| t.apply(reference).ok())
+                .is_some_and(|p| p.x() >= 0.0);
+            if near && ahead {
                 let _ = kept.push_back(entry);
             } else {
                 dropped = dropped.saturating_add(1);

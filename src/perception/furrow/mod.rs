@@ -376,12 +376,17 @@ pub struct FurrowDetector<const RAYS: usize, const SCANS: usize> {
 
 /// Where the first line of an accumulation stands (FUR-FIRST-LINE): the
 /// odometry heading the rows are taken along, once the robot went straight
-/// over `min_points` selections, and whether the accumulation has been full
-/// since it was last empty (then no first line any more).
+/// over `min_points` selections; whether the accumulation has been full
+/// since it was last empty (then a first line only from points spanning the
+/// minimum extent); how many selections were kept since it was last empty;
+/// and whether the first line has ended (its points spanned E once the
+/// accumulation was full, or twice its capacity were kept).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct FirstLine {
     heading: Option<Radians>,
     filled: bool,
+    kept: usize,
+    spanned: bool,
 }
 
 impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
@@ -488,8 +493,9 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         };
         if let Some(s) = &selected {
             self.accumulator.push(s, odom)?;
+            self.first.kept = self.first.kept.saturating_add(1);
         }
-        self.settle_first_line();
+        self.settle_first_line(odom);
         let estimate = self.estimate(odom);
         let verdict = furrow_verdict(&self.config.thresholds, estimate.is_some(), quality);
         Ok(FurrowDetection {
@@ -505,7 +511,9 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
 
     /// Updates the first line's state after this tick's selection
     /// (FUR-FIRST-LINE): the accumulation is marked filled once it holds
-    /// `averaged_scans` selections; until then, the first time the robot
+    /// `averaged_scans` selections, and the first line ends once it is filled
+    /// and its selections span E along x, or once twice `averaged_scans`
+    /// were kept; until filled, the first time the robot
     /// turned at most [`FIRST_LINE_STRAIGHT`] over its last `min_points`
     /// selections, the newest one's heading is kept for the first line.
     //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
@@ -513,12 +521,30 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
     //# selection at the first tick at which the robot's heading changed by at
     //# most 0.01 rad over its last `min_points` kept selections.
     //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
-    //# While the points span less than E, the detector MUST give no line before
-    //# the first-line heading is set, and none once the accumulation has held its
-    //# capacity of selections since it was last empty.
-    fn settle_first_line(&mut self) {
+    //# While the points span less than the minimum extent, the detector MUST give
+    //# no line before the first-line heading is set, and none once the accumulation
+    //# has held its capacity of selections since it was last empty.
+    //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+    //# The first line MUST be given from the tick the first-line heading is set
+    //# until the first tick, after the accumulation has held its capacity, at which
+    //# the kept selections' reference points span E along x, or at which twice its
+    //# capacity of selections have been kept since it was last empty; after that,
+    //# the line MUST be FUR-LINE's.
+    fn settle_first_line(&mut self, odom: &Pose2<Odom>) {
         if self.accumulator.len() >= self.config.params.averaged_scans {
             self.first.filled = true;
+        }
+        if self.first.filled && !self.first.spanned {
+            let (lo, hi) = self
+                .accumulator
+                .in_robot_frame(odom)
+                .map(|s| s.reference().x())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                    (lo.min(x), hi.max(x))
+                });
+            let e = self.config.params.min_extent.get().max(FIRST_LINE_SPREAD);
+            let twice = self.config.params.averaged_scans.saturating_mul(2);
+            self.first.spanned = hi - lo >= e || self.first.kept >= twice;
         }
         if self.first.filled || self.first.heading.is_some() {
             return;
@@ -585,14 +611,31 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         }
         let min_extent = self.config.params.min_extent;
         let spread_enough = hi - lo >= min_extent.get();
-        // The first line until the accumulation has been full, once the robot
-        // went straight over `min_points` selections; the plain fit otherwise.
+        // The first line once the robot went straight over `min_points`
+        // selections, until the points spanned E after the accumulation was
+        // full (from then on, or before the heading, the plain fit).
         let heading = match self.first.heading {
-            Some(h) if !self.first.filled => h,
+            Some(h) if !self.first.spanned && (!self.first.filled || spread_enough) => h,
             _ => return spread_enough.then(|| fit_row_line(points.iter()).ok())?,
         };
         let direction = wrap_angle(Radians::new(heading.get() - odom.heading.get()).ok()?);
-        let spread = Meters::new(min_extent.get().max(FIRST_LINE_SPREAD)).ok()?;
+        // Past the capacity n, the prior's weight fades as 1 − k/n over the
+        // next k selections: E'² − D² = w (E² − D²) gives Λ' = w Λ.
+        //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+        //# Once the accumulation has held its capacity c, Λ MUST be multiplied by
+        //# 1 − k/c, k the number of selections kept beyond c since it was last empty.
+        let e = min_extent.get().max(FIRST_LINE_SPREAD);
+        let n = self.config.params.averaged_scans;
+        let beyond = self.first.kept.saturating_sub(n);
+        let count = |k: usize| u32::try_from(k).map_or(f64::from(u32::MAX), f64::from);
+        let weight = if n == 0 {
+            0.0
+        } else {
+            (1.0 - count(beyond) / count(n)).clamp(0.0, 1.0)
+        };
+        let d = hi - lo;
+        let faded = libm::sqrt(d * d + weight * (e * e - d * d).max(0.0));
+        let spread = Meters::new(faded).ok()?;
         fit_row_line_toward(points.iter(), direction, spread).ok()
     }
 }
