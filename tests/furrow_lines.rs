@@ -221,15 +221,10 @@ fn a_negative_span_is_refused() {
     assert!(acc.with_span(m(0.0)).is_ok());
 }
 
-//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
-//= type=test
-//# A selection whose reference point lies farther than the keep distance
-//# from the robot MUST be dropped.
-#[test]
-fn far_selections_are_dropped() {
-    let mut acc = Accumulator::<8>::new(8, m(5.0)).unwrap();
+/// Stores, seen from the odometry origin, a pair of rows whose middle is
+/// 4 m ahead and then one row's point 1 m ahead.
+fn push_pair_and_point(acc: &mut Accumulator<8>) {
     let start = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
-    // A pair whose middle is 4 m ahead, and a point 1 m ahead.
     let pair = Selected::Two(Pair {
         left: Point2::<Robot>::new(4.0, 0.4).unwrap(),
         right: Point2::<Robot>::new(4.0, -0.4).unwrap(),
@@ -237,6 +232,16 @@ fn far_selections_are_dropped() {
     acc.push(&pair, &start).unwrap();
     acc.push(&Selected::One(Point2::new(1.0, 0.0).unwrap()), &start)
         .unwrap();
+}
+
+//= spec/pierre2022.md#fur-accumulate-selections-kept-across-scans-through-odometry
+//= type=test
+//# A selection whose reference point lies farther than the keep distance
+//# from the robot MUST be dropped.
+#[test]
+fn far_selections_are_dropped() {
+    let mut acc = Accumulator::<8>::new(8, m(5.0)).unwrap();
+    push_pair_and_point(&mut acc);
     // 2 m back, the pair is 6 m ahead (dropped), the point 3 m (kept).
     let back = Pose2::<Odom>::new(-2.0, 0.0, 0.0).unwrap();
     assert_eq!(acc.forget_far(&back), 1);
@@ -254,14 +259,7 @@ fn far_selections_are_dropped() {
 #[test]
 fn selections_behind_the_robot_are_dropped() {
     let mut acc = Accumulator::<8>::new(8, m(6.0)).unwrap();
-    let start = Pose2::<Odom>::new(0.0, 0.0, 0.0).unwrap();
-    let pair = Selected::Two(Pair {
-        left: Point2::<Robot>::new(4.0, 0.4).unwrap(),
-        right: Point2::<Robot>::new(4.0, -0.4).unwrap(),
-    });
-    acc.push(&pair, &start).unwrap();
-    acc.push(&Selected::One(Point2::new(1.0, 0.0).unwrap()), &start)
-        .unwrap();
+    push_pair_and_point(&mut acc);
     // On O: both kept (x = 0 is not behind).
     let on = Pose2::<Odom>::new(1.0, 0.0, 0.0).unwrap();
     assert_eq!(acc.forget_far(&on), 0);

@@ -217,10 +217,7 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
     };
     let mut taken = 0_u64;
     for &(_, i, j) in &pairs {
-        let line_taken = match u32::try_from(j).ok().and_then(|j| 1_u64.checked_shl(j)) {
-            Some(b) => taken & b != 0,
-            None => assignment.lines.contains(&Some(j)),
-        };
+        let line_taken = is_taken(taken, &assignment, j);
         let Some(slot) = assignment.lines.get_mut(i) else {
             continue;
         };
@@ -228,14 +225,29 @@ fn assign(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignment {
             continue;
         }
         *slot = Some(j);
-        taken |= u32::try_from(j)
-            .ok()
-            .and_then(|j| 1_u64.checked_shl(j))
-            .unwrap_or(0);
+        taken |= line_bit(j);
         assignment.best.get_or_insert(i);
         let _ = assignment.order.push(i);
     }
     assignment
+}
+
+/// Line `j`'s bit in a set of taken lines; 0 beyond the 64th line, whose
+/// use is looked up in the assignment instead ([`is_taken`]).
+fn line_bit(j: usize) -> u64 {
+    u32::try_from(j)
+        .ok()
+        .and_then(|j| 1_u64.checked_shl(j))
+        .unwrap_or(0)
+}
+
+/// Whether line `j` is taken: its bit in `taken`, or beyond the 64th line,
+/// whether a row of `assignment` has it.
+fn is_taken(taken: u64, assignment: &Assignment, j: usize) -> bool {
+    match u32::try_from(j).ok().and_then(|j| 1_u64.checked_shl(j)) {
+        Some(b) => taken & b != 0,
+        None => assignment.lines.contains(&Some(j)),
+    }
 }
 
 /// Gated pairs [`assign`] lists at most.
@@ -258,11 +270,7 @@ fn assign_by_passes(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignme
                 continue;
             }
             for (j, line) in lines.iter().enumerate() {
-                let is_taken = match u32::try_from(j).ok().and_then(|j| 1_u64.checked_shl(j)) {
-                    Some(b) => taken & b != 0,
-                    None => assignment.lines.contains(&Some(j)),
-                };
-                if is_taken {
+                if is_taken(taken, &assignment, j) {
                     continue;
                 }
                 if let Some(d) = gate(line, previous, delta) {
@@ -275,10 +283,7 @@ fn assign_by_passes(rows: &[RowLine], lines: &[RowLine], delta: f64) -> Assignme
         let Some((_, i, j)) = best else { break };
         if let Some(slot) = assignment.lines.get_mut(i) {
             *slot = Some(j);
-            taken |= u32::try_from(j)
-                .ok()
-                .and_then(|j| 1_u64.checked_shl(j))
-                .unwrap_or(0);
+            taken |= line_bit(j);
         }
         //= spec/guyonneau2022.md#rows-filter-missing-computed-rows-eqs-15-17
         //# The best match i_best MUST be the found row whose line has the smallest D to
