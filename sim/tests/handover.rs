@@ -167,16 +167,10 @@ fn the_issue_field_crushes_nothing_past_a_plot_entry() {
         let out = run(&setup, &mut rng);
         let crushed = crushed(&setup, &out);
         println!("seed {seed}: crushed at (plot, s) {crushed:.2?}");
-        // Seed 5: one bean 20.5 m into the beans, under a front wheel as the
-        // bean detector's line wobbles 0.1 m with O within 0.03 m of the
-        // rows' centre (the detector's selection, not a hand-over or entry).
-        let wobble =
-            |&(plot, s): &(usize, f64)| seed == 5 && plot == 1 && (20.0..21.0).contains(&s);
+        // Seed 5 lost a bean 20.5 m into the beans to the detector's line
+        // wobbling 0.1 m before the lines spanned 2.2 m of travel (FUR-SPAN).
         assert!(
-            crushed
-                .iter()
-                .filter(|c| !wobble(c))
-                .all(|&(_, s)| s < ENTRY_M),
+            crushed.iter().all(|&(_, s)| s < ENTRY_M),
             "seed {seed}: {crushed:?}"
         );
         let excursion = after_handover_excursion(&setup, &out);
