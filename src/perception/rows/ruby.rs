@@ -582,7 +582,8 @@ impl<const N: usize> ModelSet<N> {
 /// Writes (x − x₀, y − y₀) of the points of `range` whose mask has bit `b`
 /// into `scratch`, in ray order, and returns how many: every point is
 /// written at the end of the list, which grows by the model's points (no
-/// branch on the masks; at most `N` points: no overflow).
+/// branch on the masks; at most `N` points: no overflow). Not inlined:
+/// inside the merge its loop reloads the columns' addresses each point.
 #[inline(never)]
 fn gather_about<const N: usize>(
     cols: &Columns<N>,
