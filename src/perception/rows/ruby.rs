@@ -327,17 +327,27 @@ impl Line {
     /// re-weighting computes its weights in the pass that sums them.
     fn fit(xs: &[f64], ys: &[f64], rounds: u8) -> Option<Self> {
         let (&x0, &y0) = (xs.first()?, ys.first()?);
+        let uv = xs.iter().zip(ys).map(|(&x, &y)| (x - x0, y - y0));
+        Self::fit_about((x0, y0), uv, rounds)
+    }
+
+    /// [`Line::fit`] on the points (u, v) = (x − x₀, y − y₀) about the
+    /// first point (x₀, y₀), as `uv` gives them in ray order.
+    fn fit_about(
+        (x0, y0): (f64, f64),
+        uv: impl Iterator<Item = (f64, f64)> + Clone,
+        rounds: u8,
+    ) -> Option<Self> {
         let mut sums = Moments::ZERO;
-        for (&x, &y) in xs.iter().zip(ys) {
-            sums.add(1.0, x - x0, y - y0);
+        for (u, v) in uv.clone() {
+            sums.add(1.0, u, v);
         }
         let (mut a, mut c) = sums.line()?;
         for _ in 0..rounds {
             let mut sums = Moments::ZERO;
             // A weight is finite, and > 0 unless the residual overflows.
             let mut valid = true;
-            for (&x, &y) in xs.iter().zip(ys) {
-                let (u, v) = (x - x0, y - y0);
+            for (u, v) in uv.clone() {
                 let r = libm::fabs(v - a * u - c);
                 let w = 1.0 / if r > LAD_FLOOR { r } else { LAD_FLOOR };
                 valid &= w > 0.0;
@@ -547,7 +557,8 @@ impl<const N: usize> ModelSet<N> {
     }
 
     /// The line of model `k` fitted to its points (RUBY-FIT), the points'
-    /// coordinates taken from `cols` (the first `n`) into `scratch`.
+    /// coordinates taken from `cols` (the first `n`) into `scratch` about
+    /// the model's first point.
     fn fit(
         &self,
         k: usize,
@@ -557,26 +568,42 @@ impl<const N: usize> ModelSet<N> {
         rounds: u8,
     ) -> Option<Line> {
         let b = bit(k);
-        let mut count = 0_usize;
-        let xs = cols.xs.get(..n).unwrap_or(&[]);
-        let ys = cols.ys.get(..n).unwrap_or(&[]);
         let masks = self.masks.get(..n).unwrap_or(&[]);
-        let (to_x, to_y) = (&mut scratch.xs, &mut scratch.ys);
-        // Every point written at the end of the list, which grows by the
-        // points of the model: no branch on the masks (at most `N` points:
-        // no overflow).
-        for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
-            if let (Some(mx), Some(my)) = (to_x.get_mut(count), to_y.get_mut(count)) {
-                (*mx, *my) = (x, y);
-            }
-            count = count.wrapping_add(usize::from(m & b != 0));
-        }
-        Line::fit(
-            scratch.xs.get(..count).unwrap_or(&[]),
-            scratch.ys.get(..count).unwrap_or(&[]),
-            rounds,
-        )
+        let first = masks.iter().position(|&m| m & b != 0)?;
+        let last = masks.iter().rposition(|&m| m & b != 0)?;
+        let origin = (*cols.xs.get(first)?, *cols.ys.get(first)?);
+        let count = gather_about(cols, masks, first..=last, b, origin, scratch);
+        let us = scratch.xs.get(..count).unwrap_or(&[]);
+        let vs = scratch.ys.get(..count).unwrap_or(&[]);
+        Line::fit_about(origin, us.iter().copied().zip(vs.iter().copied()), rounds)
     }
+}
+
+/// Writes (x − x₀, y − y₀) of the points of `range` whose mask has bit `b`
+/// into `scratch`, in ray order, and returns how many: every point is
+/// written at the end of the list, which grows by the model's points (no
+/// branch on the masks; at most `N` points: no overflow). Not inlined:
+/// inside the merge its loop reloads the columns' addresses each point.
+#[inline(never)]
+fn gather_about<const N: usize>(
+    cols: &Columns<N>,
+    masks: &[u64],
+    range: core::ops::RangeInclusive<usize>,
+    b: u64,
+    (x0, y0): (f64, f64),
+    scratch: &mut Scratch<N>,
+) -> usize {
+    let xs = cols.xs.get(range.clone()).unwrap_or(&[]);
+    let ys = cols.ys.get(range.clone()).unwrap_or(&[]);
+    let masks = masks.get(range).unwrap_or(&[]);
+    let mut count = 0_usize;
+    for ((&x, &y), &m) in xs.iter().zip(ys).zip(masks) {
+        if let (Some(u), Some(v)) = (scratch.xs.get_mut(count), scratch.ys.get_mut(count)) {
+            (*u, *v) = (x - x0, y - y0);
+        }
+        count = count.wrapping_add(usize::from(m & b != 0));
+    }
+    count
 }
 
 /// Copies the first `n` entries of `from` into `to`.
@@ -1188,6 +1215,15 @@ fn float_after(x: f64) -> f64 {
     f64::from_bits(x.to_bits().saturating_add(1))
 }
 
+/// Whether a distance equals the one to beat: a tie for the slot order
+/// (RUBY-REATTACH). Exact equality is the point: a test by difference
+/// costs the vectorised pass an instruction more.
+#[allow(clippy::float_cmp)]
+#[inline]
+fn tied(d: f64, best: f64) -> bool {
+    d == best
+}
+
 /// After a strict pass of `models` (bits and lines) over the points, the
 /// lowest slot among the models at each point's distance: the ties the
 /// strict pass left to the first model (an outlier's distance, the limit,
@@ -1195,7 +1231,7 @@ fn float_after(x: f64) -> f64 {
 fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], masks: &mut [u64], models: &[(u64, Line)]) {
     for ((&x, &y), (&best, m)) in xs.iter().zip(ys).zip(best.iter().zip(masks.iter_mut())) {
         for &(k, line) in models {
-            if line.distance_xy(x, y) - best == 0.0 && (k < *m || *m == 0) {
+            if tied(line.distance_xy(x, y), best) && (k < *m || *m == 0) {
                 *m = k;
             }
         }
@@ -1319,11 +1355,11 @@ fn reattach<const N: usize>(
             {
                 let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
                 let (mut b, mut q) = (*best, *m);
-                tie |= d1 - b == 0.0;
+                tie |= tied(d1, b);
                 let take = d1 < b;
                 b = if take { d1 } else { b };
                 q = if take { k1 } else { q };
-                tie |= d2 - b == 0.0;
+                tie |= tied(d2, b);
                 let take = d2 < b;
                 *best = if take { d2 } else { b };
                 *m = if take { k2 } else { q };
