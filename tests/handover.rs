@@ -206,18 +206,18 @@ fn last_edge(outs: &[(f64, TickOutput<Sideslip, 2>)]) -> usize {
         .expect("edge following entered")
 }
 
-//= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
 //= type=test
 //# While the odometry distance since a hand-over that started on leaving a
 //# behaviour is at most the line hold, path tracking's error MUST be the error
 //# to that behaviour's line in the last tick it commanded, moved to the current
 //# pose through odometry as GD-ODOMETRY moves a straight line, whatever the
 //# fix, unless an entry (GD-ENTRY) shifts the reference.
-//= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
 //= type=test
 //# In each such tick in which the path has a projection, the hand-over's shift
 //# MUST be re-evaluated as that carried line's offset from the path.
-//= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
 //= type=test
 //# With a line hold, the shift MUST be held while the odometry distance since
 //# the hand-over is at most the longer of the hold distance and the line hold.
@@ -301,7 +301,7 @@ fn the_line_hold_follows_the_last_line_whatever_the_fix_does() {
     );
 }
 
-//= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
 //= type=test
 //# A hand-over rule whose line hold is given and not positive MUST be refused
 //# with `GD-HANDOVER-LINE`.

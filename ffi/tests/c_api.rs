@@ -486,7 +486,7 @@ fn a_float_fix_is_judged_by_the_fix_rule() {
 //= type=test
 //# A fix rule whose float averaging length is given and not positive MUST be
 //# refused with `GD-FIX-FLOAT`.
-//= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
 //= type=test
 //# A hand-over rule whose line hold is given and not positive MUST be refused
 //# with `GD-HANDOVER-LINE`.

@@ -502,7 +502,59 @@ mod tests {
             max_accuracy: Meters::new(0.05)?,
             path_dead_reckoning: Meters::new(10.0)?,
             rejoin_slope: slope,
+            float_averaging: None,
         })
+    }
+
+    fn offset(x: f64, y: f64, heading: f64) -> Offset {
+        Offset { x, y, heading }
+    }
+
+    fn close(a: &Offset, b: &Offset) -> bool {
+        libm::fabs(a.x - b.x) < 1e-12
+            && libm::fabs(a.y - b.y) < 1e-12
+            && libm::fabs(wrap_raw(a.heading - b.heading)) < 1e-12
+    }
+
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //= type=test
+    //# The offset r MUST be the mean of the float fix's offset from the carried
+    //# pose (east, north and heading) over the span's float ticks, each weighted
+    //# by its odometry distance, until those ticks cover the averaging length λ;
+    //# from then on r MUST stay.
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //= type=test
+    //# The correction MUST be zero when r is set, and each later float tick MUST
+    //# move it toward m − r by the weight 1 − exp(−Δd / λ), m the tick's float fix
+    //# offset from the carried pose and Δd the tick's odometry distance.
+    #[test]
+    fn the_float_offset_is_a_distance_weighted_mean_then_the_correction_an_average() {
+        let mut span = FloatSpan::default();
+        // A tick at standstill weighs nothing; the others by their distance.
+        span.record(&offset(9.0, 9.0, 0.5), 0.0, 2.0);
+        span.record(&offset(0.4, -0.2, 0.01), 0.5, 2.0);
+        span.record(&offset(0.6, 0.2, 0.03), 1.0, 2.0);
+        assert!(span.bias.is_none());
+        assert!(close(&span.correction, &Offset::default()));
+        // Covering λ = 2 m sets r: (0.5·m₁ + 1·m₂ + 0.5·m₃) / 2.
+        span.record(&offset(0.2, 0.0, -0.01), 0.5, 2.0);
+        let r = offset(0.45, 0.05, 0.015);
+        assert!(span.bias.is_some_and(|b| close(&b, &r)), "{span:?}");
+        assert!(close(&span.correction, &Offset::default()));
+        // Then the correction moves toward m − r by 1 − exp(−Δd / λ); r stays.
+        let m = offset(0.55, 0.15, 0.025);
+        span.record(&m, 1.0, 2.0);
+        let w = 1.0 - libm::exp(-0.5);
+        assert!(close(&span.correction, &offset(0.1 * w, 0.1 * w, 0.01 * w)));
+        span.record(&m, 1000.0, 2.0);
+        assert!(close(&span.correction, &offset(0.1, 0.1, 0.01)));
+        assert!(span.bias.is_some_and(|b| close(&b, &r)));
+        // Headings across ±π average on the circle.
+        let mut span = FloatSpan::default();
+        span.record(&offset(0.0, 0.0, 3.1), 1.0, 2.0);
+        span.record(&offset(0.0, 0.0, -3.1), 1.0, 2.0);
+        let heading = span.bias.map_or(0.0, |b| b.heading);
+        assert!(libm::fabs(libm::fabs(heading) - core::f64::consts::PI) < 1e-9);
     }
 
     #[test]

@@ -80,7 +80,7 @@ impl Handover {
                 "handover slope must lie in (0, 1]",
             ));
         }
-        //= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+        //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
         //# A hand-over rule whose line hold is given and not positive MUST be refused
         //# with `GD-HANDOVER-LINE`.
         if params.line_hold.is_some_and(|l| l.get() <= 0.0) {
@@ -114,7 +114,7 @@ impl Handover {
 
     /// How far the shift is held: the hold distance, or the line hold when
     /// it is longer (GD-HANDOVER-LINE).
-    //= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+    //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
     //# With a line hold, the shift MUST be held while the odometry distance since
     //# the hand-over is at most the longer of the hold distance and the line hold.
     fn held(&self) -> f64 {
@@ -279,13 +279,13 @@ where
     /// to `odometry`; the hand-over's start becomes that line's offset from
     /// the path (`frenet`, when there is one). `None` outside a line hold, or
     /// when the line cannot be carried; a line hold past its length ends.
-    //= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+    //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
     //# While the odometry distance since a hand-over that started on leaving a
     //# behaviour is at most the line hold, path tracking's error MUST be the error
     //# to that behaviour's line in the last tick it commanded, moved to the current
     //# pose through odometry as GD-ODOMETRY moves a straight line, whatever the
     //# fix, unless an entry (GD-ENTRY) shifts the reference.
-    //= spec/guidance.md#gd-handover-line-the-behaviours-last-line-held-after-a-hand-over
+    //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
     //# In each such tick in which the path has a projection, the hand-over's shift
     //# MUST be re-evaluated as that carried line's offset from the path.
     pub(super) fn line_hold(
