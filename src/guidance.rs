@@ -175,7 +175,8 @@ impl LawOutcome {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathStatus<X> {
     /// The Frénet error of the GNSS pose (with c(s + vT)), or of the last
-    /// good fix carried by odometry (`fix`, GD-FIX-QUALITY); `None` without
+    /// good fix carried by odometry (`fix`, GD-FIX-QUALITY), corrected by a
+    /// float fix once it measured its offset (GD-FIX-FLOAT); `None` without
     /// a pose or when the projection was refused.
     pub frenet: Option<FrenetError>,
     /// Why the projection was refused, if it was (overflow).

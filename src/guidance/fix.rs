@@ -5,7 +5,11 @@
 //! carries the last good fix by odometry (GD-PLAN-DEAD-RECKONING) and path
 //! tracking, with a carry distance configured, steers on that carried pose,
 //! then stops with the reason named; when a good fix returns, the step
-//! between the carried pose and it is taken up at a bounded slope.
+//! between the carried pose and it is taken up at a bounded slope. With a
+//! float averaging length, a refused RTK float fix corrects the carried
+//! pose: its offset from it is averaged over the first metres of float, and
+//! path tracking then steers on the float fix less that offset
+//! (GD-FIX-FLOAT).
 //!
 //! Pierre 2022 assumes an RTK-fixed pose; a float fix 0.3-1 m off or a
 //! single-point one would steer path tracking beside the path by that much.
