@@ -14,7 +14,7 @@
 //! Pierre 2022 assumes an RTK-fixed pose; a float fix 0.3-1 m off or a
 //! single-point one would steer path tracking beside the path by that much.
 
-use super::handover::{shifted_error, Active};
+use super::handover::{averaging_weight, shifted_error, Active};
 use super::Guidance;
 use crate::control::ControlLaw;
 use crate::error::Precondition;
@@ -313,7 +313,7 @@ impl FloatSpan {
                     y: m.y - r.y,
                     heading: wrap_raw(m.heading - r.heading),
                 };
-                let weight = 1.0 - libm::exp(-d / length);
+                let weight = averaging_weight(d, length);
                 self.correction = self.correction.toward(&target, weight);
             }
             None => {

@@ -142,7 +142,7 @@ impl Handover {
         let Some(previous) = previous else {
             return measured;
         };
-        let weight = 1.0 - libm::exp(-travelled.get().max(0.0) / self.params.averaging.get());
+        let weight = averaging_weight(travelled.get(), self.params.averaging.get());
         // Both finite; a weight in [0, 1] keeps the result between them.
         let moved = previous.get() + weight * (measured.get() - previous.get());
         Meters::new(moved).unwrap_or(measured)
@@ -182,6 +182,13 @@ impl Handover {
         };
         shifted_error(path, o, rate)
     }
+}
+
+/// The weight 1 − exp(−Δd / λ) of a new value after `travelled` = Δd metres
+/// (none for a negative distance) in an average over the odometry length
+/// `length` = λ > 0: GD-HANDOVER's line offset, GD-FIX-FLOAT's correction.
+pub(super) fn averaging_weight(travelled: f64, length: f64) -> f64 {
+    1.0 - libm::exp(-travelled.max(0.0) / length)
 }
 
 /// `start` shrunk toward zero by `slope` times `past` metres (none for a
