@@ -175,7 +175,8 @@ impl LawOutcome {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathStatus<X> {
     /// The Frénet error of the GNSS pose (with c(s + vT)), or of the last
-    /// good fix carried by odometry (`fix`, GD-FIX-QUALITY); `None` without
+    /// good fix carried by odometry (`fix`, GD-FIX-QUALITY), corrected by a
+    /// float fix once it measured its offset (GD-FIX-FLOAT); `None` without
     /// a pose or when the projection was refused.
     pub frenet: Option<FrenetError>,
     /// Why the projection was refused, if it was (overflow).
@@ -478,6 +479,10 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     line_offset: Option<Meters>,
     /// The hand-over in progress (GD-HANDOVER).
     handing_over: Option<handover::Active>,
+    /// The commanding behaviour's line in its latest commanding tick, and
+    /// the line a hand-over holds (GD-HANDOVER-LINE).
+    last_line: Option<handover::CarriedLine>,
+    held_line: Option<handover::CarriedLine>,
     /// The entry in progress into the active behaviour (GD-ENTRY).
     entering: Option<entry::Entering>,
     /// Path tracking's lateral error on the carried pose in the last tick
@@ -485,6 +490,8 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     carried_y: Option<Meters>,
     /// The rejoin in progress after a good fix returned (GD-FIX-QUALITY).
     rejoining: Option<fix::Rejoin>,
+    /// The float span since the last good fix (GD-FIX-FLOAT).
+    floating: Option<fix::FloatSpan>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -538,9 +545,12 @@ where
             turning: None,
             line_offset: None,
             handing_over: None,
+            last_line: None,
+            held_line: None,
             entering: None,
             carried_y: None,
             rejoining: None,
+            floating: None,
         })
     }
 
@@ -569,6 +579,8 @@ where
         self.since_projection = 0.0;
         self.line_offset = None;
         self.handing_over = None;
+        self.last_line = None;
+        self.held_line = None;
         self.entering = None;
         self.carried_y = None;
         self.rejoining = None;
@@ -755,8 +767,25 @@ where
 
         // 2. The path (GD-LOCALISATION).
         let (frenet, projection_refused) = self.project(gnss.as_ref(), travelled);
+        self.track_float(
+            input.gnss.as_ref(),
+            quality,
+            gnss.is_some(),
+            &input.odometry,
+            travelled,
+        );
         let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &input.odometry);
         let rejoin = self.rejoin(path_frenet.as_ref(), &fix_use, travelled);
+        for active in [
+            self.handing_over.as_mut(),
+            self.entering.as_mut().map(|e| &mut e.ramp),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            active.travelled += travelled;
+        }
+        let held_line = self.line_hold(path_frenet.as_ref(), &input.odometry);
 
         // 3-4. Plan consistency and the laws.
         let params = self.config.params();
@@ -770,15 +799,6 @@ where
         //# configured, and the curvature c(s + vT) with v its desired speed and T the
         //# prediction horizon; every other behaviour MUST use its law's neutral input
         //# and a straight line, c = c(s + vT) = 0.
-        for active in [
-            self.handing_over.as_mut(),
-            self.entering.as_mut().map(|e| &mut e.ramp),
-        ]
-        .into_iter()
-        .flatten()
-        {
-            active.travelled += travelled;
-        }
         //= spec/guidance.md#gd-plan-dead-reckoning-the-plan-checked-through-a-gnss-outage
         //# Path tracking MUST NOT use the dead-reckoned pose: localisation stays
         //# invalid without a fix (GD-LOCALISATION).
@@ -809,10 +829,14 @@ where
             ));
         }
         let approach = self.approach(&behaviours);
+        let held_line = held_line.filter(|_| approach.is_none());
         let reference_offset = self.reference_offset();
         let rejoin = rejoin.filter(|_| approach.is_none() && reference_offset.is_none());
         let path_law = match &path_frenet {
-            Some(f) => match self.rejoined_error(f, rejoin, reference_offset, approach) {
+            Some(f) => match held_line.map_or_else(
+                || self.rejoined_error(f, rejoin, reference_offset, approach),
+                Ok,
+            ) {
                 Ok(error) => LawOutcome::run(
                     &params.path.law,
                     &params.vehicle,
@@ -862,7 +886,7 @@ where
             behaviours: reports,
             localisation_valid,
         });
-        self.track_handover(before, &switching, &behaviours, travelled);
+        self.track_handover(before, &switching, &behaviours, travelled, &input.odometry);
         self.track_entry(before, &switching, &behaviours, path.reference_offset);
 
         // 6. The command of the selected source.
@@ -1012,24 +1036,48 @@ where
         let Some(limit) = self.config.params().plan_dead_reckoning else {
             return PlanPose::Unjudged;
         };
-        match self.carried(odometry, limit) {
+        match self.carried(odometry, limit, None) {
             Ok((travelled, frenet)) => PlanPose::DeadReckoned { travelled, frenet },
             Err(_) => PlanPose::Unjudged,
         }
     }
 
     /// The last fix moved by the odometry since it to the tick's odometry
-    /// pose, projected on the path, with the odometry distance since the
-    /// fix, while that distance is at most `limit`.
+    /// pose, then by `correction` (GD-FIX-FLOAT) when given, projected on
+    /// the path, with the odometry distance since the fix, while that
+    /// distance is at most `limit`.
     ///
     /// # Errors
-    /// `GD-FIX-QUALITY` naming why nothing can be carried: no fix yet,
-    /// carried farther than `limit`, or the move or its projection refused.
+    /// As [`Guidance::carried_pose`], or `GD-FIX-QUALITY` when the pose has
+    /// no projection.
     fn carried(
         &self,
         odometry: &Pose2<Odom>,
         limit: Meters,
+        correction: Option<fix::Offset>,
     ) -> Result<(Meters, FrenetError), Precondition> {
+        let (travelled, pose) = self.carried_pose(odometry, limit)?;
+        let frenet = correction
+            .map_or(Ok(pose), |c| c.applied(&pose))
+            .and_then(|pose| self.project_locally(&pose))
+            .map_err(|_| {
+                Precondition::new("GD-FIX-QUALITY", "the carried pose has no projection")
+            })?;
+        Ok((travelled, frenet))
+    }
+
+    /// The last fix moved by the odometry since it to the tick's odometry
+    /// pose, with the odometry distance since the fix, while that distance
+    /// is at most `limit`.
+    ///
+    /// # Errors
+    /// `GD-FIX-QUALITY` naming why nothing can be carried: no fix yet,
+    /// carried farther than `limit`, or the move refused.
+    fn carried_pose(
+        &self,
+        odometry: &Pose2<Odom>,
+        limit: Meters,
+    ) -> Result<(Meters, Pose2<World>), Precondition> {
         let Some(fix) = self.last_fix else {
             return Err(Precondition::new("GD-FIX-QUALITY", "no good fix yet"));
         };
@@ -1039,15 +1087,12 @@ where
                 "no good fix within the dead-reckoning distance",
             ));
         }
-        let frenet = pose_in_scan_frame(&fix.odometry, odometry)
+        let pose = pose_in_scan_frame(&fix.odometry, odometry)
             .and_then(|moved| fix.world.body_to_frame::<Robot>().apply_pose(moved))
-            .and_then(|pose| self.project_locally(&pose))
-            .map_err(|_| {
-                Precondition::new("GD-FIX-QUALITY", "the carried pose has no projection")
-            })?;
+            .map_err(|_| Precondition::new("GD-FIX-QUALITY", "the carried pose overflows"))?;
         let travelled = Meters::new(fix.travelled)
             .map_err(|_| Precondition::new("GD-FIX-QUALITY", "carried distance overflows"))?;
-        Ok((travelled, frenet))
+        Ok((travelled, pose))
     }
 }
 

@@ -13,22 +13,19 @@
     clippy::cast_precision_loss
 )]
 
-use fieldguide::geometry::path::{PathConfig, ReferencePath};
+mod common;
+
+use common::{m, straight_path, PATH_N};
 use fieldguide::guidance::{
     FixKind, FixQuality, FixRule, FixRuleParams, FixUse, Guidance, GuidanceConfig, Mode, PlanPose,
     TickInput, TickOutput,
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::presets::{pierre2022_path, Pierre2022, Pierre2022Params};
-use fieldguide::{Meters, Odom, Point2, Pose2, World};
+use fieldguide::{Meters, Odom, Pose2, World};
 
-const PATH_N: usize = 256;
 const PERIOD: f64 = 0.01;
 const WHEELBASE: f64 = 2.0;
-
-fn m(v: f64) -> Meters {
-    Meters::new(v).unwrap()
-}
 
 fn rule() -> FixRuleParams {
     FixRuleParams {
@@ -36,6 +33,7 @@ fn rule() -> FixRuleParams {
         max_accuracy: m(0.05),
         path_dead_reckoning: m(15.0),
         rejoin_slope: 0.1,
+        float_averaging: None,
     }
 }
 
@@ -49,13 +47,6 @@ fn float(sigma: f64) -> FixQuality {
         kind: FixKind::RtkFloat,
         accuracy: Some(m(sigma)),
     }
-}
-
-fn straight_path() -> ReferencePath<PATH_N> {
-    let points: Vec<Point2<World>> = (0..=40)
-        .map(|i| Point2::new(-10.0 + 5.0 * f64::from(i), 0.0).unwrap())
-        .collect();
-    ReferencePath::from_waypoints(&points, PathConfig::default()).unwrap()
 }
 
 fn params(fix: Option<FixRuleParams>) -> Pierre2022Params {
@@ -271,7 +262,7 @@ fn jumps() -> Vec<(f64, f64)> {
 //# localisation MUST be invalid, with the reason named (`GD-FIX-QUALITY`).
 #[test]
 fn a_float_fix_does_not_steer_path_tracking_off_the_path() {
-    let path = straight_path();
+    let path = straight_path(-10.0, 190.0);
     let mut worst_with = 0.0_f64;
     let mut least_without = f64::INFINITY;
     for jump in jumps() {
@@ -331,7 +322,7 @@ fn a_float_fix_does_not_steer_path_tracking_off_the_path() {
 
 #[test]
 fn beyond_the_dead_reckoning_distance_localisation_is_lost_and_the_robot_stops() {
-    let path = straight_path();
+    let path = straight_path(-10.0, 190.0);
     for carry in [0.0, 2.0, 5.0] {
         let p = params(Some(FixRuleParams {
             path_dead_reckoning: m(carry),
@@ -404,7 +395,7 @@ fn beyond_the_dead_reckoning_distance_localisation_is_lost_and_the_robot_stops()
 //# entry (GD-ENTRY) or hand-over (GD-HANDOVER) shifts the reference.
 #[test]
 fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
-    let path = straight_path();
+    let path = straight_path(-10.0, 190.0);
     // The fix comes back with a bias (a drift that moved during the float
     // span) and odometry's heading drifts by 0.0011 rad per metre (0.05°/s
     // at 0.8 m/s) or not: the carried pose and the returning fix differ by
@@ -480,4 +471,141 @@ fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
         let end = ticks.last().unwrap().out.path.frenet.unwrap().y.get();
         assert!(end.abs() < 0.05, "ends {end} m off");
     }
+}
+
+/// A deterministic noise in [−a, a] for tick `k` and axis `axis`.
+fn noise(k: u64, axis: u64, a: f64) -> f64 {
+    let h = (k * 2 + axis)
+        .wrapping_mul(6_364_136_223_846_793_005)
+        .wrapping_add(1_442_695_040_888_963_407);
+    a * (2.0 * ((h >> 11) as f64 / (1_u64 << 53) as f64) - 1.0)
+}
+
+/// The float receiver of GD-FIX-FLOAT's closed loop: fixed with the true
+/// pose, float over [10 s, 40 s) with the offset `jump` and a white noise of
+/// ±`white` m per axis.
+fn noisy_float(jump: (f64, f64), white: f64) -> impl Fn(f64, (f64, f64, f64)) -> Reported {
+    move |t, p| {
+        let k = (t / PERIOD).round() as u64;
+        if (10.0..40.0).contains(&t) {
+            let (x, y) = (
+                p.0 + jump.0 + noise(k, 0, white),
+                p.1 + jump.1 + noise(k, 1, white),
+            );
+            Some((pose((x, y, p.2)), float(0.3)))
+        } else {
+            Some((pose(p), FIXED))
+        }
+    }
+}
+
+//= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+//= type=test
+//# With a float averaging length configured, a float span MUST start at the
+//# first tick after a good fix whose fix the rule refuses and whose kind is RTK
+//# float, and MUST end at the next good fix; only ticks with such a fix and a
+//# carried pose (GD-FIX-QUALITY) are its float ticks.
+//= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+//= type=test
+//# From the tick r is set until the span ends, in every tick in which
+//# GD-FIX-QUALITY has path tracking steer on the carried pose, path tracking
+//# MUST steer on the carried pose moved by the span's correction instead (east,
+//# north and heading added).
+//= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+//= type=test
+//# The offset r MUST be the mean of the float fix's offset from the carried
+//# pose (east, north and heading) over the span's float ticks, each weighted
+//# by its odometry distance, until those ticks cover the averaging length λ;
+//# from then on r MUST stay.
+//= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+//= type=test
+//# The correction MUST be zero when r is set, and each later float tick MUST
+//# move it toward m − r by the weight 1 − exp(−Δd / λ), m the tick's float fix
+//# offset from the carried pose and Δd the tick's odometry distance.
+#[test]
+fn a_float_fix_less_its_offset_corrects_the_odometry_drift() {
+    let path = straight_path(-10.0, 190.0);
+    // Odometry's heading drifts by 0.0011 rad per metre (0.05°/s at
+    // 0.8 m/s): over the 24 m of float the carried pose drifts 0.3 m sideways.
+    let drift = 0.0011;
+    for (i, jump) in jumps().into_iter().enumerate() {
+        let receiver = noisy_float(jump, if i % 2 == 0 { 0.0 } else { 0.05 });
+        let carried = FixRuleParams {
+            path_dead_reckoning: m(30.0),
+            ..rule()
+        };
+        let corrected = FixRuleParams {
+            float_averaging: Some(m(2.0)),
+            ..carried
+        };
+        let mut g: Pierre2022<'_, PATH_N> = Guidance::new(
+            GuidanceConfig::new(&params(Some(corrected))).unwrap(),
+            &path,
+        )
+        .unwrap();
+        let ticks = drive(&mut g, 0.0, 45.0, drift, &receiver);
+        let start = ticks[1000].pose.0;
+        let mut worst = 0.0_f64;
+        let mut largest = (0.0_f64, 0.0_f64);
+        for (k, t) in ticks.iter().enumerate() {
+            let time = k as f64 * PERIOD;
+            worst = worst.max(t.pose.1.abs());
+            if !(10.0..40.0).contains(&time) {
+                assert_eq!(t.out.path.fix, FixUse::Fix);
+                continue;
+            }
+            // Carried alone over the first 2 m of float, corrected after.
+            let float_travelled = t.pose.0 - start;
+            match t.out.path.fix {
+                FixUse::Carried { .. } => assert!(float_travelled < 2.0 + 0.01),
+                FixUse::Float { .. } => {
+                    assert!(float_travelled > 2.0 - 0.01);
+                    // The float fix less its offset: the true pose within
+                    // the odometry's drift over the averaging and the noise.
+                    let f = t.out.path.frenet.unwrap();
+                    largest = (
+                        largest.0.max((f.y.get() - t.pose.1).abs()),
+                        largest.1.max((f.angular_deviation.get() - t.pose.2).abs()),
+                    );
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        // Lagging the drift by about λ: 2 m × 0.0011 × 24 m = 0.05 m at the end.
+        assert!(
+            worst < 0.07 && largest.0 < 0.07 && largest.1 < 0.01,
+            "jump {jump:?}: {worst} m off with the correction"
+        );
+        // Without the averaging: the carried pose alone drifts off.
+        let mut plain: Pierre2022<'_, PATH_N> =
+            Guidance::new(GuidanceConfig::new(&params(Some(carried))).unwrap(), &path).unwrap();
+        let ticks = drive(&mut plain, 0.0, 45.0, drift, &receiver);
+        let off = ticks.iter().map(|t| t.pose.1.abs()).fold(0.0, f64::max);
+        assert!(
+            off > 0.2 && off > 4.0 * worst,
+            "jump {jump:?}: only {off} m off without it"
+        );
+    }
+}
+
+//= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+//= type=test
+//# A fix rule whose float averaging length is given and not positive MUST be
+//# refused with `GD-FIX-FLOAT`.
+#[test]
+fn a_float_averaging_length_not_positive_is_refused() {
+    for length in [0.0, -2.0] {
+        let p = FixRuleParams {
+            float_averaging: Some(m(length)),
+            ..rule()
+        };
+        assert_eq!(FixRule::new(&p).unwrap_err().requirement, "GD-FIX-FLOAT");
+        let config = GuidanceConfig::new(&params(Some(p)));
+        assert_eq!(config.unwrap_err().requirement, "GD-FIX-FLOAT");
+    }
+    let p = FixRuleParams {
+        float_averaging: Some(m(1e-9)),
+        ..rule()
+    };
+    assert!(FixRule::new(&p).is_ok());
 }

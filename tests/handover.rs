@@ -16,7 +16,9 @@
 
 use core::f64::consts::{PI, TAU};
 
-use fieldguide::geometry::path::{PathConfig, ReferencePath};
+mod common;
+
+use common::{m, straight_path, PATH_N};
 use fieldguide::guidance::{
     Guidance, GuidanceConfig, Handover, HandoverParams, Mode, RoutedScan, TickInput, TickOutput,
 };
@@ -26,19 +28,14 @@ use fieldguide::perception::furrow::{FurrowConfig, FurrowParams};
 use fieldguide::perception::{RangeLimits, Scan};
 use fieldguide::presets::{pierre2022_edge, Pierre2022, Pierre2022Params, EDGE};
 use fieldguide::{Curvature, TrackingError};
-use fieldguide::{Meters, Odom, Point2, Pose2, Radians, Robot, Sensor, Transform2, World};
+use fieldguide::{Meters, Odom, Pose2, Radians, Robot, Sensor, Transform2, World};
 
-const PATH_N: usize = 256;
 const MOUNT_X: f64 = 1.2;
 const RAYS: usize = 360;
 /// The wall's near face: the edge line (1.4 m to its right) lies 0.3 m left of the path.
 const WALL_Y: f64 = 1.7;
 const WALL_END: f64 = 20.0;
 const LINE_OFFSET: f64 = 0.3;
-
-fn m(v: f64) -> Meters {
-    Meters::new(v).unwrap()
-}
 
 fn mount() -> Transform2<Sensor, Robot> {
     Transform2::new(MOUNT_X, 0.0, 0.0).unwrap()
@@ -67,13 +64,6 @@ fn ranges(pose: (f64, f64, f64)) -> Vec<f64> {
         .collect()
 }
 
-fn straight_path() -> ReferencePath<PATH_N> {
-    let points: Vec<Point2<World>> = (0..=64)
-        .map(|i| Point2::new(-20.0 + 5.0 * f64::from(i), 0.0).unwrap())
-        .collect();
-    ReferencePath::from_waypoints(&points, PathConfig::default()).unwrap()
-}
-
 fn params(handover: Option<HandoverParams>) -> Pierre2022Params {
     let mut p = pierre2022_edge(Side::Left, mount()).unwrap();
     p.handover = handover;
@@ -84,6 +74,15 @@ fn params(handover: Option<HandoverParams>) -> Pierre2022Params {
 /// `to`, 8 mm per tick, a scan every tenth tick; the output of every tick,
 /// with the x it was taken at.
 fn drive(g: &mut Pierre2022<'_, PATH_N>, to: f64) -> Vec<(f64, TickOutput<Sideslip, 2>)> {
+    drive_drifting(g, to, &|_| 0.0)
+}
+
+/// As [`drive`], the fix `drift(x)` north of the true pose.
+fn drive_drifting(
+    g: &mut Pierre2022<'_, PATH_N>,
+    to: f64,
+    drift: &dyn Fn(f64) -> f64,
+) -> Vec<(f64, TickOutput<Sideslip, 2>)> {
     let mut outs = Vec::new();
     let mut k = 0_u32;
     loop {
@@ -105,7 +104,7 @@ fn drive(g: &mut Pierre2022<'_, PATH_N>, to: f64) -> Vec<(f64, TickOutput<Sidesl
         let out = g
             .step(&TickInput {
                 scans: if k % 10 == 0 { &scan } else { &[] },
-                gnss: Some(Pose2::<World>::new(pose.0, pose.1, pose.2).unwrap()),
+                gnss: Some(Pose2::<World>::new(pose.0, pose.1 + drift(x), pose.2).unwrap()),
                 odometry: Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap(),
                 extra: Sideslip::ZERO,
             })
@@ -129,11 +128,12 @@ fn drive(g: &mut Pierre2022<'_, PATH_N>, to: f64) -> Vec<(f64, TickOutput<Sidesl
 //# travelled, and the curvatures c / (1 − o c) of the shifted path.
 #[test]
 fn path_tracking_takes_over_on_the_line_then_blends_to_the_path() {
-    let path = straight_path();
+    let path = straight_path(-20.0, 300.0);
     let rule = HandoverParams {
         hold: m(4.0),
         slope: 0.1,
         averaging: m(1.0),
+        line_hold: None,
     };
     let mut g: Pierre2022<'_, PATH_N> =
         Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();
@@ -199,19 +199,144 @@ fn path_tracking_takes_over_on_the_line_then_blends_to_the_path() {
     assert_eq!(outs[first_pt].1.path.reference_offset, None);
 }
 
+/// The index of the last tick edge following was the mode in.
+fn last_edge(outs: &[(f64, TickOutput<Sideslip, 2>)]) -> usize {
+    outs.iter()
+        .rposition(|(_, o)| o.mode == Mode::Behaviour(EDGE))
+        .expect("edge following entered")
+}
+
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+//= type=test
+//# While the odometry distance since a hand-over that started on leaving a
+//# behaviour is at most the line hold, path tracking's error MUST be the error
+//# to that behaviour's line in the last tick it commanded, moved to the current
+//# pose through odometry as GD-ODOMETRY moves a straight line, whatever the
+//# fix, unless an entry (GD-ENTRY) shifts the reference.
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+//= type=test
+//# In each such tick in which the path has a projection, the hand-over's shift
+//# MUST be re-evaluated as that carried line's offset from the path.
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+//= type=test
+//# With a line hold, the shift MUST be held while the odometry distance since
+//# the hand-over is at most the longer of the hold distance and the line hold.
+#[test]
+fn the_line_hold_follows_the_last_line_whatever_the_fix_does() {
+    let path = straight_path(-20.0, 300.0);
+    let rule = |line_hold: Option<f64>| HandoverParams {
+        hold: m(2.0),
+        slope: 0.1,
+        averaging: m(1.0),
+        line_hold: line_hold.map(m),
+    };
+    // Where edge following hands over with an exact fix.
+    let mut g: Pierre2022<'_, PATH_N> = Guidance::new(
+        GuidanceConfig::new(&params(Some(rule(None)))).unwrap(),
+        &path,
+    )
+    .unwrap();
+    let outs = drive(&mut g, 30.0);
+    let x0 = outs[last_edge(&outs) + 1].0;
+    // From there the fix drifts north by 0.05 m per metre.
+    let drift = move |x: f64| 0.05 * (x - x0).max(0.0);
+    let mut largest = [0.0_f64; 2];
+    for (j, line_hold) in [Some(3.0), None].into_iter().enumerate() {
+        let mut g: Pierre2022<'_, PATH_N> = Guidance::new(
+            GuidanceConfig::new(&params(Some(rule(line_hold)))).unwrap(),
+            &path,
+        )
+        .unwrap();
+        let outs = drive_drifting(&mut g, 30.0, &drift);
+        let last = last_edge(&outs);
+        assert_eq!(outs[last + 1].0, x0);
+        let offset = outs[last].1.behaviour(EDGE).unwrap().plan.unwrap().offset;
+        let mut end_of_hold = None;
+        for (x, out) in &outs[last + 1..] {
+            let d = x - x0;
+            let shift = out.path.reference_offset.map_or(0.0, Meters::get);
+            let steering = out.command.unwrap().command.steering().unwrap().get();
+            if d < 3.0 - 1e-9 {
+                largest[j] = largest[j].max(steering.abs());
+            }
+            match line_hold {
+                Some(hold) if d <= hold + 1e-9 => {
+                    // The line as the drifting fix places it.
+                    assert!(
+                        (shift - offset.get() - drift(*x)).abs() < 1e-6,
+                        "d {d}: {shift} vs {offset:?}"
+                    );
+                    end_of_hold = Some(shift);
+                }
+                Some(hold) => {
+                    // Held to 3 m (longer than the hold, 2 m), then the slope
+                    // from the line's last offset.
+                    let start = end_of_hold.unwrap();
+                    let expected = (start - 0.1 * (d - hold)).max(0.0);
+                    assert!(
+                        (shift - expected).abs() < 1e-6,
+                        "d {d}: {shift} vs {expected}"
+                    );
+                }
+                None => {
+                    let expected = (offset.get() - 0.1 * (d - 2.0).max(0.0)).max(0.0);
+                    assert!(
+                        (shift - expected).abs() < 1e-6,
+                        "d {d}: {shift} vs {expected}"
+                    );
+                }
+            }
+        }
+    }
+    // On the line, path tracking holds the wheels straight; on the shifted
+    // path the drift steers them off.
+    eprintln!(
+        "largest steering over 3 m: with the line hold {:.4} rad, without {:.4} rad",
+        largest[0], largest[1]
+    );
+    assert!(largest[0] < 0.02, "{largest:?}");
+    assert!(
+        largest[1] > 5.0 * largest[0] && largest[1] > 0.05,
+        "{largest:?}"
+    );
+}
+
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+//= type=test
+//# A hand-over rule whose line hold is given and not positive MUST be refused
+//# with `GD-HANDOVER-LINE`.
+#[test]
+fn a_line_hold_not_positive_is_refused() {
+    for length in [0.0, -3.0] {
+        let p = HandoverParams {
+            hold: m(4.0),
+            slope: 0.1,
+            averaging: m(1.0),
+            line_hold: Some(m(length)),
+        };
+        assert_eq!(
+            Handover::new(&p).unwrap_err().requirement,
+            "GD-HANDOVER-LINE"
+        );
+        let config = GuidanceConfig::new(&params(Some(p)));
+        assert_eq!(config.unwrap_err().requirement, "GD-HANDOVER-LINE");
+    }
+}
+
 #[test]
 fn a_replaced_path_ends_the_hand_over() {
-    let path = straight_path();
+    let path = straight_path(-20.0, 300.0);
     let rule = HandoverParams {
         hold: m(50.0),
         slope: 0.1,
         averaging: m(1.0),
+        line_hold: None,
     };
     let mut g: Pierre2022<'_, PATH_N> =
         Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();
     let outs = drive(&mut g, 25.0);
     assert!(outs.last().unwrap().1.path.reference_offset.is_some());
-    let other = straight_path();
+    let other = straight_path(-20.0, 300.0);
     g.set_path(&other);
     let out = g
         .step(&TickInput {
@@ -231,6 +356,7 @@ fn rule(hold: f64, slope: f64) -> Handover {
         hold: m(hold),
         slope,
         averaging: m(1.0),
+        line_hold: None,
     })
     .unwrap()
 }
@@ -256,6 +382,7 @@ fn bad_rules_are_refused() {
             hold: m(hold),
             slope,
             averaging: m(averaging),
+            line_hold: None,
         })
         .unwrap_err();
         assert_eq!(e.requirement, "GD-HANDOVER");
@@ -264,6 +391,7 @@ fn bad_rules_are_refused() {
         hold: m(0.0),
         slope: 1.0,
         averaging: m(1e-9),
+        line_hold: None,
     })
     .is_ok());
 }

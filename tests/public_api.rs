@@ -1860,6 +1860,7 @@ fn guidance_params(
                 max_accuracy: m(v),
                 path_dead_reckoning: m(v),
                 rejoin_slope: v,
+                float_averaging: Some(m(v)),
             });
         }
         10 => {
@@ -1869,6 +1870,7 @@ fn guidance_params(
                 max_accuracy: m(0.05),
                 path_dead_reckoning: m(2.0),
                 rejoin_slope: 0.1,
+                float_averaging: Some(m(0.5)),
             });
         }
         _ => {}
@@ -2557,11 +2559,11 @@ pub fn after() {}
 
 proptest! {
     #[test]
-    fn handover(hold in meters(), slope in raw(), averaging in meters(), start in meters(), travelled in meters(), path in tracking()) {
-        let params = HandoverParams { hold, slope, averaging };
+    fn handover(hold in meters(), slope in raw(), averaging in meters(), line in meters(), start in meters(), travelled in meters(), path in tracking()) {
+        let params = HandoverParams { hold, slope, averaging, line_hold: Some(line) };
         check!("guidance::handover::Handover::new", Handover::new(&params));
         let rule = Handover::new(&params)
-            .unwrap_or(Handover::new(&HandoverParams { hold: m(4.0), slope: 0.1, averaging: m(1.0) }).unwrap());
+            .unwrap_or(Handover::new(&HandoverParams { hold: m(4.0), slope: 0.1, averaging: m(1.0), line_hold: None }).unwrap());
         check!("guidance::handover::Handover::averaged", rule.averaged(Some(start), hold, travelled));
         check!("guidance::handover::Handover::averaged", rule.averaged(None, start, travelled));
         check!("guidance::handover::Handover::params", rule.params());
@@ -2575,11 +2577,11 @@ proptest! {
 
 proptest! {
     #[test]
-    fn fix_rule(max_accuracy in meters(), carry in meters(), slope in raw(), sigma in meters(), start in meters(), travelled in meters(), path in tracking(), p in pose::<World>()) {
-        let params = FixRuleParams { worst_kind: FixKind::RtkFloat, max_accuracy, path_dead_reckoning: carry, rejoin_slope: slope };
+    fn fix_rule(max_accuracy in meters(), carry in meters(), slope in raw(), float in meters(), sigma in meters(), start in meters(), travelled in meters(), path in tracking(), p in pose::<World>()) {
+        let params = FixRuleParams { worst_kind: FixKind::RtkFloat, max_accuracy, path_dead_reckoning: carry, rejoin_slope: slope, float_averaging: Some(float) };
         check!("guidance::fix::FixRule::new", FixRule::new(&params));
         let rule = FixRule::new(&params).unwrap_or(
-            FixRule::new(&FixRuleParams { worst_kind: FixKind::RtkFixed, max_accuracy: m(0.05), path_dead_reckoning: m(10.0), rejoin_slope: 0.1 }).unwrap(),
+            FixRule::new(&FixRuleParams { worst_kind: FixKind::RtkFixed, max_accuracy: m(0.05), path_dead_reckoning: m(10.0), rejoin_slope: 0.1, float_averaging: None }).unwrap(),
         );
         check!("guidance::fix::FixRule::params", rule.params());
         for quality in [FixQuality::RTK_FIXED, FixQuality { kind: FixKind::Single, accuracy: Some(sigma) }] {

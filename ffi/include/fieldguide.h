@@ -121,7 +121,28 @@ typedef struct FgFixRule {
   // How fast a returning good fix is taken up, m of lateral change per m
   // travelled, in (0, 1].
   double rejoin_slope;
+  // Whether a refused RTK float fix corrects the carried pose
+  // (GD-FIX-FLOAT), its offset averaged over `float_averaging_m`.
+  bool has_float_averaging;
+  // The float offset's averaging length, m (> 0).
+  double float_averaging_m;
 } FgFixRule;
+
+// How path tracking takes over from a behaviour (GD-HANDOVER): on the
+// path shifted onto the behaviour's last line, held, then brought back.
+typedef struct FgHandoverRule {
+  // How far the shift is held after the hand-over, m (≥ 0).
+  double hold_m;
+  // How fast the shift then goes to zero, m per m, in (0, 1].
+  double slope;
+  // The length the line's offset is averaged over, m (> 0).
+  double averaging_m;
+  // Whether path tracking first follows the behaviour's last line
+  // carried by odometry for `line_hold_m` (GD-HANDOVER-LINE).
+  bool has_line_hold;
+  // The line hold, m (> 0).
+  double line_hold_m;
+} FgHandoverRule;
 
 // One LiDAR scan and the behaviour whose detector reads it.
 typedef struct FgScan {
@@ -227,6 +248,22 @@ enum FgStatus fg_pipeline_new_with_fix_rule(const struct FgConfig *config,
                                             const struct FgFixRule *rule,
                                             struct FgPipeline **pipeline,
                                             struct FgError *error);
+
+// As `fg_pipeline_new_with_fix_rule`, with the hand-over rule `*handover`
+// (GD-HANDOVER, GD-HANDOVER-LINE); a null `handover` hands over to the
+// path at once. A rule the core refuses gives `FG_STATUS_REFUSED` naming
+// `GD-HANDOVER`, `GD-HANDOVER-LINE` or `LIB-FINITE`.
+//
+// # Safety
+// As `fg_pipeline_new_with_fix_rule`; `handover` is null or points to one
+// readable `FgHandoverRule`.
+enum FgStatus fg_pipeline_new_with_rules(const struct FgConfig *config,
+                                         const struct FgPoint *waypoints,
+                                         size_t waypoint_count,
+                                         const struct FgFixRule *rule,
+                                         const struct FgHandoverRule *handover,
+                                         struct FgPipeline **pipeline,
+                                         struct FgError *error);
 
 // One control tick: the scans that arrived, the GNSS pose if valid and the
 // odometry pose in; the command, the mode and the path error out. Allocates

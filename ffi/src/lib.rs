@@ -16,7 +16,9 @@
 //! - Creating a pipeline allocates it once; a tick allocates nothing.
 //! - A GNSS fix may come with its quality (`fg_pipeline_step_with_fix`),
 //!   judged by a fix rule given at creation (`fg_pipeline_new_with_fix_rule`,
-//!   GD-FIX-QUALITY); `fg_pipeline_step` takes every fix as RTK fixed.
+//!   GD-FIX-QUALITY, GD-FIX-FLOAT); `fg_pipeline_step` takes every fix as
+//!   RTK fixed. `fg_pipeline_new_with_rules` adds a hand-over rule
+//!   (GD-HANDOVER, GD-HANDOVER-LINE).
 //! - `unsafe` is confined to this crate, each block with the argument that
 //!   makes it sound beside it; the pointers' contracts are in each
 //!   function's documentation, as C callers read them in the header.
@@ -25,7 +27,9 @@ use core::ffi::c_char;
 
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::guidance::fix::{FixKind, FixQuality, FixRuleParams};
-use fieldguide::guidance::{BehaviourId, Guidance, GuidanceConfig, Mode, RoutedScan, TickInput};
+use fieldguide::guidance::{
+    BehaviourId, Guidance, GuidanceConfig, HandoverParams, Mode, RoutedScan, TickInput,
+};
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::Side;
 use fieldguide::perception::{RangeLimits, Scan};
@@ -199,6 +203,29 @@ pub struct FgFixRule {
     /// How fast a returning good fix is taken up, m of lateral change per m
     /// travelled, in (0, 1].
     pub rejoin_slope: f64,
+    /// Whether a refused RTK float fix corrects the carried pose
+    /// (GD-FIX-FLOAT), its offset averaged over `float_averaging_m`.
+    pub has_float_averaging: bool,
+    /// The float offset's averaging length, m (> 0).
+    pub float_averaging_m: f64,
+}
+
+/// How path tracking takes over from a behaviour (GD-HANDOVER): on the
+/// path shifted onto the behaviour's last line, held, then brought back.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FgHandoverRule {
+    /// How far the shift is held after the hand-over, m (≥ 0).
+    pub hold_m: f64,
+    /// How fast the shift then goes to zero, m per m, in (0, 1].
+    pub slope: f64,
+    /// The length the line's offset is averaged over, m (> 0).
+    pub averaging_m: f64,
+    /// Whether path tracking first follows the behaviour's last line
+    /// carried by odometry for `line_hold_m` (GD-HANDOVER-LINE).
+    pub has_line_hold: bool,
+    /// The line hold, m (> 0).
+    pub line_hold_m: f64,
 }
 
 /// Who commands after a tick.
@@ -307,7 +334,23 @@ fn rule_of(rule: &FgFixRule) -> Result<FixRuleParams, Precondition> {
         max_accuracy: Meters::new(rule.max_accuracy_m)?,
         path_dead_reckoning: Meters::new(rule.path_dead_reckoning_m)?,
         rejoin_slope: rule.rejoin_slope,
+        float_averaging: optional_length(rule.has_float_averaging, rule.float_averaging_m)?,
     })
+}
+
+/// The core's hand-over rule of a C one.
+fn handover_of(rule: &FgHandoverRule) -> Result<HandoverParams, Precondition> {
+    Ok(HandoverParams {
+        hold: Meters::new(rule.hold_m)?,
+        slope: rule.slope,
+        averaging: Meters::new(rule.averaging_m)?,
+        line_hold: optional_length(rule.has_line_hold, rule.line_hold_m)?,
+    })
+}
+
+/// `value` when `given`, a finite length.
+fn optional_length(given: bool, value: f64) -> Result<Option<Meters>, Precondition> {
+    given.then(|| Meters::new(value)).transpose()
 }
 
 /// The core's fix quality of a C one.
@@ -323,11 +366,12 @@ fn quality_of(fix: &FgFix) -> Result<FixQuality, Precondition> {
 }
 
 /// The pipeline of `config` on the path through `waypoints`, with the fix
-/// rule `rule` if any.
+/// rule `rule` and the hand-over rule `handover` if any.
 fn build(
     config: &FgConfig,
     waypoints: &[FgPoint],
     rule: Option<&FgFixRule>,
+    handover: Option<&FgHandoverRule>,
 ) -> Result<Box<FgPipeline>, Precondition> {
     let mut points: heapless::Vec<Point2<World>, FG_PATH_CAPACITY> = heapless::Vec::new();
     for w in waypoints {
@@ -358,6 +402,7 @@ fn build(
         FgPreset::Both => pierre2022_both(side, mount)?,
     };
     params.fix = rule.map(rule_of).transpose()?;
+    params.handover = handover.map(handover_of).transpose()?;
     let config = GuidanceConfig::new(&params)?;
     let path = Box::into_raw(path);
     // SAFETY: `path` is a live allocation from `Box::into_raw`, freed only
@@ -430,6 +475,38 @@ pub unsafe extern "C" fn fg_pipeline_new_with_fix_rule(
     pipeline: *mut *mut FgPipeline,
     error: *mut FgError,
 ) -> FgStatus {
+    // SAFETY: the same contract, and a null hand-over rule.
+    unsafe {
+        fg_pipeline_new_with_rules(
+            config,
+            waypoints,
+            waypoint_count,
+            rule,
+            core::ptr::null(),
+            pipeline,
+            error,
+        )
+    }
+}
+
+/// As `fg_pipeline_new_with_fix_rule`, with the hand-over rule `*handover`
+/// (GD-HANDOVER, GD-HANDOVER-LINE); a null `handover` hands over to the
+/// path at once. A rule the core refuses gives `FG_STATUS_REFUSED` naming
+/// `GD-HANDOVER`, `GD-HANDOVER-LINE` or `LIB-FINITE`.
+///
+/// # Safety
+/// As `fg_pipeline_new_with_fix_rule`; `handover` is null or points to one
+/// readable `FgHandoverRule`.
+#[no_mangle]
+pub unsafe extern "C" fn fg_pipeline_new_with_rules(
+    config: *const FgConfig,
+    waypoints: *const FgPoint,
+    waypoint_count: usize,
+    rule: *const FgFixRule,
+    handover: *const FgHandoverRule,
+    pipeline: *mut *mut FgPipeline,
+    error: *mut FgError,
+) -> FgStatus {
     if config.is_null() || waypoints.is_null() || pipeline.is_null() {
         return FgStatus::NullPointer;
     }
@@ -441,7 +518,9 @@ pub unsafe extern "C" fn fg_pipeline_new_with_fix_rule(
     let waypoints = unsafe { core::slice::from_raw_parts(waypoints, waypoint_count) };
     // SAFETY: null or one readable `FgFixRule` by the caller's contract.
     let rule = unsafe { rule.as_ref() };
-    match build(config, waypoints, rule) {
+    // SAFETY: null or one readable `FgHandoverRule` by the caller's contract.
+    let handover = unsafe { handover.as_ref() };
+    match build(config, waypoints, rule, handover) {
         Ok(p) => {
             // SAFETY: not null, and the caller's contract makes it writable
             // for one pointer.

@@ -15,10 +15,10 @@ use std::cell::Cell;
 use std::ffi::CStr;
 
 use fieldguide_ffi::{
-    fg_pipeline_free, fg_pipeline_new, fg_pipeline_new_with_fix_rule, fg_pipeline_step,
-    fg_pipeline_step_with_fix, FgConfig, FgError, FgFix, FgFixRule, FgMode, FgPipeline, FgPoint,
-    FgPose, FgPreset, FgScan, FgStatus, FgTickInput, FgTickOutput, FG_BEHAVIOUR_EDGE,
-    FG_BEHAVIOUR_FURROW, FG_FIX_RTK_FIXED, FG_FIX_RTK_FLOAT,
+    fg_pipeline_free, fg_pipeline_new, fg_pipeline_new_with_fix_rule, fg_pipeline_new_with_rules,
+    fg_pipeline_step, fg_pipeline_step_with_fix, FgConfig, FgError, FgFix, FgFixRule,
+    FgHandoverRule, FgMode, FgPipeline, FgPoint, FgPose, FgPreset, FgScan, FgStatus, FgTickInput,
+    FgTickOutput, FG_BEHAVIOUR_EDGE, FG_BEHAVIOUR_FURROW, FG_FIX_RTK_FIXED, FG_FIX_RTK_FLOAT,
 };
 
 struct Counting;
@@ -360,6 +360,8 @@ fn a_float_fix_is_judged_by_the_fix_rule() {
         max_accuracy_m: 0.05,
         path_dead_reckoning_m: 1.0,
         rejoin_slope: 0.1,
+        has_float_averaging: false,
+        float_averaging_m: 0.0,
     };
     let make = |rule: Option<&FgFixRule>| -> Result<*mut FgPipeline, FgError> {
         let mut p: *mut FgPipeline = core::ptr::null_mut();
@@ -475,4 +477,85 @@ fn a_float_fix_is_judged_by_the_fix_rule() {
     assert_eq!(s, FgStatus::NullPointer);
     assert!(tick(p, 0.0, &fixed).unwrap().has_command);
     free(p);
+}
+
+/// The float averaging and the hand-over's line hold reach the core: a
+/// length given is validated (GD-FIX-FLOAT, GD-HANDOVER-LINE), one not
+/// given is ignored whatever its value.
+//= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+//= type=test
+//# A fix rule whose float averaging length is given and not positive MUST be
+//# refused with `GD-FIX-FLOAT`.
+//= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+//= type=test
+//# A hand-over rule whose line hold is given and not positive MUST be refused
+//# with `GD-HANDOVER-LINE`.
+#[test]
+fn the_float_averaging_and_the_line_hold_are_validated() {
+    let rule = FgFixRule {
+        worst_kind: FG_FIX_RTK_FIXED,
+        max_accuracy_m: 0.05,
+        path_dead_reckoning_m: 10.0,
+        rejoin_slope: 0.1,
+        has_float_averaging: true,
+        float_averaging_m: 2.0,
+    };
+    let handover = FgHandoverRule {
+        hold_m: 4.0,
+        slope: 0.1,
+        averaging_m: 1.0,
+        has_line_hold: true,
+        line_hold_m: 3.0,
+    };
+    let make = |rule: &FgFixRule, handover: &FgHandoverRule| -> Result<(), FgError> {
+        let mut p: *mut FgPipeline = core::ptr::null_mut();
+        let mut e = no_error();
+        let c = config(FgPreset::Furrow);
+        let w = straight();
+        // SAFETY: live locals of the right types; `w.len()` points.
+        let s = unsafe {
+            fg_pipeline_new_with_rules(&c, w.as_ptr(), w.len(), rule, handover, &mut p, &mut e)
+        };
+        match s {
+            FgStatus::Ok => {
+                free(p);
+                Ok(())
+            }
+            _ => Err(e),
+        }
+    };
+    assert!(make(&rule, &handover).is_ok());
+    for length in [0.0, -1.0] {
+        let bad = FgFixRule {
+            float_averaging_m: length,
+            ..rule
+        };
+        assert_eq!(
+            requirement(&make(&bad, &handover).unwrap_err()),
+            "GD-FIX-FLOAT"
+        );
+        let off = FgFixRule {
+            has_float_averaging: false,
+            ..bad
+        };
+        assert!(make(&off, &handover).is_ok());
+        let bad = FgHandoverRule {
+            line_hold_m: length,
+            ..handover
+        };
+        assert_eq!(
+            requirement(&make(&rule, &bad).unwrap_err()),
+            "GD-HANDOVER-LINE"
+        );
+        let off = FgHandoverRule {
+            has_line_hold: false,
+            ..bad
+        };
+        assert!(make(&rule, &off).is_ok());
+    }
+    let nan = FgHandoverRule {
+        line_hold_m: f64::NAN,
+        ..handover
+    };
+    assert_eq!(requirement(&make(&rule, &nan).unwrap_err()), "LIB-FINITE");
 }

@@ -1040,6 +1040,19 @@ fn switching_fields_are_checked_and_named() {
             "handover_hold_m = 5.0\nhandover_averaging_m = 0.0",
             "switching.handover_averaging_m",
         ),
+        (
+            "handover_hold_m = 5.0\nhandover_line_m = 0.0",
+            "switching.handover_line_m",
+        ),
+        (
+            "handover_hold_m = 5.0\nhandover_line_m = -3.0",
+            "switching.handover_line_m",
+        ),
+        (
+            "handover_hold_m = 5.0\nhandover_line_m = 1001.0",
+            "switching.handover_line_m",
+        ),
+        ("handover_line_m = 3.0", "switching.handover_hold_m"),
     ] {
         let e = error_of(move |t: String| format!("{t}\n[switching]\n{text}\n"));
         assert_field(&e, field, "");
@@ -1277,6 +1290,18 @@ fn fix_rule_fields_are_checked_and_named() {
             "fix_max_accuracy_m = 0.05\nfix_rejoin_slope = 1.5",
             "switching.fix_rejoin_slope",
         ),
+        (
+            "fix_max_accuracy_m = 0.05\nfix_float_averaging_m = 0.0",
+            "switching.fix_float_averaging_m",
+        ),
+        (
+            "fix_max_accuracy_m = 0.05\nfix_float_averaging_m = nan",
+            "switching.fix_float_averaging_m",
+        ),
+        (
+            "fix_float_averaging_m = 2.0",
+            "switching.fix_max_accuracy_m",
+        ),
     ] {
         let e = error_of(move |t: String| format!("{t}\n[switching]\n{text}\n"));
         assert_field(&e, field, "");
@@ -1305,4 +1330,18 @@ fn fix_rule_fields_are_checked_and_named() {
     assert_eq!(fix.path_dead_reckoning.get(), 0.0);
     assert!((fix.rejoin_slope - 0.1).abs() < 1e-15);
     assert!((fix.max_accuracy.get() - 0.05).abs() < 1e-15);
+    assert_eq!(fix.float_averaging, None);
+    // The float averaging and the hand-over's line hold, given.
+    let s = setup(format!(
+        "{}\n[switching]\nfix_max_accuracy_m = 0.05\nfix_float_averaging_m = 2.0\nhandover_hold_m = 4.0\nhandover_line_m = 3.0\n",
+        builtin_text()
+    ));
+    assert_eq!(
+        s.fix.unwrap().float_averaging.map(fieldguide::Meters::get),
+        Some(2.0)
+    );
+    assert_eq!(
+        s.handover.unwrap().line_hold.map(fieldguide::Meters::get),
+        Some(3.0)
+    );
 }

@@ -373,6 +373,8 @@ where
                                 start,
                                 travelled: 0.0,
                             });
+                            // No behaviour was left: no line to hold.
+                            self.held_line = None;
                         }
                     }
                 } else {

@@ -5,19 +5,23 @@
 //! carries the last good fix by odometry (GD-PLAN-DEAD-RECKONING) and path
 //! tracking, with a carry distance configured, steers on that carried pose,
 //! then stops with the reason named; when a good fix returns, the step
-//! between the carried pose and it is taken up at a bounded slope.
+//! between the carried pose and it is taken up at a bounded slope. With a
+//! float averaging length, a refused RTK float fix corrects the carried
+//! pose: its offset from it is averaged over the first metres of float, and
+//! path tracking then steers on the float fix less that offset
+//! (GD-FIX-FLOAT).
 //!
 //! Pierre 2022 assumes an RTK-fixed pose; a float fix 0.3-1 m off or a
 //! single-point one would steer path tracking beside the path by that much.
 
-use super::handover::{shifted_error, Active};
+use super::handover::{averaging_weight, shifted_error, Active};
 use super::Guidance;
 use crate::control::ControlLaw;
 use crate::error::Precondition;
 use crate::geometry::frame::{Odom, Pose2, World};
 use crate::geometry::path::FrenetError;
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::Meters;
+use crate::geometry::units::{wrap_raw, Meters};
 use crate::perception::Detector;
 
 /// The kind of a fix, from best to worst.
@@ -68,6 +72,11 @@ pub struct FixRuleParams {
     /// How fast the step between the carried pose and a returning good fix
     /// is taken up, metres of lateral change per metre travelled, in (0, 1].
     pub rejoin_slope: f64,
+    /// λ: with a length, a refused RTK float fix corrects the carried pose
+    /// (GD-FIX-FLOAT): its offset from the carried pose is averaged over the
+    /// first λ metres of float, m, > 0, and its changes thereafter move the
+    /// carried pose; `None`: the carried pose alone.
+    pub float_averaging: Option<Meters>,
 }
 
 /// A validated fix rule (GD-FIX-QUALITY).
@@ -103,6 +112,15 @@ impl FixRule {
             return Err(Precondition::new(
                 "GD-FIX-QUALITY",
                 "fix rejoin_slope must lie in (0, 1]",
+            ));
+        }
+        //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+        //# A fix rule whose float averaging length is given and not positive MUST be
+        //# refused with `GD-FIX-FLOAT`.
+        if params.float_averaging.is_some_and(|l| l.get() <= 0.0) {
+            return Err(Precondition::new(
+                "GD-FIX-FLOAT",
+                "fix float_averaging must be > 0",
             ));
         }
         Ok(Self { params: *params })
@@ -203,6 +221,12 @@ pub enum FixUse {
         /// Odometry distance since the last good fix.
         travelled: Meters,
     },
+    /// No good fix: the last good fix carried `travelled` metres by
+    /// odometry and moved by the float fix's correction (GD-FIX-FLOAT).
+    Float {
+        /// Odometry distance since the last good fix.
+        travelled: Meters,
+    },
     /// No good fix and none to carry: no good fix yet, or farther than the
     /// path dead-reckoning distance; the reason names GD-FIX-QUALITY.
     Lost(Precondition),
@@ -211,6 +235,103 @@ pub enum FixUse {
 /// A rejoin in progress: the shift it started with and the odometry
 /// distance since (the hand-over's record, GD-HANDOVER).
 pub(super) type Rejoin = Active;
+
+/// A pose less another, world frame: east, north and heading (wrapped).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) struct Offset {
+    x: f64,
+    y: f64,
+    heading: f64,
+}
+
+impl Offset {
+    /// `a` less `b`; `None` on overflow.
+    fn between(a: &Pose2<World>, b: &Pose2<World>) -> Option<Self> {
+        let o = Self {
+            x: a.position.x() - b.position.x(),
+            y: a.position.y() - b.position.y(),
+            heading: wrap_raw(a.heading.get() - b.heading.get()),
+        };
+        (o.x.is_finite() && o.y.is_finite()).then_some(o)
+    }
+
+    /// `pose` moved by this offset.
+    ///
+    /// # Errors
+    /// `LIB-FINITE` on overflow.
+    pub(super) fn applied(&self, pose: &Pose2<World>) -> Result<Pose2<World>, Precondition> {
+        Pose2::new(
+            pose.position.x() + self.x,
+            pose.position.y() + self.y,
+            pose.heading.get() + self.heading,
+        )
+    }
+
+    /// `self + k (other − self)` per component, the heading's difference wrapped.
+    fn toward(&self, other: &Self, k: f64) -> Self {
+        Self {
+            x: self.x + k * (other.x - self.x),
+            y: self.y + k * (other.y - self.y),
+            heading: wrap_raw(self.heading + k * wrap_raw(other.heading - self.heading)),
+        }
+    }
+}
+
+/// The float span since the last good fix (GD-FIX-FLOAT): the float fix's
+/// offset from the carried pose averaged over the span's first λ metres
+/// (r), then the correction m − r averaged over the odometry distance λ.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) struct FloatSpan {
+    /// Odometry distance of the float ticks averaged so far, m.
+    averaged: f64,
+    /// The mean offset of those ticks, weighted by their distance.
+    mean: Offset,
+    /// r, once the float ticks have covered λ metres.
+    bias: Option<Offset>,
+    /// m − r averaged over λ metres of float ticks; zero until r is set.
+    correction: Offset,
+}
+
+impl FloatSpan {
+    /// The span after a float tick that measured the offset `m` having
+    /// travelled `travelled` metres, with the averaging length `length`.
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //# The offset r MUST be the mean of the float fix's offset from the carried
+    //# pose (east, north and heading) over the span's float ticks, each weighted
+    //# by its odometry distance, until those ticks cover the averaging length λ;
+    //# from then on r MUST stay.
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //# The correction MUST be zero when r is set, and each later float tick MUST
+    //# move it toward m − r by the weight 1 − exp(−Δd / λ), m the tick's float fix
+    //# offset from the carried pose and Δd the tick's odometry distance.
+    fn record(&mut self, m: &Offset, travelled: f64, length: f64) {
+        let d = travelled.max(0.0);
+        match self.bias {
+            Some(r) => {
+                let target = Offset {
+                    x: m.x - r.x,
+                    y: m.y - r.y,
+                    heading: wrap_raw(m.heading - r.heading),
+                };
+                let weight = averaging_weight(d, length);
+                self.correction = self.correction.toward(&target, weight);
+            }
+            None => {
+                self.averaged += d;
+                // The first tick sets the mean; later ones weigh d / total.
+                let weight = if self.averaged > 0.0 {
+                    d / self.averaged
+                } else {
+                    1.0
+                };
+                self.mean = self.mean.toward(m, weight);
+                if self.averaged >= length {
+                    self.bias = Some(self.mean);
+                }
+            }
+        }
+    }
+}
 
 impl<const PATH: usize, D, L, const K: usize> Guidance<'_, PATH, D, L, K>
 where
@@ -221,13 +342,19 @@ where
     /// What path tracking steers on in a tick whose good fix (if
     /// `good_fix`) projected as `frenet`: that projection; without a good
     /// fix and with a rule, the last good fix carried by odometry within the
-    /// path dead-reckoning distance, or nothing and why.
+    /// path dead-reckoning distance, moved by the float correction
+    /// (GD-FIX-FLOAT) once there is one, or nothing and why.
     //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
     //# With a fix rule, in a tick without a good fix, path tracking MUST steer on
     //# the pose of the last good fix moved by odometry, as GD-PLAN-DEAD-RECKONING
     //# moves it, while the odometry distance since that fix is at most the rule's
     //# path dead-reckoning distance; beyond it, and before the first good fix,
     //# localisation MUST be invalid, with the reason named (`GD-FIX-QUALITY`).
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //# From the tick r is set until the span ends, in every tick in which
+    //# GD-FIX-QUALITY has path tracking steer on the carried pose, path tracking
+    //# MUST steer on the carried pose moved by the span's correction instead (east,
+    //# north and heading added).
     pub(super) fn path_pose(
         &self,
         frenet: Option<FrenetError>,
@@ -241,9 +368,61 @@ where
         if good_fix {
             return (frenet, FixUse::Fix);
         }
-        match self.carried(odometry, rule.params().path_dead_reckoning) {
-            Ok((travelled, carried)) => (Some(carried), FixUse::Carried { travelled }),
+        let correction = self.floating.filter(|f| f.bias.is_some());
+        let limit = rule.params().path_dead_reckoning;
+        match self.carried(odometry, limit, correction.map(|f| f.correction)) {
+            Ok((travelled, carried)) => {
+                let used = if correction.is_some() {
+                    FixUse::Float { travelled }
+                } else {
+                    FixUse::Carried { travelled }
+                };
+                (Some(carried), used)
+            }
             Err(reason) => (None, FixUse::Lost(reason)),
+        }
+    }
+
+    /// Records the tick's fix `gnss` of `quality` in the float span
+    /// (GD-FIX-FLOAT), `travelled` metres after the previous tick: a good
+    /// fix ends the span; a refused RTK float fix, with the carried pose
+    /// within the path dead-reckoning distance, adds its offset from that
+    /// pose; any other tick leaves the span as it is.
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //# With a float averaging length configured, a float span MUST start at the
+    //# first tick after a good fix whose fix the rule refuses and whose kind is RTK
+    //# float, and MUST end at the next good fix; only ticks with such a fix and a
+    //# carried pose (GD-FIX-QUALITY) are its float ticks.
+    pub(super) fn track_float(
+        &mut self,
+        gnss: Option<&Pose2<World>>,
+        quality: &FixQuality,
+        good_fix: bool,
+        odometry: &Pose2<Odom>,
+        travelled: f64,
+    ) {
+        let Some(rule) = self.config.fix() else {
+            return;
+        };
+        let Some(length) = rule.params().float_averaging else {
+            return;
+        };
+        if good_fix {
+            self.floating = None;
+            return;
+        }
+        let Some(fix) = gnss.filter(|_| quality.kind == FixKind::RtkFloat) else {
+            return;
+        };
+        let limit = rule.params().path_dead_reckoning;
+        let offset = self
+            .carried_pose(odometry, limit)
+            .ok()
+            .and_then(|(_, carried)| Offset::between(fix, &carried));
+        if let Some(m) = offset {
+            self.floating
+                .get_or_insert_default()
+                .record(&m, travelled, length.get());
         }
     }
 
@@ -262,7 +441,7 @@ where
             r.travelled += travelled;
         }
         match (used, frenet) {
-            (FixUse::Carried { .. }, Some(f)) => {
+            (FixUse::Carried { .. } | FixUse::Float { .. }, Some(f)) => {
                 self.carried_y = Some(f.y);
                 self.rejoining = None;
             }
@@ -327,7 +506,59 @@ mod tests {
             max_accuracy: Meters::new(0.05)?,
             path_dead_reckoning: Meters::new(10.0)?,
             rejoin_slope: slope,
+            float_averaging: None,
         })
+    }
+
+    fn offset(x: f64, y: f64, heading: f64) -> Offset {
+        Offset { x, y, heading }
+    }
+
+    fn close(a: &Offset, b: &Offset) -> bool {
+        libm::fabs(a.x - b.x) < 1e-12
+            && libm::fabs(a.y - b.y) < 1e-12
+            && libm::fabs(wrap_raw(a.heading - b.heading)) < 1e-12
+    }
+
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //= type=test
+    //# The offset r MUST be the mean of the float fix's offset from the carried
+    //# pose (east, north and heading) over the span's float ticks, each weighted
+    //# by its odometry distance, until those ticks cover the averaging length λ;
+    //# from then on r MUST stay.
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //= type=test
+    //# The correction MUST be zero when r is set, and each later float tick MUST
+    //# move it toward m − r by the weight 1 − exp(−Δd / λ), m the tick's float fix
+    //# offset from the carried pose and Δd the tick's odometry distance.
+    #[test]
+    fn the_float_offset_is_a_distance_weighted_mean_then_the_correction_an_average() {
+        let mut span = FloatSpan::default();
+        // A tick at standstill weighs nothing; the others by their distance.
+        span.record(&offset(9.0, 9.0, 0.5), 0.0, 2.0);
+        span.record(&offset(0.4, -0.2, 0.01), 0.5, 2.0);
+        span.record(&offset(0.6, 0.2, 0.03), 1.0, 2.0);
+        assert!(span.bias.is_none());
+        assert!(close(&span.correction, &Offset::default()));
+        // Covering λ = 2 m sets r: (0.5·m₁ + 1·m₂ + 0.5·m₃) / 2.
+        span.record(&offset(0.2, 0.0, -0.01), 0.5, 2.0);
+        let r = offset(0.45, 0.05, 0.015);
+        assert!(span.bias.is_some_and(|b| close(&b, &r)), "{span:?}");
+        assert!(close(&span.correction, &Offset::default()));
+        // Then the correction moves toward m − r by 1 − exp(−Δd / λ); r stays.
+        let m = offset(0.55, 0.15, 0.025);
+        span.record(&m, 1.0, 2.0);
+        let w = 1.0 - libm::exp(-0.5);
+        assert!(close(&span.correction, &offset(0.1 * w, 0.1 * w, 0.01 * w)));
+        span.record(&m, 1000.0, 2.0);
+        assert!(close(&span.correction, &offset(0.1, 0.1, 0.01)));
+        assert!(span.bias.is_some_and(|b| close(&b, &r)));
+        // Headings across ±π average on the circle.
+        let mut span = FloatSpan::default();
+        span.record(&offset(0.0, 0.0, 3.1), 1.0, 2.0);
+        span.record(&offset(0.0, 0.0, -3.1), 1.0, 2.0);
+        let heading = span.bias.map_or(0.0, |b| b.heading);
+        assert!(libm::fabs(libm::fabs(heading) - core::f64::consts::PI) < 1e-9);
     }
 
     #[test]

@@ -14,11 +14,15 @@
 use super::{BehaviourStatus, Guidance};
 use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
+use crate::geometry::carry::{moved_line_error, pose_in_scan_frame};
+use crate::geometry::frame::{Odom, Pose2};
 use crate::geometry::path::FrenetError;
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{wrap_raw, Curvature, Meters, Radians};
 use crate::perception::Detector;
-use crate::supervisor::switching::{CommandSource, Mode as MachineMode, Output};
+use crate::supervisor::switching::{
+    line_relative_to_path, CommandSource, Mode as MachineMode, Output,
+};
 
 /// The hand-over rule as a user writes it; [`Handover::new`] validates it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,6 +38,11 @@ pub struct HandoverParams {
     /// this length, m, > 0 (the weight of a new offset after Δd metres is
     /// 1 − exp(−Δd / λ)): a single noisy line does not move the reference.
     pub averaging: Meters,
+    /// With a length, m, > 0: for that odometry distance after the
+    /// hand-over path tracking follows the behaviour's last line carried by
+    /// odometry, whatever the fix does, and the shift then starts from that
+    /// line's offset (GD-HANDOVER-LINE); `None`: the shifted path at once.
+    pub line_hold: Option<Meters>,
 }
 
 /// A validated hand-over rule (GD-HANDOVER).
@@ -71,6 +80,15 @@ impl Handover {
                 "handover slope must lie in (0, 1]",
             ));
         }
+        //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+        //# A hand-over rule whose line hold is given and not positive MUST be refused
+        //# with `GD-HANDOVER-LINE`.
+        if params.line_hold.is_some_and(|l| l.get() <= 0.0) {
+            return Err(Precondition::new(
+                "GD-HANDOVER-LINE",
+                "handover line hold must be > 0",
+            ));
+        }
         Ok(Self { params: *params })
     }
 
@@ -91,11 +109,18 @@ impl Handover {
     //# changing sign.
     #[must_use]
     pub fn offset(&self, start: Meters, travelled: Meters) -> Meters {
-        shrunk(
-            start,
-            self.params.slope,
-            travelled.get() - self.params.hold.get(),
-        )
+        shrunk(start, self.params.slope, travelled.get() - self.held())
+    }
+
+    /// How far the shift is held: the hold distance, or the line hold when
+    /// it is longer (GD-HANDOVER-LINE).
+    //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+    //# With a line hold, the shift MUST be held while the odometry distance since
+    //# the hand-over is at most the longer of the hold distance and the line hold.
+    fn held(&self) -> f64 {
+        self.params.line_hold.map_or(self.params.hold.get(), |l| {
+            l.get().max(self.params.hold.get())
+        })
     }
 
     /// The line's averaged offset after a tick that measured `measured`
@@ -117,7 +142,7 @@ impl Handover {
         let Some(previous) = previous else {
             return measured;
         };
-        let weight = 1.0 - libm::exp(-travelled.get().max(0.0) / self.params.averaging.get());
+        let weight = averaging_weight(travelled.get(), self.params.averaging.get());
         // Both finite; a weight in [0, 1] keeps the result between them.
         let moved = previous.get() + weight * (measured.get() - previous.get());
         Meters::new(moved).unwrap_or(measured)
@@ -149,7 +174,7 @@ impl Handover {
         travelled: Meters,
     ) -> Result<TrackingError, Precondition> {
         let o = self.offset(start, travelled).get();
-        let shrinking = o != 0.0 && travelled.get() > self.params.hold.get();
+        let shrinking = o != 0.0 && travelled.get() > self.held();
         let rate = if shrinking {
             -libm::copysign(self.params.slope, o)
         } else {
@@ -157,6 +182,13 @@ impl Handover {
         };
         shifted_error(path, o, rate)
     }
+}
+
+/// The weight 1 − exp(−Δd / λ) of a new value after `travelled` = Δd metres
+/// (none for a negative distance) in an average over the odometry length
+/// `length` = λ > 0: GD-HANDOVER's line offset, GD-FIX-FLOAT's correction.
+pub(super) fn averaging_weight(travelled: f64, length: f64) -> f64 {
+    1.0 - libm::exp(-travelled.max(0.0) / length)
 }
 
 /// `start` shrunk toward zero by `slope` times `past` metres (none for a
@@ -206,6 +238,14 @@ pub(super) fn shifted_error(
     })
 }
 
+/// A behaviour's line as its last commanding tick saw it: the error to it
+/// and the odometry pose of that tick (GD-HANDOVER-LINE).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct CarriedLine {
+    error: TrackingError,
+    odom: Pose2<Odom>,
+}
+
 /// A hand-over in progress: the shift it started with and the odometry
 /// distance since.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,6 +279,46 @@ where
                 self.handing_over.map(|a| (a.start, a.travelled()))
             }
         }
+    }
+
+    /// Path tracking's error in a tick of a hand-over's line hold
+    /// (GD-HANDOVER-LINE): to the behaviour's last line carried by odometry
+    /// to `odometry`; the hand-over's start becomes that line's offset from
+    /// the path (`frenet`, when there is one). `None` outside a line hold, or
+    /// when the line cannot be carried; a line hold past its length ends.
+    //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+    //# While the odometry distance since a hand-over that started on leaving a
+    //# behaviour is at most the line hold, path tracking's error MUST be the error
+    //# to that behaviour's line in the last tick it commanded, moved to the current
+    //# pose through odometry as GD-ODOMETRY moves a straight line, whatever the
+    //# fix, unless an entry (GD-ENTRY) shifts the reference.
+    //= spec/guidance.md#gd-handover-line-the-last-line-of-a-behaviour-held-after-a-hand-over
+    //# In each such tick in which the path has a projection, the hand-over's shift
+    //# MUST be re-evaluated as that carried line's offset from the path.
+    pub(super) fn line_hold(
+        &mut self,
+        frenet: Option<&FrenetError>,
+        odometry: &Pose2<Odom>,
+    ) -> Option<TrackingError> {
+        let length = self.config.handover()?.params().line_hold?;
+        if matches!(self.machine.mode(), MachineMode::Behaviour(_)) {
+            return None;
+        }
+        let line = self.held_line?;
+        let active = self.handing_over.as_mut()?;
+        if active.travelled > length.get() {
+            self.held_line = None;
+            return None;
+        }
+        let error = pose_in_scan_frame(&line.odom, odometry)
+            .and_then(|pose| moved_line_error(&line.error, &pose))
+            .ok()?;
+        if let Some(relative) =
+            frenet.and_then(|f| line_relative_to_path(&error, &f.tracking_error()).ok())
+        {
+            active.start = relative.offset;
+        }
+        Some(error)
     }
 
     /// The shift o(d) of `reference` (GD-HANDOVER).
@@ -281,6 +361,7 @@ where
         switching: &Output,
         behaviours: &[BehaviourStatus],
         travelled: f64,
+        odometry: &Pose2<Odom>,
     ) {
         let Some(rule) = self.config.handover().copied() else {
             return;
@@ -288,15 +369,24 @@ where
         match switching.mode {
             MachineMode::Behaviour(i) => {
                 self.handing_over = None;
+                self.held_line = None;
                 let commanding = switching.source == CommandSource::Behaviour(i);
-                let offset = behaviours.get(i).and_then(|b| b.plan).map(|p| p.offset);
+                let status = behaviours.get(i);
+                let offset = status.and_then(|b| b.plan).map(|p| p.offset);
                 if before != switching.mode {
                     // Another behaviour's line, or none: start afresh.
                     self.line_offset = None;
+                    self.last_line = None;
                 }
                 if let (true, Some(offset)) = (commanding, offset) {
                     let travelled = Meters::new(travelled.min(f64::MAX)).unwrap_or(Meters::ZERO);
                     self.line_offset = Some(rule.averaged(self.line_offset, offset, travelled));
+                }
+                if let (true, Some(error)) = (commanding, status.and_then(|b| b.error)) {
+                    self.last_line = Some(CarriedLine {
+                        error,
+                        odom: *odometry,
+                    });
                 }
             }
             MachineMode::PathTracking | MachineMode::Stop => {
@@ -305,6 +395,10 @@ where
                         start,
                         travelled: 0.0,
                     });
+                    self.held_line = self
+                        .last_line
+                        .take()
+                        .filter(|_| self.handing_over.is_some());
                 } else if self
                     .handing_over
                     .is_some_and(|a| rule.is_over(a.start, a.travelled()))

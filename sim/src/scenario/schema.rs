@@ -166,6 +166,10 @@ pub struct SwitchingSection {
     /// Hand-over: the line's offset is averaged over this odometry length,
     /// m, > 0 (default 1).
     pub handover_averaging_m: Option<f64>,
+    /// Hand-over: for this odometry distance path tracking follows the
+    /// behaviour's last line carried by odometry, whatever the fix, m, in
+    /// (0, 1000] (GD-HANDOVER-LINE) [off when absent].
+    pub handover_line_m: Option<f64>,
     /// Entry into a behaviour (GD-ENTRY): the lateral reference starts at
     /// the robot's error to the line and the point `entry_lead_m` ahead of
     /// the rear axle closes on the line over this length, m, in (0, 1000]
@@ -186,6 +190,10 @@ pub struct SwitchingSection {
     /// Fix rule: how fast the step to a returning good fix is taken up,
     /// metres per metre, in (0, 1] [0.1].
     pub fix_rejoin_slope: Option<f64>,
+    /// Fix rule: a refused RTK float fix's offset from the carried pose is
+    /// averaged over this odometry distance, m, in (0, 1000], and its
+    /// changes then correct the carried pose (GD-FIX-FLOAT) [off when absent].
+    pub fix_float_averaging_m: Option<f64>,
 }
 
 /// A fix kind in `switching.fix_worst_kind`.

@@ -255,8 +255,8 @@ pub const CLASSES: &[Class] = &[
                 scenario: "gnss-drift-random-walk.toml",
                 bounds: CROPS,
                 known_failure: Known::on_seeds(
-                    &[1, 2, 8, 12, 13, 15],
-                    "the float fix is kept from path tracking (fix rule); left, 10 plants in seeds 8, 12, 13 and 15, none over the float span: the drift at the hand-overs of the beans' bare stretch and end (seed 2: 0.101 m at the beans' end)",
+                    &[15],
+                    "seed 15: 1 plant, the beans' first at the entry after the headland crossed on the drifted fix (entry work); the hand-overs' drift is gone since path tracking follows the rows' last line for 3 m (GD-HANDOVER-LINE)",
                 ),
             },
             Case {
@@ -267,10 +267,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "gnss-outage-distance-slow.toml",
                 bounds: CROPS,
-                known_failure: Known::on_seeds(
-                    &[10],
-                    "seed 10: the bean detector says Exit 7 m before the plot's end, inside the outage, so without a fix or rows the machine stops (SW-STOP) and an outage placed by distance never ends at standstill; nothing crushed",
-                ),
+                known_failure: None,
             },
             Case {
                 scenario: "outage-entry-beans.toml",
@@ -280,10 +277,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "gnss-float-uturn.toml",
                 bounds: CROPS,
-                known_failure: Known::on_seeds(
-                    &[4],
-                    "seed 4: across the 14 m of float the pose carried by odometry drifts, and the turn ends 0.208 m off the path (the scenario's band is 0.2 m); no plant crushed",
-                ),
+                known_failure: None,
             },
         ],
     },

@@ -118,17 +118,12 @@ pub(super) fn switching(
             )?;
             let err =
                 |f: &'static str| move |e: fieldguide::Precondition| check.error(f, &e.to_string());
-            let dead_reckoning = s
-                .plan_dead_reckoning_m
-                .map(|d| {
-                    let field = "switching.plan_dead_reckoning_m";
-                    let d = check.range(field, d, 0.0, 1000.0)?;
-                    if d <= 0.0 {
-                        return Err(check.error(field, &format!("must be > 0, got {d}")));
-                    }
-                    Meters::new(d).map_err(err(field))
-                })
-                .transpose()?;
+            let dead_reckoning = positive_length(
+                check,
+                "switching.plan_dead_reckoning_m",
+                s.plan_dead_reckoning_m,
+                1000.0,
+            )?;
             Some(PlanSetup {
                 tolerance: PlanTolerance::new(
                     Meters::new(offset).map_err(err("switching.plan_max_offset_m"))?,
@@ -151,10 +146,13 @@ pub(super) fn switching(
     }
     let handover = match s.handover_hold_m {
         None => {
-            if s.handover_slope.is_some() || s.handover_averaging_m.is_some() {
+            if s.handover_slope.is_some()
+                || s.handover_averaging_m.is_some()
+                || s.handover_line_m.is_some()
+            {
                 return Err(check.error(
                     "switching.handover_hold_m",
-                    "the hand-over needs its hold distance when its slope or averaging is set",
+                    "the hand-over needs its hold distance when its slope, averaging or line hold is set",
                 ));
             }
             None
@@ -169,11 +167,18 @@ pub(super) fn switching(
                 0.0,
                 1000.0,
             )?;
+            let line_hold = positive_length(
+                check,
+                "switching.handover_line_m",
+                s.handover_line_m,
+                1000.0,
+            )?;
             let params = HandoverParams {
                 hold: Meters::new(hold).map_err(|e| check.error(field, &e.to_string()))?,
                 slope,
                 averaging: Meters::new(averaging)
                     .map_err(|e| check.error("switching.handover_averaging_m", &e.to_string()))?,
+                line_hold,
             };
             Handover::new(&params).map_err(|e| {
                 let field = if averaging <= 0.0 {
@@ -197,17 +202,7 @@ pub(super) fn switching(
         stop_delay_s: pos("stop_delay_s", s.stop_delay_s, 0.5)?,
         max_scan_age_s: pos("max_scan_age_s", s.max_scan_age_s, 0.1)?,
         plan,
-        bridge: s
-            .bridge_m
-            .map(|d| {
-                let field = "switching.bridge_m";
-                let d = check.range(field, d, 0.0, 100.0)?;
-                if d <= 0.0 {
-                    return Err(check.error(field, &format!("must be > 0, got {d}")));
-                }
-                Meters::new(d).map_err(|e| check.error(field, &e.to_string()))
-            })
-            .transpose()?,
+        bridge: positive_length(check, "switching.bridge_m", s.bridge_m, 100.0)?,
         steer_before_resuming: s.steer_before_resuming.unwrap_or(false),
         handover,
         entry: s
@@ -245,10 +240,11 @@ fn fix_rule(
         if s.fix_worst_kind.is_some()
             || s.fix_dead_reckoning_m.is_some()
             || s.fix_rejoin_slope.is_some()
+            || s.fix_float_averaging_m.is_some()
         {
             return Err(check.error(
                 "switching.fix_max_accuracy_m",
-                "the fix rule needs its largest accuracy when its kind, dead reckoning or rejoin slope is set",
+                "the fix rule needs its largest accuracy when its kind, dead reckoning, rejoin slope or float averaging is set",
             ));
         }
         return Ok(None);
@@ -273,6 +269,12 @@ fn fix_rule(
         path_dead_reckoning: Meters::new(carry)
             .map_err(|e| check.error(carry_field, &e.to_string()))?,
         rejoin_slope: s.fix_rejoin_slope.unwrap_or(0.1),
+        float_averaging: positive_length(
+            check,
+            "switching.fix_float_averaging_m",
+            s.fix_float_averaging_m,
+            1000.0,
+        )?,
     };
     FixRule::new(&params).map_err(|e| {
         let field = if accuracy <= 0.0 {
@@ -283,6 +285,24 @@ fn fix_rule(
         check.error(field, &e.to_string())
     })?;
     Ok(Some(params))
+}
+
+/// An optional length of `field`, in (0, `max`] m when given.
+fn positive_length(
+    check: &Checker<'_>,
+    field: &str,
+    value: Option<f64>,
+    max: f64,
+) -> Result<Option<Meters>, ScenarioError> {
+    value
+        .map(|d| {
+            let d = check.range(field, d, 0.0, max)?;
+            if d <= 0.0 {
+                return Err(check.error(field, &format!("must be > 0, got {d}")));
+            }
+            Meters::new(d).map_err(|e| check.error(field, &e.to_string()))
+        })
+        .transpose()
 }
 
 /// `switching.priority`: the ids of the named behaviours in order, each a
