@@ -30,6 +30,8 @@ fn rule(closing: f64, lead: f64) -> Entry {
 const CLOSINGS: [f64; 5] = [0.3, 1.0, 2.0, 2.000_000_000_1, 5.0];
 const LEADS: [f64; 3] = [0.5, 2.0, 3.0];
 const STARTS: [f64; 4] = [-0.45, -0.05, 0.2, 0.3];
+/// Tangents of the robot's heading from the path's at the start.
+const SLOPES: [f64; 4] = [0.0, -0.1, 0.05, 0.15];
 
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
@@ -60,11 +62,14 @@ fn rules_outside_the_lengths_are_refused() {
 
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
-//# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
-//# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
-//# when μ = ℓ, d the odometry distance since the entry started, μ the closing
-//# length and ℓ the lead, and MUST be zero once d reaches twenty times the
-//# longer of μ and ℓ.
+//# The reference MUST equal r₀ s(d) + ℓ t₀ p(d), r₀ the start's lateral
+//# error to the line, t₀ the tangent of the robot's heading from the path's
+//# when the entry started (from the line's when the path had no projection),
+//# s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ) and
+//# p(d) = μ (e^(−d/μ) − e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ) and
+//# (d/ℓ) e^(−d/ℓ) when μ = ℓ, d the odometry distance since the entry
+//# started, μ the closing length and ℓ the lead, and MUST be zero once d
+//# reaches twenty times the longer of μ and ℓ.
 #[test]
 fn the_reference_starts_at_the_error_and_closes_on_the_line() {
     for mu in CLOSINGS {
@@ -122,30 +127,43 @@ fn the_reference_starts_at_the_error_and_closes_on_the_line() {
 }
 
 /// The property the rule is built for: the point ℓ ahead of the rear axle of
-/// a vehicle on the reference, r + ℓ r', nears the line as r₀ e^(−d/μ): it
-/// never passes the line, so with ℓ the wheelbase neither axle swings across.
+/// a vehicle on the reference, r + ℓ r', nears the line as (r₀ + ℓ t₀) e^(−d/μ),
+/// from where the robot's heading t₀ puts it: it never passes the line, so
+/// with ℓ the wheelbase neither axle swings across. The reference starts at
+/// the robot, along its heading: r(0) = r₀, r'(0) = t₀.
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
-//# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
-//# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
+//# The reference MUST equal r₀ s(d) + ℓ t₀ p(d), r₀ the start's lateral
+//# error to the line, t₀ the tangent of the robot's heading from the path's
 #[test]
 fn the_lead_point_closes_without_overshoot() {
     for mu in CLOSINGS {
         for lead in LEADS {
             let entry = rule(mu, lead);
-            for r0 in STARTS {
+            for (r0, t0) in STARTS.iter().flat_map(|&r0| SLOPES.map(|t0| (r0, t0))) {
+                let (r, rate) = entry.reference_with_heading(m(r0), t0, m(0.0));
+                assert!((r.get() - r0).abs() < 1e-12 && (rate - t0).abs() < 1e-12);
+                let front = r0 + lead * t0;
                 for k in 0..200 {
                     let d = 0.05 * f64::from(k);
-                    let (r, rate) = entry.reference(m(r0), m(d));
+                    let (r, rate) = entry.reference_with_heading(m(r0), t0, m(d));
                     let point = r.get() + lead * rate;
                     if d < ENTRY_SPAN * mu.max(lead) {
-                        let expected = r0 * (-d / mu).exp();
+                        let expected = front * (-d / mu).exp();
                         assert!(
-                            (point - expected).abs() < 1e-6 * r0.abs(),
-                            "{mu} {lead} {d}"
+                            (point - expected).abs() < 1e-6 * (r0.abs() + lead * t0.abs()),
+                            "{mu} {lead} {r0} {t0} {d}"
                         );
                     }
-                    assert!(point * r0 >= 0.0, "{mu} {lead} {d}: {point}");
+                    assert!(point * front >= -1e-15, "{mu} {lead} {d}: {point}");
+                }
+                // Parallel to the path, the reference of before.
+                if t0 == 0.0 {
+                    let d = m(1.3);
+                    assert_eq!(
+                        entry.reference_with_heading(m(r0), t0, d),
+                        entry.reference(m(r0), d)
+                    );
                 }
             }
         }
@@ -157,7 +175,7 @@ fn the_lead_point_closes_without_overshoot() {
 //# During an entry, the behaviour's law MUST get the error to its line
 //# shifted sideways by the reference: the lateral error less the reference,
 //# the angular deviation less the angle of the reference's change per metre
-//# travelled seen from the line, r₀ s'(d) − s(d) tan h, h the line's heading
+//# travelled seen from the line, r'(d) − s(d) tan h, h the line's heading
 //# minus the path's (zero when the path has no projection).
 #[test]
 fn the_law_gets_the_error_to_the_reference() {
@@ -198,8 +216,8 @@ proptest::proptest! {
     /// by at most |r₀| / (e min(μ, ℓ)) per metre.
     //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
     //= type=test
-    //# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
-    //# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
+    //# The reference MUST equal r₀ s(d) + ℓ t₀ p(d), r₀ the start's lateral
+    //# error to the line, t₀ the tangent of the robot's heading from the path's
     #[test]
     fn the_reference_never_passes_the_line_and_turns_gently(
         mu in 0.05_f64..20.0,

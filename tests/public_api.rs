@@ -2604,6 +2604,7 @@ proptest! {
             .unwrap_or(Entry::new(&EntryParams { closing: m(1.0), lead: m(2.0) }).unwrap());
         check!("guidance::entry::Entry::params", rule.params());
         check!("guidance::entry::Entry::reference", rule.reference(start, travelled));
+        check!("guidance::entry::Entry::reference_with_heading", rule.reference_with_heading(start, heading.get().tan(), travelled));
         check!("guidance::entry::Entry::is_over", rule.is_over(start, travelled));
         check!("guidance::entry::Entry::reference_error", rule.reference_error(&path, start, travelled, heading));
     }

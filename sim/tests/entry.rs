@@ -56,7 +56,7 @@ fn front_swing(setup: &Setup, out: &RunOutput) -> f64 {
 //# path tracking's error MUST be the error to the path shifted sideways by
 //# that behaviour's line offset from the path plus the reference, changing by
 //# the reference's change per metre seen from the path,
-//# r₀ s'(d) + (1 − s(d)) tan h.
+//# r'(d) + (1 − s(d)) tan h.
 //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
 //= type=test
 //# When an entry rule is configured, an entry MUST start from the robot's

@@ -8,12 +8,12 @@
 //! within about 1/k_y = 1.25 m, and the front axle, 2 m ahead, swings past
 //! the rows' centre over the near row.
 //!
-//! The reference r(d) after d metres of odometry since the entry is
-//! r₀ (1 + d/λ) e^(−d/λ), r₀ the entry's lateral error (the critically damped
-//! approach: r'(0) = 0, no overshoot); the law gets the error to that
+//! The reference r(d) after d metres of odometry since the entry starts at
+//! the robot, r(0) = r₀ its lateral error, along its heading, r'(0) = t₀ the
+//! tangent of its heading from the path's; the law gets the error to that
 //! reference, (y − r, θ̃ − atan(dr/dd)). A rear axle that follows it puts the
-//! front axle, L ahead, at r + L r' = r₀ e^(−d/λ) (1 + d (λ − L)/λ²): on the
-//! entry's side of the line whenever λ ≥ L.
+//! point ℓ ahead (the lead: the wheelbase) at r + ℓ r' = (r₀ + ℓ t₀) e^(−d/μ),
+//! μ the closing length: that point never passes the line.
 
 use super::handover::{shifted_error, Active};
 use super::{BehaviourStatus, Guidance};
@@ -84,78 +84,104 @@ impl Entry {
         &self.params
     }
 
-    /// The closing shape s(d) and its change per metre s'(d), `travelled`
-    /// metres after the entry (a negative distance counts as 0), with μ the
-    /// closing length and ℓ the lead: (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ),
-    /// (1 + d/ℓ) e^(−d/ℓ) when μ = ℓ, up to [`ENTRY_SPAN`] times the longer
-    /// of the two, then 0. s(0) = 1, s'(0) = 0, s in [0, 1].
-    fn shape(&self, travelled: Meters) -> (f64, f64) {
+    /// The closing shapes s(d) and p(d) and their changes per metre,
+    /// `travelled` metres after the entry (a negative distance counts as 0),
+    /// with μ the closing length and ℓ the lead: s(d) =
+    /// (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ) and p(d) =
+    /// μ (e^(−d/μ) − e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ) and
+    /// (d/ℓ) e^(−d/ℓ) when μ = ℓ, up to [`ENTRY_SPAN`] times the longer of the
+    /// two, then 0. s(0) = 1, s'(0) = 0, p(0) = 0, p'(0) = 1/ℓ: s + ℓ s' and
+    /// p + ℓ p' are e^(−d/μ) and its multiple, so the point ℓ ahead closes as
+    /// e^(−d/μ) from wherever the robot's heading puts it.
+    fn shape(&self, travelled: Meters) -> Shape {
         let mu = self.params.closing.get();
         let lead = self.params.lead.get();
         let d = travelled.get().max(0.0);
         if d >= ENTRY_SPAN * mu.max(lead) {
-            return (0.0, 0.0);
+            return Shape::default();
         }
         // d / μ and d / ℓ lie in [0, 20]: every term is finite.
         let (front, rear) = (libm::exp(-d / mu), libm::exp(-d / lead));
         if (mu - lead).abs() <= COINCIDENT * mu.max(lead) {
-            ((1.0 + d / lead) * rear, -d / (lead * lead) * rear)
+            Shape {
+                offset: (1.0 + d / lead) * rear,
+                offset_rate: -d / (lead * lead) * rear,
+                turn: d * rear,
+                turn_rate: (1.0 - d / lead) * rear,
+            }
         } else {
-            (
-                (mu * front - lead * rear) / (mu - lead),
-                (rear - front) / (mu - lead),
-            )
+            Shape {
+                offset: (mu * front - lead * rear) / (mu - lead),
+                offset_rate: (rear - front) / (mu - lead),
+                turn: lead * mu * (front - rear) / (mu - lead),
+                turn_rate: (mu * rear - lead * front) / (mu - lead),
+            }
         }
     }
 
     /// The reference r(d) and its change per metre dr/dd, `travelled`
-    /// metres after an entry whose lateral error to the line is `start`
-    /// (a negative distance counts as 0): r₀ s(d), s the closing shape
-    /// (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), (1 + d/ℓ) e^(−d/ℓ) when μ = ℓ,
-    /// up to [`ENTRY_SPAN`] times the longer of μ and ℓ, then 0.
-    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
-    //# The reference MUST equal r₀ s(d), r₀ the start's lateral error to the
-    //# line and s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ)
-    //# when μ = ℓ, d the odometry distance since the entry started, μ the closing
-    //# length and ℓ the lead, and MUST be zero once d reaches twenty times the
-    //# longer of μ and ℓ.
+    /// metres after an entry whose lateral error to the line is `start`,
+    /// the robot then parallel to the path (t₀ = 0):
+    /// [`Self::reference_with_heading`] with a zero slope.
     #[must_use]
     pub fn reference(&self, start: Meters, travelled: Meters) -> (Meters, f64) {
-        let (shape, slope) = self.shape(travelled);
+        self.reference_with_heading(start, 0.0, travelled)
+    }
+
+    /// The reference r(d) and its change per metre dr/dd, `travelled`
+    /// metres after an entry whose lateral error to the line is `start` (r₀)
+    /// and whose heading from the path's had the tangent `slope` (t₀; a
+    /// negative distance counts as 0): r₀ s(d) + ℓ t₀ p(d), s and p the
+    /// closing shapes, up to [`ENTRY_SPAN`] times the longer of μ and ℓ,
+    /// then 0. r(0) = r₀ and r'(0) = t₀: the reference starts at the robot,
+    /// along its heading.
+    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+    //# The reference MUST equal r₀ s(d) + ℓ t₀ p(d), r₀ the start's lateral
+    //# error to the line, t₀ the tangent of the robot's heading from the path's
+    //# when the entry started (from the line's when the path had no projection),
+    //# s(d) = (μ e^(−d/μ) − ℓ e^(−d/ℓ)) / (μ − ℓ) and
+    //# p(d) = μ (e^(−d/μ) − e^(−d/ℓ)) / (μ − ℓ), or (1 + d/ℓ) e^(−d/ℓ) and
+    //# (d/ℓ) e^(−d/ℓ) when μ = ℓ, d the odometry distance since the entry
+    //# started, μ the closing length and ℓ the lead, and MUST be zero once d
+    //# reaches twenty times the longer of μ and ℓ.
+    #[must_use]
+    pub fn reference_with_heading(
+        &self,
+        start: Meters,
+        slope: f64,
+        travelled: Meters,
+    ) -> (Meters, f64) {
+        let shape = self.shape(travelled);
         let r0 = start.get();
-        // shape lies in [0, 1]; the rate saturates for an absurd r₀.
+        // The shapes are finite; the values saturate for an absurd start.
+        let saturated = |v: f64| v.clamp(-f64::MAX, f64::MAX);
         (
-            Meters::new(r0 * shape).unwrap_or(Meters::ZERO),
-            (r0 * slope).clamp(-f64::MAX, f64::MAX),
+            Meters::new(saturated(r0 * shape.offset + slope * shape.turn)).unwrap_or(Meters::ZERO),
+            saturated(r0 * shape.offset_rate + slope * shape.turn_rate),
         )
     }
 
     /// The reference's change per metre seen from the line and from the
     /// path, when the line's heading minus the path's is `heading` (zero
-    /// without a path): the reference is the blend s(d) of the start's track,
-    /// parallel to the path, and (1 − s(d)) of the line, so it turns from
-    /// the path's heading to the line's as it closes.
-    fn rates(&self, start: Meters, travelled: Meters, heading: Radians) -> (f64, f64) {
-        let (shape, _) = self.shape(travelled);
-        let (_, rate) = self.reference(start, travelled);
+    /// without a path): the reference is the blend s(d) of the start's track
+    /// and (1 − s(d)) of the line, so it turns to the line's heading as it
+    /// closes.
+    fn rates(&self, start: &Start, travelled: Meters, heading: Radians) -> (f64, f64) {
+        let shape = self.shape(travelled).offset;
+        let (_, rate) = self.reference_with_heading(start.offset, start.slope, travelled);
         // |tan| saturates where the line stands across the path.
         let tilt = libm::tan(heading.get()).clamp(-MAX_TILT, MAX_TILT);
         (rate - shape * tilt, rate + (1.0 - shape) * tilt)
     }
 
     /// The error the behaviour's law gets on its straight line `line`
-    /// during an entry: the error to the line shifted by r(d), (y − r,
-    /// θ̃ − atan(dr/dd)), dr/dd = r₀ s'(d) − s(d) tan h with h = `heading`,
-    /// the line's heading minus the path's (zero without a path).
+    /// during an entry that started parallel to the path (t₀ = 0): the error
+    /// to the line shifted by r(d), (y − r, θ̃ − atan(dr/dd)),
+    /// dr/dd = r'(d) − s(d) tan h with h = `heading`, the line's heading
+    /// minus the path's (zero without a path).
     ///
     /// # Errors
     /// `LIB-FINITE` on overflow.
-    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
-    //# During an entry, the behaviour's law MUST get the error to its line
-    //# shifted sideways by the reference: the lateral error less the reference,
-    //# the angular deviation less the angle of the reference's change per metre
-    //# travelled seen from the line, r₀ s'(d) − s(d) tan h, h the line's heading
-    //# minus the path's (zero when the path has no projection).
     pub fn reference_error(
         &self,
         line: &TrackingError,
@@ -163,7 +189,32 @@ impl Entry {
         travelled: Meters,
         heading: Radians,
     ) -> Result<TrackingError, Precondition> {
-        let (r, _) = self.reference(start, travelled);
+        self.error_from(
+            line,
+            &Start {
+                offset: start,
+                slope: 0.0,
+            },
+            travelled,
+            heading,
+        )
+    }
+
+    /// The error to the line shifted by the reference from `start`.
+    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+    //# During an entry, the behaviour's law MUST get the error to its line
+    //# shifted sideways by the reference: the lateral error less the reference,
+    //# the angular deviation less the angle of the reference's change per metre
+    //# travelled seen from the line, r'(d) − s(d) tan h, h the line's heading
+    //# minus the path's (zero when the path has no projection).
+    fn error_from(
+        &self,
+        line: &TrackingError,
+        start: &Start,
+        travelled: Meters,
+        heading: Radians,
+    ) -> Result<TrackingError, Precondition> {
+        let (r, _) = self.reference_with_heading(start.offset, start.slope, travelled);
         let (rate, _) = self.rates(start, travelled, heading);
         shifted_error(line, r.get(), rate)
     }
@@ -172,29 +223,68 @@ impl Entry {
     /// closing shape has reached zero (an entry from zero is over at once).
     #[must_use]
     pub fn is_over(&self, start: Meters, travelled: Meters) -> bool {
-        start.get() == 0.0 || self.shape(travelled).0 == 0.0
+        self.is_over_from(
+            &Start {
+                offset: start,
+                slope: 0.0,
+            },
+            travelled,
+        )
     }
+
+    /// [`Self::is_over`] for an entry that may start turning.
+    fn is_over_from(&self, start: &Start, travelled: Meters) -> bool {
+        (start.offset.get() == 0.0 && start.slope == 0.0) || self.shape(travelled).offset == 0.0
+    }
+}
+
+/// The closing shapes s(d) and s'(d), and ℓ p(d) and ℓ p'(d) (ℓ p'(0) = 1
+/// whatever ℓ, where p'(0) alone is 1/ℓ).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Shape {
+    offset: f64,
+    offset_rate: f64,
+    turn: f64,
+    turn_rate: f64,
+}
+
+/// Where an entry's reference starts: r₀, the lateral error to the line,
+/// and t₀, the tangent of the robot's heading from the path's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Start {
+    offset: Meters,
+    slope: f64,
+}
+
+/// The tangent of the robot's heading from the path's, `deviation`
+/// radians, saturated where the robot stands across the path.
+fn slope_of(deviation: f64) -> f64 {
+    libm::tan(deviation).clamp(-MAX_TILT, MAX_TILT)
 }
 
 /// An entry in progress: the behaviour it closes on (its priority index),
 /// the reference's start (the start's lateral error to the line, as last
-/// re-evaluated) and the odometry distance since, and the robot's lateral
-/// error to the path when it started, when the path had a projection.
+/// re-evaluated) and the odometry distance since, the robot's lateral
+/// error to the path when it started, when the path had a projection, and
+/// the tangent t₀ of its heading from the path's then.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Entering {
     pub(super) behaviour: usize,
     pub(super) ramp: Active,
     pub(super) anchor: Option<Meters>,
+    pub(super) slope: f64,
 }
 
 /// An entry's reference in one tick, before the line is placed on the path:
-/// the rule, the start as last evaluated, the anchor and the distance.
+/// the rule, the start as last evaluated, the anchor, the distance, and t₀
+/// (`None` for an entry starting in this tick: from the line's error).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct EntryReference {
     rule: Entry,
     start: Meters,
     anchor: Option<Meters>,
     travelled: Meters,
+    slope: Option<f64>,
 }
 
 impl EntryReference {
@@ -217,6 +307,23 @@ impl EntryReference {
         }
     }
 
+    /// The whole start where the line lies now: r₀ as [`Self::start`], and
+    /// t₀ as kept, or for an entry starting in this tick from the robot's
+    /// heading from the path, the line's angular deviation plus h.
+    fn whole_start(
+        &self,
+        line: Option<&TrackingError>,
+        plan: Option<&LineRelativeToPath>,
+    ) -> Start {
+        let slope = self
+            .slope
+            .unwrap_or_else(|| line.map_or(0.0, |l| slope_of(deviation_from_path(l, plan))));
+        Start {
+            offset: self.start(plan),
+            slope,
+        }
+    }
+
     /// The behaviour law's error on its straight line `line` with the line
     /// placed on the path as `plan` (GD-ENTRY).
     pub(super) fn line_error(
@@ -225,17 +332,23 @@ impl EntryReference {
         plan: Option<&LineRelativeToPath>,
     ) -> Result<TrackingError, Precondition> {
         let heading = plan.map_or(Radians::ZERO, |p| p.heading);
-        self.rule
-            .reference_error(line, self.start(plan), self.travelled, heading)
+        self.rule.error_from(
+            line,
+            &self.whole_start(Some(line), plan),
+            self.travelled,
+            heading,
+        )
     }
 
     /// Path tracking's shift from the path and its change per metre while
     /// the entry closes on the line placed as `plan`: the line's offset plus
-    /// r(d), changing by r₀ s'(d) + (1 − s(d)) tan h.
+    /// r(d), changing by r'(d) + (1 − s(d)) tan h.
     fn path_shift(&self, plan: &LineRelativeToPath) -> Option<(Meters, f64)> {
-        let start = self.start(Some(plan));
-        let (r, _) = self.rule.reference(start, self.travelled);
-        let (_, rate) = self.rule.rates(start, self.travelled, plan.heading);
+        let start = self.whole_start(None, Some(plan));
+        let (r, _) = self
+            .rule
+            .reference_with_heading(start.offset, start.slope, self.travelled);
+        let (_, rate) = self.rule.rates(&start, self.travelled, plan.heading);
         Some((Meters::new(plan.offset.get() + r.get()).ok()?, rate))
     }
 }
@@ -246,9 +359,16 @@ fn usable(status: &BehaviourStatus) -> bool {
     status.reported.estimate_is_valid() && status.plan_consistent && status.error.is_some()
 }
 
+/// The robot's heading from the path's, radians: the angular deviation
+/// from the line plus the line's heading from the path's, or the deviation
+/// from the line alone without a projection.
+fn deviation_from_path(line: &TrackingError, plan: Option<&LineRelativeToPath>) -> f64 {
+    line.angular_deviation.get() + plan.map_or(0.0, |p| p.heading.get())
+}
+
 /// A new entry into behaviour `index` from its status: from its lateral
 /// error to the line, anchored at the robot's error to the path when the
-/// line has an offset from it.
+/// line has an offset from it, along the robot's heading.
 fn started(index: usize, status: &BehaviourStatus) -> Option<Entering> {
     let e = status.error?;
     Some(Entering {
@@ -260,6 +380,7 @@ fn started(index: usize, status: &BehaviourStatus) -> Option<Entering> {
         anchor: status
             .plan
             .and_then(|p| Meters::new(p.offset.get() + e.y.get()).ok()),
+        slope: slope_of(deviation_from_path(&e, status.plan.as_ref())),
     })
 }
 
@@ -286,6 +407,7 @@ where
                 start: e.ramp.start,
                 anchor: e.anchor,
                 travelled: e.ramp.travelled(),
+                slope: Some(e.slope),
             }),
             _ if self.machine.mode() == MachineMode::Behaviour(index) => None,
             _ => line.map(|e| EntryReference {
@@ -293,6 +415,7 @@ where
                 start: e.y,
                 anchor: None,
                 travelled: Meters::ZERO,
+                slope: None,
             }),
         }
     }
@@ -306,7 +429,7 @@ where
     //# path tracking's error MUST be the error to the path shifted sideways by
     //# that behaviour's line offset from the path plus the reference, changing by
     //# the reference's change per metre seen from the path,
-    //# r₀ s'(d) + (1 − s(d)) tan h.
+    //# r'(d) + (1 − s(d)) tan h.
     pub(super) fn approach(&self, behaviours: &[BehaviourStatus]) -> Option<(Meters, f64)> {
         if self.machine.mode() != MachineMode::PathTracking {
             return None;
@@ -353,7 +476,11 @@ where
         match switching.mode {
             MachineMode::Behaviour(i) => match self.entering {
                 Some(e) if e.behaviour == i => {
-                    if rule.is_over(e.ramp.start, e.ramp.travelled()) {
+                    let start = Start {
+                        offset: e.ramp.start,
+                        slope: e.slope,
+                    };
+                    if rule.is_over_from(&start, e.ramp.travelled()) {
                         self.entering = None;
                     }
                 }
@@ -423,6 +550,7 @@ mod tests {
             start: m(-0.5),
             anchor: Some(m(-0.05)),
             travelled: m(travelled),
+            slope: Some(0.0),
         })
     }
 
@@ -444,7 +572,7 @@ mod tests {
             // Path tracking's reference lies between the start's track
             // (−0.05) and the line, s(d) of the way from the line: the same
             // place wherever the line was first seen.
-            let (shape, _) = e.rule.shape(m(d));
+            let shape = e.rule.shape(m(d)).offset;
             for line in [0.45, 0.3] {
                 let (shift, _) = e
                     .path_shift(&plan(line, 0.0))
@@ -462,13 +590,17 @@ mod tests {
     //# path tracking's error MUST be the error to the path shifted sideways by
     //# that behaviour's line offset from the path plus the reference, changing by
     //# the reference's change per metre seen from the path,
-    //# r₀ s'(d) + (1 − s(d)) tan h.
+    //# r'(d) + (1 − s(d)) tan h.
     #[test]
     fn the_shift_turns_from_the_path_to_the_line() -> Result<(), Precondition> {
         let h = 0.04;
         for d in [0.0, 0.7, 2.3, 6.0, 45.0] {
             let e = reference(d)?;
-            let (shape, slope) = e.rule.shape(m(d));
+            let Shape {
+                offset: shape,
+                offset_rate: slope,
+                ..
+            } = e.rule.shape(m(d));
             let (_, rate) = e
                 .path_shift(&plan(0.3, h))
                 .ok_or(Precondition::new("T", "none"))?;
@@ -483,6 +615,37 @@ mod tests {
             .path_shift(&plan(0.3, h))
             .ok_or(Precondition::new("T", "none"))?;
         assert!(start.abs() < 1e-12 && (end - libm::tan(h)).abs() < 1e-12);
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-entry-entry-into-a-behaviour-without-a-swing
+    //= type=test
+    //# The reference MUST equal r₀ s(d) + ℓ t₀ p(d), r₀ the start's lateral
+    //# error to the line, t₀ the tangent of the robot's heading from the path's
+    //# when the entry started (from the line's when the path had no projection),
+    #[test]
+    fn an_entry_starts_along_the_robots_heading() -> Result<(), Precondition> {
+        // The robot 0.02 rad off the line, the line 0.04 rad off the path:
+        // 0.06 rad off the path, turning back to it.
+        let line = TrackingError::to_straight_line(m(-0.5), Radians::new(0.02)?);
+        let fresh = EntryReference {
+            slope: None,
+            ..reference(0.0)?
+        };
+        let with_path = fresh.whole_start(Some(&line), Some(&plan(0.45, 0.04)));
+        assert!((with_path.slope - libm::tan(0.06)).abs() < 1e-12);
+        let without = fresh.whole_start(Some(&line), None);
+        assert!((without.slope - libm::tan(0.02)).abs() < 1e-12);
+        // The law sees the robot on its reference, along it: no jump.
+        let error = fresh.line_error(&line, Some(&plan(0.45, 0.04)))?;
+        assert!(error.y.get().abs() < 1e-12);
+        assert!(error.angular_deviation.get().abs() < 1e-3);
+        // Once started, t₀ is kept whatever the line's deviation now.
+        let kept = EntryReference {
+            slope: Some(0.1),
+            ..reference(0.0)?
+        };
+        assert!((kept.whole_start(Some(&line), None).slope - 0.1).abs() < 1e-12);
         Ok(())
     }
 }
