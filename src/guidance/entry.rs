@@ -170,7 +170,7 @@ impl Entry {
         let shape = self.shape(travelled).offset;
         let (_, rate) = self.reference_with_heading(start.offset, start.slope, travelled);
         // |tan| saturates where the line stands across the path.
-        let tilt = libm::tan(heading.get()).clamp(-MAX_TILT, MAX_TILT);
+        let tilt = slope_of(heading.get());
         (rate - shape * tilt, rate + (1.0 - shape) * tilt)
     }
 
@@ -256,8 +256,8 @@ struct Start {
     slope: f64,
 }
 
-/// The tangent of the robot's heading from the path's, `deviation`
-/// radians, saturated where the robot stands across the path.
+/// The tangent of a heading from the path's, `deviation` radians (the
+/// robot's, or the line's), saturated where it stands across the path.
 fn slope_of(deviation: f64) -> f64 {
     libm::tan(deviation).clamp(-MAX_TILT, MAX_TILT)
 }
