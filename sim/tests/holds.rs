@@ -446,8 +446,8 @@ fn a_row_of_trunks_is_one_structure() {
 }
 
 /// The true line of a ragged hedge is its envelope's offset line: the face
-/// the robot must keep clear of, and the one the rolling circle (radius r)
-/// of the detector traces. Against it the robot keeps far closer than
+/// the rolling circle (radius r) of the detector traces, a few centimetres
+/// inside the clearance at D from every vertex. Against it the robot keeps far closer than
 /// against the nominal face's offset line. Without the bridge (and the
 /// piece-end rule) the gaps switch modes 12-14 times a pass; with the
 /// bridge (6 m, GD-BRIDGE-STEADY, GD-BRIDGE-AGREE) and the piece-end rule
@@ -512,4 +512,43 @@ fn a_ragged_hedge_envelope_is_not_a_straight_line() {
     let over = devs.iter().filter(|d| **d > 0.15).count();
     assert!(over >= 10, "{devs:?}");
     assert!(devs.iter().all(|d| (0.1..0.25).contains(d)), "{devs:?}");
+}
+
+/// The envelope's offset line against the clearance, the line at D from
+/// every vertex of the face (the same envelope with a circle of radius D):
+/// the clearance is never nearer the hedge, and farther only where the
+/// circle of radius r dips between vertices, by up to a few centimetres
+/// (README, "Choices beyond the papers").
+#[test]
+fn the_envelope_line_lies_just_inside_the_clearance() {
+    let (mut largest, mut sum, mut n) = (0.0_f64, 0.0, 0.0);
+    for seed in 1..=20_u64 {
+        let source = common::stress_source("hedge-ragged");
+        let (setup, _) = runner::prepare_with_seed(&source, seed).unwrap();
+        let spec = &setup.world.hedges[0].spec;
+        let face = envelope::near_face(&setup);
+        for k in 0..=(spec.length * 10.0) as usize {
+            let u = k as f64 / 10.0;
+            if !spec.is_present(u) {
+                continue;
+            }
+            let (Some(line), Some(clearance)) = (
+                envelope::envelope(&face, CIRCLE_M, u),
+                envelope::envelope(&face, OFFSET_M, u),
+            ) else {
+                continue;
+            };
+            let beyond = clearance - line;
+            assert!(beyond >= 0.0, "seed {seed}, u {u}: {beyond}");
+            largest = largest.max(beyond);
+            sum += beyond;
+            n += 1.0;
+        }
+    }
+    eprintln!(
+        "hedge-ragged, seeds 1-20: clearance beyond the envelope's line by {:.4} m on average, {largest:.4} m at most",
+        sum / n
+    );
+    assert!((0.03..0.08).contains(&largest), "{largest}");
+    assert!(sum / n < 0.015, "{}", sum / n);
 }

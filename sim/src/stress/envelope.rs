@@ -1,9 +1,11 @@
 //! The true line of a ragged hedge: the offset line of its face's envelope
 //! (README, "Choices beyond the papers"). A rolling circle of radius r
-//! rests on the vertices that stand out most, so the face a robot must keep
-//! clear of, and the one the edge detector traces, is the envelope of the
-//! circle rolled along the face, not the nominal face the vertices scatter
-//! about.
+//! rests on the vertices that stand out most, so the face the edge detector
+//! traces is the envelope of the circle rolled along the face, not the
+//! nominal face the vertices scatter about. The line at the desired
+//! distance D from every vertex (the clearance) is the same construction
+//! with radius D: it lies up to a few centimetres farther from the hedge
+//! than this line, where the circle of radius r dips between two vertices.
 
 use fieldguide::guidance::Mode;
 
