@@ -33,6 +33,7 @@ fn rule() -> FixRuleParams {
         max_accuracy: m(0.05),
         path_dead_reckoning: m(15.0),
         rejoin_slope: 0.1,
+        rejoin_curvature: 0.05,
         float_averaging: None,
     }
 }
@@ -128,8 +129,9 @@ fn pose(p: (f64, f64, f64)) -> Pose2<World> {
 //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
 //= type=test
 //# A fix rule whose largest accuracy is not positive, whose path
-//# dead-reckoning distance is negative or whose rejoin slope is not in (0, 1]
-//# MUST be refused with `GD-FIX-QUALITY`.
+//# dead-reckoning distance is negative, whose rejoin slope is not in (0, 1]
+//# or whose rejoin curvature is not positive MUST be refused with
+//# `GD-FIX-QUALITY`.
 #[test]
 fn a_fix_rule_out_of_its_ranges_is_refused() {
     let bad = [
@@ -157,6 +159,18 @@ fn a_fix_rule_out_of_its_ranges_is_refused() {
             rejoin_slope: f64::NAN,
             ..rule()
         },
+        FixRuleParams {
+            rejoin_curvature: 0.0,
+            ..rule()
+        },
+        FixRuleParams {
+            rejoin_curvature: -0.05,
+            ..rule()
+        },
+        FixRuleParams {
+            rejoin_curvature: f64::NAN,
+            ..rule()
+        },
     ];
     for p in bad {
         assert_eq!(FixRule::new(&p).unwrap_err().requirement, "GD-FIX-QUALITY");
@@ -166,6 +180,7 @@ fn a_fix_rule_out_of_its_ranges_is_refused() {
     let edge = FixRuleParams {
         path_dead_reckoning: Meters::ZERO,
         rejoin_slope: 1.0,
+        rejoin_curvature: f64::INFINITY,
         ..rule()
     };
     assert!(FixRule::new(&edge).is_ok());
@@ -390,9 +405,10 @@ fn beyond_the_dead_reckoning_distance_localisation_is_lost_and_the_robot_stops()
 //# carried pose, path tracking's error MUST be the error to the path shifted
 //# sideways by o₀ (1 − S(d / D)), o₀ the fix's lateral error less the lateral
 //# error of the last carried pose, d the odometry distance since, S(u) = 3u² −
-//# 2u³ and D = 1.5 |o₀| / k with k the rejoin slope (zero from D on), the
-//# angular deviation less atan of that shift's rate, in every tick in which no
-//# entry (GD-ENTRY) or hand-over (GD-HANDOVER) shifts the reference.
+//# 2u³ and D = max(1.5 |o₀| / k, √(6 |o₀| / κ)) with k the rejoin slope and κ
+//# the rejoin curvature (zero from D on), the angular deviation less atan of
+//# that shift's rate, in every tick in which no entry (GD-ENTRY) or hand-over
+//# (GD-HANDOVER) shifts the reference.
 #[test]
 fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
     let path = straight_path(-10.0, 190.0);
@@ -400,7 +416,23 @@ fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
     // span) and odometry's heading drifts by 0.0011 rad per metre (0.05°/s
     // at 0.8 m/s) or not: the carried pose and the returning fix differ by
     // the bias and the odometry's error.
-    for (bias, drift) in [(0.15, 0.0), (-0.3, 0.0), (0.3, 0.0011), (-0.15, -0.0011)] {
+    // With κ = 0.05 /m the curvature's bound sets D for these steps (the
+    // slope's would be 1.5 |o₀| / 0.1 = 15 |o₀|, under √(120 |o₀|) below
+    // 0.53 m); with κ = +∞ the slope alone does.
+    let cases = [
+        (0.15, 0.0, 0.05),
+        (-0.3, 0.0, 0.05),
+        (0.3, 0.0011, 0.05),
+        (-0.15, -0.0011, 0.05),
+        (0.08, 0.0, 0.05),
+        (0.15, 0.0, f64::INFINITY),
+        (-0.3, 0.0011, f64::INFINITY),
+    ];
+    for (bias, drift, curvature) in cases {
+        let rule = FixRuleParams {
+            rejoin_curvature: curvature,
+            ..rule()
+        };
         let receiver = move |t: f64, p: (f64, f64, f64)| {
             if (10.0..22.0).contains(&t) {
                 Some((pose((p.0, p.1 + 0.6, p.2)), float(0.3)))
@@ -411,7 +443,7 @@ fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
             }
         };
         let mut g: Pierre2022<'_, PATH_N> =
-            Guidance::new(GuidanceConfig::new(&params(Some(rule()))).unwrap(), &path).unwrap();
+            Guidance::new(GuidanceConfig::new(&params(Some(rule))).unwrap(), &path).unwrap();
         let ticks = drive(&mut g, 0.0, 60.0, drift, &receiver);
         let back = 2200;
         let carried = ticks[back - 1].out.path.frenet.unwrap().y.get();
@@ -420,11 +452,13 @@ fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
         assert!(step.abs() > 0.05, "step {step}");
         let start = ticks[back].out.path.reference_offset.unwrap().get();
         assert!((start - step).abs() < 1e-9, "shift {start} step {step}");
-        // The shift follows the smoothstep over D = 1.5 |o0| / k, never
-        // changing sign, its rate never above the slope.
+        // The shift follows the smoothstep over D, never changing sign, its
+        // rate never above the slope, its curvature never above κ.
         let x0 = ticks[back].pose.0;
-        let length = 1.5 * step.abs() / 0.1;
+        let length = (1.5 * step.abs() / 0.1).max((6.0 * step.abs() / curvature).sqrt());
+        assert!(curvature.is_infinite() || length > 1.5 * step.abs() / 0.1 + 0.5);
         let mut previous = (0.0, step);
+        let mut samples = Vec::new();
         for t in &ticks[back..] {
             let d = t.pose.0 - x0;
             let u = (d / length).min(1.0);
@@ -440,7 +474,25 @@ fn a_returning_fix_is_rejoined_at_the_slope_without_a_swing() {
                 assert!(rate <= 0.1 + 1e-3, "rate {rate}");
             }
             previous = (d, shift);
+            samples.push((d, shift));
         }
+        // Second differences over 0.25 m (a finite one against the shape's
+        // 6 |o0| / D²).
+        let peak = 6.0 * step.abs() / (length * length);
+        let mut most: f64 = 0.0;
+        for w in samples.windows(2 * 25 + 1).step_by(5) {
+            let (a, b, c) = (w[0], w[25], w[50]);
+            let h = (c.0 - a.0) / 2.0;
+            if h > 0.15 && c.0 < length {
+                most = most.max(((c.1 - 2.0 * b.1 + a.1) / (h * h)).abs());
+            }
+        }
+        assert!(most <= peak * 1.05 + 1e-3, "curvature {most} vs {peak}");
+        assert!(
+            most <= curvature * 1.05,
+            "curvature {most} above {curvature}"
+        );
+        assert!(most > 0.5 * peak, "curvature {most} vs {peak}");
         // No swing: the steering at the return moves by at most the law's
         // heading term on the odometry's heading error (k_θ = 2.8 on a 2 m
         // wheelbase); with exact odometry, under a third of what the lateral

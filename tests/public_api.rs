@@ -1860,6 +1860,7 @@ fn guidance_params(
                 max_accuracy: m(v),
                 path_dead_reckoning: m(v),
                 rejoin_slope: v,
+                rejoin_curvature: v,
                 float_averaging: Some(m(v)),
             });
         }
@@ -1870,6 +1871,7 @@ fn guidance_params(
                 max_accuracy: m(0.05),
                 path_dead_reckoning: m(2.0),
                 rejoin_slope: 0.1,
+                rejoin_curvature: 0.05,
                 float_averaging: Some(m(0.5)),
             });
         }
@@ -2578,10 +2580,10 @@ proptest! {
 proptest! {
     #[test]
     fn fix_rule(max_accuracy in meters(), carry in meters(), slope in raw(), float in meters(), sigma in meters(), start in meters(), travelled in meters(), path in tracking(), p in pose::<World>()) {
-        let params = FixRuleParams { worst_kind: FixKind::RtkFloat, max_accuracy, path_dead_reckoning: carry, rejoin_slope: slope, float_averaging: Some(float) };
+        let params = FixRuleParams { worst_kind: FixKind::RtkFloat, max_accuracy, path_dead_reckoning: carry, rejoin_slope: slope, rejoin_curvature: slope, float_averaging: Some(float) };
         check!("guidance::fix::FixRule::new", FixRule::new(&params));
         let rule = FixRule::new(&params).unwrap_or(
-            FixRule::new(&FixRuleParams { worst_kind: FixKind::RtkFixed, max_accuracy: m(0.05), path_dead_reckoning: m(10.0), rejoin_slope: 0.1, float_averaging: None }).unwrap(),
+            FixRule::new(&FixRuleParams { worst_kind: FixKind::RtkFixed, max_accuracy: m(0.05), path_dead_reckoning: m(10.0), rejoin_slope: 0.1, rejoin_curvature: 0.05, float_averaging: None }).unwrap(),
         );
         check!("guidance::fix::FixRule::params", rule.params());
         for quality in [FixQuality::RTK_FIXED, FixQuality { kind: FixKind::Single, accuracy: Some(sigma) }] {

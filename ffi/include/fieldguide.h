@@ -121,6 +121,9 @@ typedef struct FgFixRule {
   // How fast a returning good fix is taken up, m of lateral change per m
   // travelled, in (0, 1].
   double rejoin_slope;
+  // The largest curvature of that take-up's shift, 1/m (> 0, +∞: the
+  // slope alone).
+  double rejoin_curvature;
   // Whether a refused RTK float fix corrects the carried pose
   // (GD-FIX-FLOAT), its offset averaged over `float_averaging_m`.
   bool has_float_averaging;

@@ -203,6 +203,9 @@ pub struct FgFixRule {
     /// How fast a returning good fix is taken up, m of lateral change per m
     /// travelled, in (0, 1].
     pub rejoin_slope: f64,
+    /// The largest curvature of that take-up's shift, 1/m (> 0, +∞: the
+    /// slope alone).
+    pub rejoin_curvature: f64,
     /// Whether a refused RTK float fix corrects the carried pose
     /// (GD-FIX-FLOAT), its offset averaged over `float_averaging_m`.
     pub has_float_averaging: bool,
@@ -334,6 +337,7 @@ fn rule_of(rule: &FgFixRule) -> Result<FixRuleParams, Precondition> {
         max_accuracy: Meters::new(rule.max_accuracy_m)?,
         path_dead_reckoning: Meters::new(rule.path_dead_reckoning_m)?,
         rejoin_slope: rule.rejoin_slope,
+        rejoin_curvature: rule.rejoin_curvature,
         float_averaging: optional_length(rule.has_float_averaging, rule.float_averaging_m)?,
     })
 }

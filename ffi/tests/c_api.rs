@@ -351,8 +351,9 @@ fn the_behaviour_ids_are_the_cores() {
 //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
 //= type=test
 //# A fix rule whose largest accuracy is not positive, whose path
-//# dead-reckoning distance is negative or whose rejoin slope is not in (0, 1]
-//# MUST be refused with `GD-FIX-QUALITY`.
+//# dead-reckoning distance is negative, whose rejoin slope is not in (0, 1]
+//# or whose rejoin curvature is not positive MUST be refused with
+//# `GD-FIX-QUALITY`.
 #[test]
 fn a_float_fix_is_judged_by_the_fix_rule() {
     let rule = FgFixRule {
@@ -360,6 +361,7 @@ fn a_float_fix_is_judged_by_the_fix_rule() {
         max_accuracy_m: 0.05,
         path_dead_reckoning_m: 1.0,
         rejoin_slope: 0.1,
+        rejoin_curvature: 0.05,
         has_float_averaging: false,
         float_averaging_m: 0.0,
     };
@@ -432,23 +434,27 @@ fn a_float_fix_is_judged_by_the_fix_rule() {
         }
         free(p);
     }
-    // Refusals: a rule with σ ≤ 0, an unknown kind, in the rule or a fix.
-    let bad = FgFixRule {
-        max_accuracy_m: 0.0,
-        ..rule
-    };
-    assert_eq!(
-        requirement(&make(Some(&bad)).unwrap_err()),
-        "GD-FIX-QUALITY"
-    );
-    let bad = FgFixRule {
-        worst_kind: 9,
-        ..rule
-    };
-    assert_eq!(
-        requirement(&make(Some(&bad)).unwrap_err()),
-        "GD-FIX-QUALITY"
-    );
+    // Refusals: a rule with σ ≤ 0, an unknown kind or a rejoin curvature
+    // ≤ 0, in the rule or a fix.
+    for bad in [
+        FgFixRule {
+            max_accuracy_m: 0.0,
+            ..rule
+        },
+        FgFixRule {
+            worst_kind: 9,
+            ..rule
+        },
+        FgFixRule {
+            rejoin_curvature: 0.0,
+            ..rule
+        },
+    ] {
+        assert_eq!(
+            requirement(&make(Some(&bad)).unwrap_err()),
+            "GD-FIX-QUALITY"
+        );
+    }
     let p = make(Some(&rule)).unwrap();
     let odd = FgFix { kind: 4, ..fixed };
     assert_eq!(
@@ -497,6 +503,7 @@ fn the_float_averaging_and_the_line_hold_are_validated() {
         max_accuracy_m: 0.05,
         path_dead_reckoning_m: 10.0,
         rejoin_slope: 0.1,
+        rejoin_curvature: 0.05,
         has_float_averaging: true,
         float_averaging_m: 2.0,
     };

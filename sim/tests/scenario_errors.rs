@@ -1291,6 +1291,18 @@ fn fix_rule_fields_are_checked_and_named() {
             "switching.fix_rejoin_slope",
         ),
         (
+            "fix_max_accuracy_m = 0.05\nfix_rejoin_curvature = 0.0",
+            "switching.fix_rejoin_curvature",
+        ),
+        (
+            "fix_max_accuracy_m = 0.05\nfix_rejoin_curvature = nan",
+            "switching.fix_rejoin_curvature",
+        ),
+        (
+            "fix_rejoin_curvature = 0.05",
+            "switching.fix_max_accuracy_m",
+        ),
+        (
             "fix_max_accuracy_m = 0.05\nfix_float_averaging_m = 0.0",
             "switching.fix_float_averaging_m",
         ),
@@ -1310,7 +1322,8 @@ fn fix_rule_fields_are_checked_and_named() {
         "fix_max_accuracy_m = 0.05\nfix_worst_kind = \"rtk_bad\"",
     ));
     assert!(e.to_string().contains("fix_worst_kind"), "{e}");
-    // Off by default; set, its defaults: RTK fixed, no carry, slope 0.1.
+    // Off by default; set, its defaults: RTK fixed, no carry, slope 0.1,
+    // curvature 0.05 /m.
     let setup = |text: String| {
         let source = Source {
             origin: "edited.toml".into(),
@@ -1329,6 +1342,7 @@ fn fix_rule_fields_are_checked_and_named() {
     assert_eq!(fix.worst_kind, fieldguide::guidance::FixKind::RtkFixed);
     assert_eq!(fix.path_dead_reckoning.get(), 0.0);
     assert!((fix.rejoin_slope - 0.1).abs() < 1e-15);
+    assert!((fix.rejoin_curvature - 0.05).abs() < 1e-15);
     assert!((fix.max_accuracy.get() - 0.05).abs() < 1e-15);
     assert_eq!(fix.float_averaging, None);
     // The float averaging and the hand-over's line hold, given.

@@ -72,6 +72,10 @@ pub struct FixRuleParams {
     /// How fast the step between the carried pose and a returning good fix
     /// is taken up, metres of lateral change per metre travelled, in (0, 1].
     pub rejoin_slope: f64,
+    /// The largest curvature of that take-up's shift, 1/m, > 0 (+∞: the
+    /// slope alone bounds it): a small step taken up at the slope alone
+    /// would bend the reference more sharply than the steering can follow.
+    pub rejoin_curvature: f64,
     /// λ: with a length, a refused RTK float fix corrects the carried pose
     /// (GD-FIX-FLOAT): its offset from the carried pose is averaged over the
     /// first λ metres of float, m, > 0, and its changes thereafter move the
@@ -90,11 +94,13 @@ impl FixRule {
     ///
     /// # Errors
     /// `GD-FIX-QUALITY` when the largest σ is not positive, the carry
-    /// distance negative or the rejoin slope outside (0, 1] (NaN included).
+    /// distance negative, the rejoin slope outside (0, 1] or the rejoin
+    /// curvature not positive (NaN included).
     //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
     //# A fix rule whose largest accuracy is not positive, whose path
-    //# dead-reckoning distance is negative or whose rejoin slope is not in (0, 1]
-    //# MUST be refused with `GD-FIX-QUALITY`.
+    //# dead-reckoning distance is negative, whose rejoin slope is not in (0, 1]
+    //# or whose rejoin curvature is not positive MUST be refused with
+    //# `GD-FIX-QUALITY`.
     pub fn new(params: &FixRuleParams) -> Result<Self, Precondition> {
         if params.max_accuracy.get() <= 0.0 {
             return Err(Precondition::new(
@@ -112,6 +118,12 @@ impl FixRule {
             return Err(Precondition::new(
                 "GD-FIX-QUALITY",
                 "fix rejoin_slope must lie in (0, 1]",
+            ));
+        }
+        if params.rejoin_curvature.is_nan() || params.rejoin_curvature <= 0.0 {
+            return Err(Precondition::new(
+                "GD-FIX-QUALITY",
+                "fix rejoin_curvature must be > 0",
             ));
         }
         //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
@@ -157,9 +169,10 @@ impl FixRule {
     /// The shift o(d) of path tracking's reference `travelled` metres after
     /// a good fix returned with the step `start` (the fix's lateral error
     /// less the carried pose's): o₀ (1 − S(d / D)), S(u) = 3u² − 2u³ the
-    /// smoothstep, D = 1.5 |o₀| / k, so that its rate starts and ends at zero
-    /// and never exceeds the rejoin slope k; zero from D on (a negative
-    /// distance counts as 0).
+    /// smoothstep, D = max(1.5 |o₀| / k, √(6 |o₀| / κ)), so that its rate
+    /// starts and ends at zero and never exceeds the rejoin slope k, and its
+    /// curvature (at most 6 |o₀| / D²) never exceeds the rejoin curvature κ;
+    /// zero from D on (a negative distance counts as 0).
     #[must_use]
     pub fn rejoin_offset(&self, start: Meters, travelled: Meters) -> Meters {
         let (o, _) = self.rejoin_shape(start, travelled);
@@ -170,8 +183,12 @@ impl FixRule {
     fn rejoin_shape(&self, start: Meters, travelled: Meters) -> (Meters, f64) {
         let o0 = start.get();
         // 1.5 |o0| / k: finite (k ≥ a positive f64, |o0| finite) unless o0
-        // is beyond f64::MAX / 1.5 · k; an overflow ends the rejoin.
-        let length = 1.5 * libm::fabs(o0) / self.params.rejoin_slope;
+        // is beyond f64::MAX / 1.5 · k; an overflow ends the rejoin. The
+        // curvature's bound √(6 |o0| / κ) is finite for κ > 0 but tiny, 0
+        // for κ = +∞.
+        let length = (1.5 * libm::fabs(o0) / self.params.rejoin_slope).max(libm::sqrt(
+            6.0 * libm::fabs(o0) / self.params.rejoin_curvature,
+        ));
         let d = travelled.get().max(0.0);
         if !(length.is_finite() && length > 0.0) || d >= length {
             return (Meters::ZERO, 0.0);
@@ -194,9 +211,10 @@ impl FixRule {
     //# carried pose, path tracking's error MUST be the error to the path shifted
     //# sideways by o₀ (1 − S(d / D)), o₀ the fix's lateral error less the lateral
     //# error of the last carried pose, d the odometry distance since, S(u) = 3u² −
-    //# 2u³ and D = 1.5 |o₀| / k with k the rejoin slope (zero from D on), the
-    //# angular deviation less atan of that shift's rate, in every tick in which no
-    //# entry (GD-ENTRY) or hand-over (GD-HANDOVER) shifts the reference.
+    //# 2u³ and D = max(1.5 |o₀| / k, √(6 |o₀| / κ)) with k the rejoin slope and κ
+    //# the rejoin curvature (zero from D on), the angular deviation less atan of
+    //# that shift's rate, in every tick in which no entry (GD-ENTRY) or hand-over
+    //# (GD-HANDOVER) shifts the reference.
     pub fn rejoin_error(
         &self,
         path: &TrackingError,
@@ -506,6 +524,7 @@ mod tests {
             max_accuracy: Meters::new(0.05)?,
             path_dead_reckoning: Meters::new(10.0)?,
             rejoin_slope: slope,
+            rejoin_curvature: f64::INFINITY,
             float_averaging: None,
         })
     }
@@ -584,6 +603,41 @@ mod tests {
             }
             // A negative distance counts as none.
             assert!(r.rejoin_offset(start, Meters::new(-1.0)?) == start);
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn a_small_step_is_taken_up_within_the_rejoin_curvature() -> Result<(), Precondition> {
+        for (o0, k, kappa) in [
+            (0.08, 0.1, 0.05),
+            (-0.01, 0.1, 0.05),
+            (0.3, 0.1, 0.2),
+            (1.0, 0.1, 0.05),
+        ] {
+            let r = FixRule::new(&FixRuleParams {
+                rejoin_curvature: kappa,
+                ..*rule(k)?.params()
+            })?;
+            let start = Meters::new(o0)?;
+            let length = (1.5 * libm::fabs(o0) / k).max(libm::sqrt(6.0 * libm::fabs(o0) / kappa));
+            let (o, _) = r.rejoin_shape(start, Meters::new(length * 0.999)?);
+            assert!(o != Meters::ZERO);
+            let (o, rate) = r.rejoin_shape(start, Meters::new(length)?);
+            assert!(o == Meters::ZERO && rate == 0.0);
+            // The rate within k, its change per metre within κ.
+            let h = length / 1000.0;
+            for i in 0..1000_u32 {
+                let d = h * f64::from(i);
+                let (_, a) = r.rejoin_shape(start, Meters::new(d)?);
+                let (_, b) = r.rejoin_shape(start, Meters::new(d + h)?);
+                assert!(libm::fabs(a) <= k + 1e-12);
+                assert!(
+                    libm::fabs(b - a) / h <= kappa * (1.0 + 1e-6),
+                    "{o0}: {}",
+                    (b - a) / h
+                );
+            }
         }
         Ok(())
     }

@@ -190,6 +190,9 @@ pub struct SwitchingSection {
     /// Fix rule: how fast the step to a returning good fix is taken up,
     /// metres per metre, in (0, 1] [0.1].
     pub fix_rejoin_slope: Option<f64>,
+    /// Fix rule: the largest curvature of that take-up's shift, 1/m, in
+    /// (0, 1000] [0.05].
+    pub fix_rejoin_curvature: Option<f64>,
     /// Fix rule: a refused RTK float fix's offset from the carried pose is
     /// averaged over this odometry distance, m, in (0, 1000], and its
     /// changes then correct the carried pose (GD-FIX-FLOAT) [off when absent].

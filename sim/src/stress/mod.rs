@@ -282,10 +282,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "gnss-float-uturn-fast.toml",
                 bounds: CROPS,
-                known_failure: Known::on_seeds(
-                    &[1],
-                    "seed 1: the float-corrected pose ends the float 0.08 m off, the fix returns 1 m before the U-turn ends, the rejoin and the turn's exit hold the steering at its limits and the robot swings 0.12 m past the path into the return leg's beans (6 plants); without GD-FIX-FLOAT no plant on seeds 1-20, seed 1 then 0.134 m off at worst",
-                ),
+                known_failure: None,
             },
         ],
     },

@@ -240,11 +240,12 @@ fn fix_rule(
         if s.fix_worst_kind.is_some()
             || s.fix_dead_reckoning_m.is_some()
             || s.fix_rejoin_slope.is_some()
+            || s.fix_rejoin_curvature.is_some()
             || s.fix_float_averaging_m.is_some()
         {
             return Err(check.error(
                 "switching.fix_max_accuracy_m",
-                "the fix rule needs its largest accuracy when its kind, dead reckoning, rejoin slope or float averaging is set",
+                "the fix rule needs its largest accuracy when its kind, dead reckoning, rejoin slope or curvature or float averaging is set",
             ));
         }
         return Ok(None);
@@ -258,6 +259,10 @@ fn fix_rule(
         0.0,
         1000.0,
     )?;
+    let curvature_field = "switching.fix_rejoin_curvature";
+    let curvature = s
+        .fix_rejoin_curvature
+        .map_or(Ok(0.05), |c| check.range(curvature_field, c, 0.0, 1000.0))?;
     let params = FixRuleParams {
         worst_kind: match s.fix_worst_kind.unwrap_or(FixKindName::RtkFixed) {
             FixKindName::RtkFixed => FixKind::RtkFixed,
@@ -269,6 +274,7 @@ fn fix_rule(
         path_dead_reckoning: Meters::new(carry)
             .map_err(|e| check.error(carry_field, &e.to_string()))?,
         rejoin_slope: s.fix_rejoin_slope.unwrap_or(0.1),
+        rejoin_curvature: curvature,
         float_averaging: positive_length(
             check,
             "switching.fix_float_averaging_m",
@@ -279,6 +285,8 @@ fn fix_rule(
     FixRule::new(&params).map_err(|e| {
         let field = if accuracy <= 0.0 {
             field
+        } else if curvature <= 0.0 {
+            curvature_field
         } else {
             "switching.fix_rejoin_slope"
         };
