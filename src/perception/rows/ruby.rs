@@ -1391,6 +1391,32 @@ mod tests {
 
     const N: usize = 16;
 
+    /// The points `pts` as columns and as row points, in their order.
+    fn laid_out<const K: usize>(
+        pts: &[(f64, f64); K],
+    ) -> Result<(Columns<N>, [RowPoint; K]), Precondition> {
+        let mut cols = Columns::<N> {
+            xs: [0.0; N],
+            ys: [0.0; N],
+        };
+        let mut points = [RowPoint {
+            position: Point2::origin(),
+            returns: 1,
+        }; K];
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            cols.xs[i] = x;
+            cols.ys[i] = y;
+            points[i].position = Point2::new(x, y)?;
+        }
+        Ok((cols, points))
+    }
+
+    /// Room for a fit.
+    const SCRATCH: Scratch<N> = Scratch {
+        xs: [0.0; N],
+        ys: [0.0; N],
+    };
+
     /// Row A (y = 0, slot 1, steady) holding every point of y = 0, the
     /// point (4, 0) included, which lies on row B (y = x/2 − 2, slot 0,
     /// moved) as well; B's own points; with `third`, a moved model in
@@ -1426,18 +1452,8 @@ mod tests {
             set.alive |= 0b100;
             set.moved |= 0b100;
         }
-        let mut cols = Columns::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
-        let mut points = [RowPoint {
-            position: Point2::origin(),
-            returns: 1,
-        }; 9];
+        let (mut cols, points) = laid_out(&pts)?;
         for (i, &(x, y)) in pts.iter().enumerate() {
-            cols.xs[i] = x;
-            cols.ys[i] = y;
-            points[i].position = Point2::new(x, y)?;
             // The flat row's points are attached to it, the others to B.
             if y == 0.0 {
                 set.masks[i] = bit(1);
@@ -1535,14 +1551,7 @@ mod tests {
             (1.5, 3.0),
             (2.5, 3.0),
         ];
-        let mut cols = Columns::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
-        for (i, &(x, y)) in pts.iter().enumerate() {
-            cols.xs[i] = x;
-            cols.ys[i] = y;
-        }
+        let (cols, _) = laid_out(&pts)?;
         let seed = Line::fit(&cols.xs[..3], &cols.ys[..3], 0)
             .ok_or(Precondition::new("RUBY-FIT", "a seed's line"))?;
         let row = Line::new(0.0, 3.0).ok_or(Precondition::new("RUBY-FIT", "a finite line"))?;
@@ -1557,10 +1566,7 @@ mod tests {
         set.lines[1] = seed;
         set.masks[..6].copy_from_slice(&[2, 2, 2, 1, 1, 1]);
         set.fit_masks[..6].copy_from_slice(&[2, 2, 2, 3, 3, 3]);
-        let mut scratch = Scratch::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
+        let mut scratch = SCRATCH;
         merge(&mut set, &cols, pts.len(), &mut scratch, &p);
         // The seed keeps its least-squares line; re-weighted, its three
         // points would give another.
@@ -1597,19 +1603,7 @@ mod tests {
             (1.0, 3.0),
             (2.0, 3.5),
         ];
-        let mut cols = Columns::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
-        let mut points = [RowPoint {
-            position: Point2::origin(),
-            returns: 1,
-        }; 8];
-        for (i, &(x, y)) in pts.iter().enumerate() {
-            cols.xs[i] = x;
-            cols.ys[i] = y;
-            points[i].position = Point2::new(x, y)?;
-        }
+        let (cols, points) = laid_out(&pts)?;
         let mut set = ModelSet::<N> {
             alive: 0b1,
             fitted: 0b1,
@@ -1622,10 +1616,7 @@ mod tests {
         let mut rng = Xoshiro128PlusPlus::seed_from_u64(p.seed);
         assert!(search(&mut set, &points, &mut rng, &p));
         assert_eq!((set.alive, &set.masks[5..8]), (0b11, &[2, 2, 2][..]));
-        let mut scratch = Scratch::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
+        let mut scratch = SCRATCH;
         merge(&mut set, &cols, pts.len(), &mut scratch, &p);
         // A's points changed: it is the line of the five it holds, y = 0.
         assert_eq!(
