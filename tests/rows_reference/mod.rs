@@ -6,9 +6,10 @@
 //!
 //! Plain `std` code: every re-attachment compares every point with every
 //! model in slot order, every energy and fitness is computed afresh, nothing
-//! is cached between the steps. Which models the first merge pass refits is
-//! the implementation's own bookkeeping (a model whose points are those it
-//! was last fitted to keeps its line), kept here as one fit mask per point.
+//! is cached between the steps. The first merge pass refits every model
+//! whose points are not those its line was last fitted to (RUBY-MERGE): each
+//! model keeps the list of the points it was fitted to, its seeds for a new
+//! model, and the pass compares it with the points the model holds.
 //! The floating-point operations are those the spec states, in the order
 //! it states them (points in ray order, models in slot order), so that the
 //! same scans and seed give the same bits.
@@ -122,13 +123,13 @@ fn bit(k: usize) -> u64 {
 }
 
 /// A set of models: a line per slot, which points each holds (a mask per
-/// point) and the fit bookkeeping.
+/// point) and, per slot, the points its line was last fitted to (none for a
+/// line not fitted on this scan's points).
 #[derive(Debug, Clone)]
 struct Set {
     lines: [Option<Line>; MAX_MODELS],
     masks: Vec<u64>,
-    fit_masks: Vec<u64>,
-    fitted: u64,
+    fitted_to: Vec<Option<Vec<usize>>>,
 }
 
 impl Set {
@@ -146,7 +147,14 @@ impl Set {
 
     fn remove(&mut self, k: usize) {
         self.lines[k] = None;
-        self.fitted &= !bit(k);
+        self.fitted_to[k] = None;
+    }
+
+    /// The points model `k` holds, in ray order.
+    fn members(&self, k: usize) -> Vec<usize> {
+        (0..self.masks.len())
+            .filter(|&i| self.masks[i] & bit(k) != 0)
+            .collect()
     }
 }
 
@@ -203,8 +211,7 @@ impl Reference {
         let mut best = Set {
             lines: [None; MAX_MODELS],
             masks: vec![0; n],
-            fit_masks: vec![0; n],
-            fitted: 0,
+            fitted_to: vec![None; MAX_MODELS],
         };
         for (k, &(a, b)) in self.carried.iter().enumerate().take(MAX_MODELS) {
             best.lines[k] = Line::new(a, b);
@@ -375,27 +382,21 @@ fn search_side(
         let three = seed.map(|i| points[i].position);
         if let Some(line) = Line::fit(&three, 0) {
             set.lines[slot] = Some(line);
-            set.fitted |= bit(slot);
-            // The slot's fit mask is the new model's: its seeds.
-            for f in &mut set.fit_masks {
-                *f &= !bit(slot);
-            }
             for i in seed {
                 set.masks[i] = bit(slot);
-                set.fit_masks[i] = bit(slot);
             }
+            // The new model's line is fitted to its seeds.
+            let mut fitted_to = seed.to_vec();
+            fitted_to.sort_unstable();
+            set.fitted_to[slot] = Some(fitted_to);
         }
     }
 }
 
-/// Merges the same models into the lower slot and refits (RUBY-MERGE).
+/// Merges the same models into the lower slot and refits (RUBY-MERGE): in
+/// the first pass every model whose points are not those it was last
+/// fitted to (a seed holds its seeds: it keeps its line).
 fn merge(set: &mut Set, points: &[RowPoint], p: &RubyParams) {
-    let changed = set
-        .masks
-        .iter()
-        .zip(&set.fit_masks)
-        .fold(0, |acc, (m, f)| acc | (m ^ f));
-    set.fitted &= !changed;
     for pass in 0..=MAX_MODELS {
         let mut again = false;
         for j in 0..MAX_MODELS {
@@ -415,30 +416,27 @@ fn merge(set: &mut Set, points: &[RowPoint], p: &RubyParams) {
                 }
                 for k in 0..MAX_MODELS {
                     if absorbed & bit(k) != 0 {
-                        set.lines[k] = None;
+                        set.remove(k);
                     }
                 }
             }
-            if absorbed != 0 || (pass == 0 && set.fitted & bit(j) == 0) {
-                let members: Vec<Point2<Robot>> = points
-                    .iter()
-                    .zip(&set.masks)
-                    .filter(|(_, &m)| m & bit(j) != 0)
-                    .map(|(q, _)| q.position)
-                    .collect();
-                if let Some(line) = Line::fit(&members, p.fit_rounds) {
+            let members = set.members(j);
+            let stale = set.fitted_to[j].as_ref() != Some(&members);
+            if absorbed != 0 || (pass == 0 && stale) {
+                let positions: Vec<Point2<Robot>> =
+                    members.iter().map(|&i| points[i].position).collect();
+                if let Some(line) = Line::fit(&positions, p.fit_rounds) {
                     again |= line != lj;
                     set.lines[j] = Some(line);
                 }
-                set.fitted |= bit(j);
+                // A model its points give no line keeps the one it has.
+                set.fitted_to[j] = Some(members);
             }
         }
         if !again {
             break;
         }
     }
-    set.fit_masks.clone_from(&set.masks);
-    set.fitted = set.alive();
 }
 
 /// The models to delete: eq. 7 for Ruby, the fitness ranking of eq. 10 for

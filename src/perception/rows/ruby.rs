@@ -991,11 +991,11 @@ fn search_side<const N: usize>(
                 set.alive |= bit(slot);
                 set.fitted |= bit(slot);
                 set.moved |= bit(slot);
+                // A seed's fit mask keeps the models it was fitted with:
+                // a model that lost it has changed and is refitted
+                // (RUBY-MERGE); the new model keeps its line as seeded.
                 for i in seed {
                     if let Some(m) = set.masks.get_mut(i) {
-                        *m = bit(slot);
-                    }
-                    if let Some(m) = set.fit_masks.get_mut(i) {
                         *m = bit(slot);
                     }
                 }
@@ -1032,9 +1032,10 @@ fn merge<const N: usize>(
     scratch: &mut Scratch<N>,
     p: &RubyParams,
 ) {
-    // Models whose points changed since they were fitted. A model seeded by
-    // the search holds the seeds its line was fitted to, whatever bits an
-    // older model of its slot left in the fit masks (RUBY-MERGE).
+    // Models whose points changed since they were fitted: the fit masks
+    // still hold, at a point the search seeded, the models it was fitted
+    // with. A model seeded by the search holds the seeds its line was fitted
+    // to, whatever bits the fit masks hold for its slot (RUBY-MERGE).
     let changed = set
         .masks
         .get(..n)
@@ -1390,6 +1391,32 @@ mod tests {
 
     const N: usize = 16;
 
+    /// The points `pts` as columns and as row points, in their order.
+    fn laid_out<const K: usize>(
+        pts: &[(f64, f64); K],
+    ) -> Result<(Columns<N>, [RowPoint; K]), Precondition> {
+        let mut cols = Columns::<N> {
+            xs: [0.0; N],
+            ys: [0.0; N],
+        };
+        let mut points = [RowPoint {
+            position: Point2::origin(),
+            returns: 1,
+        }; K];
+        for (i, &(x, y)) in pts.iter().enumerate() {
+            cols.xs[i] = x;
+            cols.ys[i] = y;
+            points[i].position = Point2::new(x, y)?;
+        }
+        Ok((cols, points))
+    }
+
+    /// Room for a fit.
+    const SCRATCH: Scratch<N> = Scratch {
+        xs: [0.0; N],
+        ys: [0.0; N],
+    };
+
     /// Row A (y = 0, slot 1, steady) holding every point of y = 0, the
     /// point (4, 0) included, which lies on row B (y = x/2 − 2, slot 0,
     /// moved) as well; B's own points; with `third`, a moved model in
@@ -1425,18 +1452,8 @@ mod tests {
             set.alive |= 0b100;
             set.moved |= 0b100;
         }
-        let mut cols = Columns::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
-        let mut points = [RowPoint {
-            position: Point2::origin(),
-            returns: 1,
-        }; 9];
+        let (mut cols, points) = laid_out(&pts)?;
         for (i, &(x, y)) in pts.iter().enumerate() {
-            cols.xs[i] = x;
-            cols.ys[i] = y;
-            points[i].position = Point2::new(x, y)?;
             // The flat row's points are attached to it, the others to B.
             if y == 0.0 {
                 set.masks[i] = bit(1);
@@ -1534,14 +1551,7 @@ mod tests {
             (1.5, 3.0),
             (2.5, 3.0),
         ];
-        let mut cols = Columns::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
-        for (i, &(x, y)) in pts.iter().enumerate() {
-            cols.xs[i] = x;
-            cols.ys[i] = y;
-        }
+        let (cols, _) = laid_out(&pts)?;
         let seed = Line::fit(&cols.xs[..3], &cols.ys[..3], 0)
             .ok_or(Precondition::new("RUBY-FIT", "a seed's line"))?;
         let row = Line::new(0.0, 3.0).ok_or(Precondition::new("RUBY-FIT", "a finite line"))?;
@@ -1556,10 +1566,7 @@ mod tests {
         set.lines[1] = seed;
         set.masks[..6].copy_from_slice(&[2, 2, 2, 1, 1, 1]);
         set.fit_masks[..6].copy_from_slice(&[2, 2, 2, 3, 3, 3]);
-        let mut scratch = Scratch::<N> {
-            xs: [0.0; N],
-            ys: [0.0; N],
-        };
+        let mut scratch = SCRATCH;
         merge(&mut set, &cols, pts.len(), &mut scratch, &p);
         // The seed keeps its least-squares line; re-weighted, its three
         // points would give another.
@@ -1571,6 +1578,52 @@ mod tests {
         // The row, whose points changed since its fit (the old bits), is
         // refitted to its points: y = 3.
         assert!((set.lines[0].b - 3.0).abs() < 1e-12 && set.lines[0].a.abs() < 1e-12);
+        Ok(())
+    }
+
+    //= spec/guyonneau2022.md#ruby-merge-close-models-merged
+    //= type=test
+    //# Every model MUST be refitted by least squares to its points in each
+    //# iteration's first merge pass, merged or not, except a model seeded by
+    //# this iteration's search, which keeps the least-squares line of its seeds
+    //# unless it absorbs another.
+    #[test]
+    fn a_model_that_lost_a_point_to_a_seed_is_refitted() -> Result<(), Precondition> {
+        let p = RubyParams::authors(Variant::Rgop);
+        // Row A (slot 0) was fitted to points 0-5 (y = 0.05 stands for
+        // that line); point 5 has since become an outlier, and with the
+        // two other outliers it is all the search can seed.
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (4.0, 0.0),
+            (0.5, 0.5),
+            (1.0, 3.0),
+            (2.0, 3.5),
+        ];
+        let (cols, points) = laid_out(&pts)?;
+        let mut set = ModelSet::<N> {
+            alive: 0b1,
+            fitted: 0b1,
+            ..ModelSet::EMPTY
+        };
+        set.lines[0] =
+            Line::new(0.0, 0.05).ok_or(Precondition::new("RUBY-MERGE", "a finite line"))?;
+        set.masks[..8].copy_from_slice(&[1, 1, 1, 1, 1, 0, 0, 0]);
+        set.fit_masks[..8].copy_from_slice(&[1, 1, 1, 1, 1, 1, 0, 0]);
+        let mut rng = Xoshiro128PlusPlus::seed_from_u64(p.seed);
+        assert!(search(&mut set, &points, &mut rng, &p));
+        assert_eq!((set.alive, &set.masks[5..8]), (0b11, &[2, 2, 2][..]));
+        let mut scratch = SCRATCH;
+        merge(&mut set, &cols, pts.len(), &mut scratch, &p);
+        // A's points changed: it is the line of the five it holds, y = 0.
+        assert_eq!(
+            Some(set.lines[0]),
+            Line::fit(&cols.xs[..5], &cols.ys[..5], p.fit_rounds)
+        );
+        assert_eq!((set.lines[0].a, set.lines[0].b), (0.0, 0.0));
         Ok(())
     }
 
