@@ -78,8 +78,9 @@ pub struct FixRuleParams {
     pub rejoin_curvature: f64,
     /// λ: with a length, a refused RTK float fix corrects the carried pose
     /// (GD-FIX-FLOAT): its offset from the carried pose is averaged over the
-    /// first λ metres of float, m, > 0, and its changes thereafter move the
-    /// carried pose; `None`: the carried pose alone.
+    /// first λ metres of float, m, > 0, and its changes thereafter, smoothed
+    /// twice over λ metres, move the carried pose; `None`: the carried pose
+    /// alone.
     pub float_averaging: Option<Meters>,
 }
 
@@ -297,7 +298,9 @@ impl Offset {
 
 /// The float span since the last good fix (GD-FIX-FLOAT): the float fix's
 /// offset from the carried pose averaged over the span's first λ metres
-/// (r), then the correction m − r averaged over the odometry distance λ.
+/// (r), then the correction m − r smoothed twice over the odometry distance
+/// λ, 2a − b (Brown's linear exponential smoothing): it follows a drift
+/// growing steadily with distance without the lag λ of one average.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(super) struct FloatSpan {
     /// Odometry distance of the float ticks averaged so far, m.
@@ -306,8 +309,10 @@ pub(super) struct FloatSpan {
     mean: Offset,
     /// r, once the float ticks have covered λ metres.
     bias: Option<Offset>,
-    /// m − r averaged over λ metres of float ticks; zero until r is set.
-    correction: Offset,
+    /// a: m − r averaged over λ metres of float ticks; zero until r is set.
+    level: Offset,
+    /// b: a averaged over λ metres of float ticks; zero until r is set.
+    smoothed: Offset,
 }
 
 impl FloatSpan {
@@ -319,9 +324,11 @@ impl FloatSpan {
     //# by its odometry distance, until those ticks cover the averaging length λ;
     //# from then on r MUST stay.
     //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
-    //# The correction MUST be zero when r is set, and each later float tick MUST
-    //# move it toward m − r by the weight 1 − exp(−Δd / λ), m the tick's float fix
-    //# offset from the carried pose and Δd the tick's odometry distance.
+    //# The averages a and b MUST be zero when r is set, and each later float tick
+    //# MUST move a toward m − r, then b toward that moved a, both by the weight 1 −
+    //# exp(−Δd / λ), m the tick's float fix offset from the carried pose and Δd
+    //# the tick's odometry distance, unless m − r, a, b or 2a − b would then
+    //# overflow: such a tick MUST leave a and b as they are.
     fn record(&mut self, m: &Offset, travelled: f64, length: f64) {
         let d = travelled.max(0.0);
         match self.bias {
@@ -332,7 +339,16 @@ impl FloatSpan {
                     heading: wrap_raw(m.heading - r.heading),
                 };
                 let weight = averaging_weight(d, length);
-                self.correction = self.correction.toward(&target, weight);
+                let level = self.level.toward(&target, weight);
+                let smoothed = self.smoothed.toward(&level, weight);
+                let correction = level.toward(&smoothed, -1.0);
+                if [target, level, smoothed, correction]
+                    .iter()
+                    .all(|o| o.x.is_finite() && o.y.is_finite())
+                {
+                    self.level = level;
+                    self.smoothed = smoothed;
+                }
             }
             None => {
                 self.averaged += d;
@@ -348,6 +364,16 @@ impl FloatSpan {
                 }
             }
         }
+    }
+
+    /// The correction 2a − b, once r is set: a extrapolated by its lag
+    /// behind b, which is a's lag behind m − r on a steady drift.
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //# The span's correction MUST be 2a − b (the heading's difference wrapped),
+    //# and its east and north MUST each be at most three times the largest
+    //# magnitude of that component of m − r over the span's float ticks.
+    fn correction(&self) -> Option<Offset> {
+        self.bias.map(|_| self.level.toward(&self.smoothed, -1.0))
     }
 }
 
@@ -386,9 +412,9 @@ where
         if good_fix {
             return (frenet, FixUse::Fix);
         }
-        let correction = self.floating.filter(|f| f.bias.is_some());
+        let correction = self.floating.and_then(|f| f.correction());
         let limit = rule.params().path_dead_reckoning;
-        match self.carried(odometry, limit, correction.map(|f| f.correction)) {
+        match self.carried(odometry, limit, correction) {
             Ok((travelled, carried)) => {
                 let used = if correction.is_some() {
                     FixUse::Float { travelled }
@@ -539,6 +565,11 @@ mod tests {
             && libm::fabs(wrap_raw(a.heading - b.heading)) < 1e-12
     }
 
+    /// The span's correction, zero before r is set.
+    fn corrected(span: &FloatSpan) -> Offset {
+        span.correction().unwrap_or_default()
+    }
+
     //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
     //= type=test
     //# The offset r MUST be the mean of the float fix's offset from the carried
@@ -547,30 +578,39 @@ mod tests {
     //# from then on r MUST stay.
     //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
     //= type=test
-    //# The correction MUST be zero when r is set, and each later float tick MUST
-    //# move it toward m − r by the weight 1 − exp(−Δd / λ), m the tick's float fix
-    //# offset from the carried pose and Δd the tick's odometry distance.
+    //# The averages a and b MUST be zero when r is set, and each later float tick
+    //# MUST move a toward m − r, then b toward that moved a, both by the weight 1 −
+    //# exp(−Δd / λ), m the tick's float fix offset from the carried pose and Δd
+    //# the tick's odometry distance, unless m − r, a, b or 2a − b would then
+    //# overflow: such a tick MUST leave a and b as they are.
     #[test]
-    fn the_float_offset_is_a_distance_weighted_mean_then_the_correction_an_average() {
+    fn the_float_offset_is_a_distance_weighted_mean_then_the_correction_smoothed_twice() {
         let mut span = FloatSpan::default();
         // A tick at standstill weighs nothing; the others by their distance.
         span.record(&offset(9.0, 9.0, 0.5), 0.0, 2.0);
         span.record(&offset(0.4, -0.2, 0.01), 0.5, 2.0);
         span.record(&offset(0.6, 0.2, 0.03), 1.0, 2.0);
-        assert!(span.bias.is_none());
-        assert!(close(&span.correction, &Offset::default()));
+        assert!(span.bias.is_none() && span.correction().is_none());
         // Covering λ = 2 m sets r: (0.5·m₁ + 1·m₂ + 0.5·m₃) / 2.
         span.record(&offset(0.2, 0.0, -0.01), 0.5, 2.0);
         let r = offset(0.45, 0.05, 0.015);
         assert!(span.bias.is_some_and(|b| close(&b, &r)), "{span:?}");
-        assert!(close(&span.correction, &Offset::default()));
-        // Then the correction moves toward m − r by 1 − exp(−Δd / λ); r stays.
+        assert!(close(&span.level, &Offset::default()));
+        assert!(close(&span.smoothed, &Offset::default()));
+        assert!(span
+            .correction()
+            .is_some_and(|c| close(&c, &Offset::default())));
+        // Then a moves toward m − r by w = 1 − exp(−Δd / λ), b toward the
+        // moved a by w, the correction is 2a − b; r stays.
         let m = offset(0.55, 0.15, 0.025);
         span.record(&m, 1.0, 2.0);
         let w = 1.0 - libm::exp(-0.5);
-        assert!(close(&span.correction, &offset(0.1 * w, 0.1 * w, 0.01 * w)));
+        let step = |k: f64| offset(0.1 * k, 0.1 * k, 0.01 * k);
+        assert!(close(&span.level, &step(w)));
+        assert!(close(&span.smoothed, &step(w * w)));
+        assert!(close(&corrected(&span), &step(2.0 * w - w * w)));
         span.record(&m, 1000.0, 2.0);
-        assert!(close(&span.correction, &offset(0.1, 0.1, 0.01)));
+        assert!(close(&corrected(&span), &step(1.0)));
         assert!(span.bias.is_some_and(|b| close(&b, &r)));
         // Headings across ±π average on the circle.
         let mut span = FloatSpan::default();
@@ -578,6 +618,94 @@ mod tests {
         span.record(&offset(0.0, 0.0, -3.1), 1.0, 2.0);
         let heading = span.bias.map_or(0.0, |b| b.heading);
         assert!(libm::fabs(libm::fabs(heading) - core::f64::consts::PI) < 1e-9);
+        // A tick whose m − r overflows, or whose a would, leaves a and b.
+        let mut span = FloatSpan::default();
+        span.record(&offset(-1e308, 0.0, 0.0), 2.0, 2.0);
+        let before = span;
+        span.record(&offset(f64::MAX, 0.0, 0.1), 1.0, 2.0);
+        assert_eq!(span, before);
+        let mut span = FloatSpan::default();
+        span.record(&Offset::default(), 2.0, 2.0);
+        span.record(&offset(f64::MAX, -f64::MAX, 0.1), 1000.0, 2.0);
+        let before = span;
+        assert!(close(&corrected(&span), &offset(f64::MAX, -f64::MAX, 0.1)));
+        span.record(&offset(-f64::MAX, f64::MAX, 0.2), 1000.0, 2.0);
+        assert_eq!(span, before);
+    }
+
+    //= spec/guidance.md#gd-fix-float-a-float-fix-corrects-the-carried-pose
+    //= type=test
+    //# The span's correction MUST be 2a − b (the heading's difference wrapped),
+    //# and its east and north MUST each be at most three times the largest
+    //# magnitude of that component of m − r over the span's float ticks.
+    #[test]
+    fn a_drift_growing_with_distance_is_followed_without_the_lag_of_one_average() {
+        // λ = 2 m, a tick every 0.01 m; r = (0.5, −0.3, 0.02) over the first
+        // 2 m, then m − r grows 0.015 m, −0.01 m and 0.0011 rad per metre.
+        let (length, tick) = (2.0, 0.01);
+        let r = offset(0.5, -0.3, 0.02);
+        let rate = offset(0.015, -0.01, 0.0011);
+        let mut span = FloatSpan::default();
+        for _ in 0..200 {
+            span.record(&r, tick, length);
+        }
+        assert!(span.bias.is_some_and(|b| close(&b, &r)));
+        let drift = |d: f64| offset(rate.x * d, rate.y * d, rate.heading * d);
+        for k in 1..=4000_u32 {
+            let d = f64::from(k) * tick;
+            let m = drift(d);
+            span.record(
+                &offset(r.x + m.x, r.y + m.y, r.heading + m.heading),
+                tick,
+                length,
+            );
+            let c = corrected(&span);
+            // Bounded by three times the largest |m − r| so far (m − r grows).
+            assert!(libm::fabs(c.x) <= 3.0 * libm::fabs(m.x) + 1e-12);
+            assert!(libm::fabs(c.y) <= 3.0 * libm::fabs(m.y) + 1e-12);
+            if d >= 20.0 * length {
+                // One average a lags by about λ times the drift rate: 0.03 m
+                // east; 2a − b has no steady lag.
+                let lag = |a: &Offset| offset(m.x - a.x, m.y - a.y, m.heading - a.heading);
+                let one = lag(&span.level);
+                assert!(
+                    libm::fabs(one.x / (length * rate.x) - 1.0) < 0.01,
+                    "{one:?}"
+                );
+                assert!(
+                    libm::fabs(one.y / (length * rate.y) - 1.0) < 0.01,
+                    "{one:?}"
+                );
+                assert!(libm::fabs(one.heading / (length * rate.heading) - 1.0) < 0.01);
+                let two = lag(&c);
+                assert!(
+                    libm::fabs(two.x) < 1e-6 && libm::fabs(two.y) < 1e-6,
+                    "{two:?}"
+                );
+                assert!(libm::fabs(two.heading) < 1e-7, "{two:?}");
+            }
+        }
+        // A step in m − r: 2a − b overshoots it by e⁻² (13.5 %) at 2λ and
+        // stays within three times it, the heading's difference wrapped.
+        let mut span = FloatSpan::default();
+        span.record(&offset(0.0, 0.0, 3.0), length, length);
+        let step = offset(0.2, -0.1, -3.0);
+        let mut largest = 0.0_f64;
+        for _ in 0..4000 {
+            span.record(&step, tick, length);
+            let c = corrected(&span);
+            assert!(libm::fabs(c.x) <= 3.0 * 0.2 && libm::fabs(c.y) <= 3.0 * 0.1);
+            assert!(libm::fabs(c.heading) <= core::f64::consts::PI);
+            largest = largest.max(c.x);
+        }
+        assert!(
+            libm::fabs(largest / 0.2 - (1.0 + libm::exp(-2.0))) < 1e-3,
+            "{largest}"
+        );
+        let c = corrected(&span);
+        assert!(libm::fabs(c.x - 0.2) < 1e-4);
+        // −3 − 3 wraps to 2π − 6 ≈ 0.283 rad.
+        assert!(libm::fabs(c.heading - (2.0 * core::f64::consts::PI - 6.0)) < 1e-4);
     }
 
     #[test]
