@@ -1386,11 +1386,10 @@ fn reattach<const N: usize>(
         // pass give each tied point the lowest slot among its closest (the
         // least (distance, slot), as a scan of every model in slot order
         // finds it).
-        let (three, rest) = if changed.len() % 2 == 1 && changed.len() >= 3 {
-            changed.split_at(3)
-        } else {
-            changed.split_at(0)
-        };
+        let odd = changed.len() % 2 == 1;
+        let (three, rest) = changed
+            .split_at_checked(if odd { 3 } else { 0 })
+            .unwrap_or((&[], changed.as_slice()));
         if let [one, two, three] = *three {
             closer3(xs, ys, best, masks, one, two, three);
         }
