@@ -281,14 +281,6 @@ impl Line {
         inv_norm: 1.0,
     };
 
-    /// A line farther than any point from every point (its distance is
-    /// infinite), which never takes a point in the re-attachment.
-    const FAR: Self = Self {
-        a: 0.0,
-        b: f64::INFINITY,
-        inv_norm: 1.0,
-    };
-
     fn new(a: f64, b: f64) -> Option<Self> {
         let inv_norm = 1.0 / libm::sqrt(a * a + 1.0);
         (a.is_finite() && b.is_finite() && inv_norm > 0.0).then_some(Self { a, b, inv_norm })
@@ -1239,6 +1231,55 @@ fn lowest_on_ties(xs: &[f64], ys: &[f64], best: &[f64], masks: &mut [u64], model
     }
 }
 
+/// Defines a pass of moved models, in slot order, over the points of
+/// columns `xs`, `ys`: each point takes a model strictly closer than its
+/// distance to beat, in one loop without branches (a minimum and a select
+/// per point and model) which the compiler vectorises; then, if any
+/// distance equalled the one to beat, the lowest slot among each point's
+/// closest. One function per number of models: a loop over an array of
+/// models inside the points' loop is not vectorised as well.
+macro_rules! closer {
+    ($name:ident, $doc:literal, $(($k:ident, $l:ident)),+) => {
+        #[doc = $doc]
+        #[inline]
+        fn $name(
+            xs: &[f64],
+            ys: &[f64],
+            best: &mut [f64],
+            masks: &mut [u64],
+            $(($k, $l): (u64, Line)),+
+        ) {
+            let mut tie = false;
+            for ((&x, &y), (best, m)) in
+                xs.iter().zip(ys).zip(best.iter_mut().zip(masks.iter_mut()))
+            {
+                let (mut b, mut q) = (*best, *m);
+                $(
+                    let d = $l.distance_xy(x, y);
+                    tie |= tied(d, b);
+                    let take = d < b;
+                    b = if take { d } else { b };
+                    q = if take { $k } else { q };
+                )+
+                (*best, *m) = (b, q);
+            }
+            if tie {
+                lowest_on_ties(xs, ys, best, masks, &[$(($k, $l)),+]);
+            }
+        }
+    };
+}
+
+closer!(closer1, "A pass of one moved model.", (k1, l1));
+closer!(closer2, "A pass of two moved models.", (k1, l1), (k2, l2));
+closer!(
+    closer3,
+    "A pass of three moved models.",
+    (k1, l1),
+    (k2, l2),
+    (k3, l3)
+);
+
 /// Re-attaches every point (Alg. 1, lines 21-24), then removes the models
 /// left with fewer than [`SEED_POINTS`] points and re-attaches theirs.
 //= spec/guyonneau2022.md#ruby-reattach-points-re-attached
@@ -1338,35 +1379,25 @@ fn reattach<const N: usize>(
         // the slots are. A point's distance to beat is never above the
         // limit: the closest within it wins, ties to the lower slot. Two
         // models per pass over the points, in slot order, halve the loads
-        // and stores of the columns (an odd one is paired with a line no
-        // point is near). The pass takes a model strictly closer alone and
-        // notes whether any distance equalled the one to beat; only then
-        // does a second pass give each tied point the lowest slot among its
-        // closest (the least (distance, slot), as a scan of every model in
-        // slot order finds it).
-        for pair in changed.chunks(2) {
-            let (&(k1, l1), &(k2, l2)) = match pair {
-                [one, two] => (one, two),
-                [one] => (one, &(0, Line::FAR)),
-                _ => continue,
-            };
-            let mut tie = false;
-            for ((&x, &y), (best, m)) in
-                xs.iter().zip(ys).zip(best.iter_mut().zip(masks.iter_mut()))
-            {
-                let (d1, d2) = (l1.distance_xy(x, y), l2.distance_xy(x, y));
-                let (mut b, mut q) = (*best, *m);
-                tie |= tied(d1, b);
-                let take = d1 < b;
-                b = if take { d1 } else { b };
-                q = if take { k1 } else { q };
-                tie |= tied(d2, b);
-                let take = d2 < b;
-                *best = if take { d2 } else { b };
-                *m = if take { k2 } else { q };
-            }
-            if tie {
-                lowest_on_ties(xs, ys, best, masks, &[(k1, l1), (k2, l2)]);
+        // and stores of the columns; an odd number, three or more, starts
+        // with three in one pass, and a model alone has a pass of its own.
+        // The pass takes a model strictly closer alone and notes whether
+        // any distance equalled the one to beat; only then does a second
+        // pass give each tied point the lowest slot among its closest (the
+        // least (distance, slot), as a scan of every model in slot order
+        // finds it).
+        let odd = changed.len() % 2 == 1;
+        let (three, rest) = changed
+            .split_at_checked(if odd { 3 } else { 0 })
+            .unwrap_or((&[], changed.as_slice()));
+        if let [one, two, three] = *three {
+            closer3(xs, ys, best, masks, one, two, three);
+        }
+        for pair in rest.chunks(2) {
+            match *pair {
+                [one, two] => closer2(xs, ys, best, masks, one, two),
+                [one] => closer1(xs, ys, best, masks, one),
+                _ => {}
             }
         }
         // An outlier (no bit: slot `MAX_MODELS`) goes to the sink.
@@ -1419,9 +1450,10 @@ mod tests {
 
     /// Row A (y = 0, slot 1, steady) holding every point of y = 0, the
     /// point (4, 0) included, which lies on row B (y = x/2 − 2, slot 0,
-    /// moved) as well; B's own points; with `third`, a moved model in
-    /// slot 2 far from every point, so that B is re-attached in a pair.
-    fn reattached(third: bool) -> Result<(ModelSet<N>, [(f64, f64); 9]), Precondition> {
+    /// moved) as well; B's own points; with `others` (0 to 2), as many
+    /// moved models in slots 2 and 3 far from every point, so that B is
+    /// re-attached alone, in a pair or in a pass of three.
+    fn reattached(others: usize) -> Result<(ModelSet<N>, [(f64, f64); 9]), Precondition> {
         let pts = [
             (1.0, 0.0),
             (2.0, 0.0),
@@ -1446,11 +1478,11 @@ mod tests {
         };
         set.lines[0] = slanted;
         set.lines[1] = flat;
-        if third {
-            set.lines[2] =
-                Line::new(0.0, 3.0).ok_or(Precondition::new("RUBY-REATTACH", "a finite line"))?;
-            set.alive |= 0b100;
-            set.moved |= 0b100;
+        for (k, b) in [(2, 3.0), (3, 5.0)].into_iter().take(others) {
+            set.lines[k] =
+                Line::new(0.0, b).ok_or(Precondition::new("RUBY-REATTACH", "a finite line"))?;
+            set.alive |= bit(k);
+            set.moved |= bit(k);
         }
         let (mut cols, points) = laid_out(&pts)?;
         for (i, &(x, y)) in pts.iter().enumerate() {
@@ -1635,11 +1667,11 @@ mod tests {
     //# a model left with fewer than three points MUST then be removed and its
     //# points re-attached to the models left.
     #[test]
-    fn a_tie_goes_to_the_lower_slot_alone_and_in_a_pair() -> Result<(), Precondition> {
-        for third in [false, true] {
-            let (set, pts) = reattached(third)?;
+    fn a_tie_goes_to_the_lower_slot_alone_in_a_pair_or_three() -> Result<(), Precondition> {
+        for others in 0..=2 {
+            let (set, pts) = reattached(others)?;
             // (4, 0) lies on both rows: slot 0 takes it from slot 1.
-            assert_eq!(set.masks[3], bit(0), "third model: {third}");
+            assert_eq!(set.masks[3], bit(0), "other moved models: {others}");
             assert_closest(&set, &pts);
         }
         Ok(())
