@@ -317,6 +317,7 @@ impl Line {
     /// Each fit is one pass over the points (RUBY-FIT's sums about the first
     /// point, in its order): no division by the spread of x, and a
     /// re-weighting computes its weights in the pass that sums them.
+    #[inline]
     fn fit(xs: &[f64], ys: &[f64], rounds: u8) -> Option<Self> {
         let (&x0, &y0) = (xs.first()?, ys.first()?);
         let uv = xs.iter().zip(ys).map(|(&x, &y)| (x - x0, y - y0));
