@@ -599,12 +599,15 @@ fn gather_about<const N: usize>(
     count
 }
 
-/// Copies the first `n` entries of `from` into `to`.
+/// Copies the first `n` entries of `from` into `to`, as one block copy
+/// (a loop over the entries is not made one).
 fn copy_first<T: Copy, const N: usize>(to: &mut [T; N], from: &[T; N], n: usize) {
     let n = n.min(N);
     if let (Some(to), Some(from)) = (to.get_mut(..n), from.get(..n)) {
-        for (t, f) in to.iter_mut().zip(from) {
-            *t = *f;
+        // The same length: `copy_from_slice`'s one panic, on lengths that
+        // differ, cannot happen.
+        if to.len() == from.len() {
+            to.copy_from_slice(from);
         }
     }
 }
