@@ -203,7 +203,31 @@ criterion_group!(benches, rows);
 /// `ROWS_DRIVE=<crop>/<variant>` (e.g. `4/RGOP`) runs that drive once and
 /// prints its mean tick, without criterion: a deterministic workload for an
 /// instruction count on a busy machine (`ROWS_REPEAT=<r>`: see below).
+///
+/// `ROWS_HASH=1` prints, for every variant and crop, a hash of the drive's
+/// ticks: each tick's detection, the line finder's lines (with their points
+/// and energies), the rows and the row distance, so that a change meant to
+/// keep every output, bit for bit, can be checked by the same 20 hashes
+/// before and after it.
 fn main() {
+    if std::env::var("ROWS_HASH").is_ok() {
+        use core::hash::{Hash, Hasher};
+        for variant in Variant::ALL {
+            for n in 1..=4 {
+                let (start, scans, _) = drive(variant, n);
+                let mut detector = start.clone();
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                for (raw, odometry) in &scans {
+                    let d = detector.observe_scans(&[raw.scan()], odometry).unwrap();
+                    format!("{d:?}").hash(&mut h);
+                    format!("{:?}", detector.line_finder().models()).hash(&mut h);
+                    format!("{:?} {:?}", detector.rows(), detector.row_distance()).hash(&mut h);
+                }
+                println!("{} crop{n} {:016x}", variant.name(), h.finish());
+            }
+        }
+        return;
+    }
     if let Ok(which) = std::env::var("ROWS_DRIVE") {
         let (n, name) = which.split_once('/').expect("ROWS_DRIVE=<crop>/<variant>");
         let n: usize = n.parse().expect("a crop number");

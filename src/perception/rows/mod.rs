@@ -286,11 +286,19 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
             if p.ruby.variant.one_point() {
                 merge_runs(&mut self.one, p.ruby.merge_distance);
             }
-            for q in &self.one {
-                if self.points.push(*q).is_err() {
-                    gathered.dropped = gathered.dropped.saturating_add(1);
-                }
-            }
+            // The points in order while there is room, in one copy; those
+            // after, dropped (one by one, each would be refused).
+            let one: &[points::RowPoint] = &self.one;
+            let room = self.points.capacity().saturating_sub(self.points.len());
+            let (fit, rest) = one
+                .split_at_checked(room.min(one.len()))
+                .unwrap_or((&[], one));
+            let refused = if self.points.extend_from_slice(fit).is_ok() {
+                rest.len()
+            } else {
+                one.len()
+            };
+            gathered.dropped = gathered.dropped.saturating_add(refused);
             gathered.kept = self.points.len();
             gathered.dropped = gathered.dropped.saturating_add(g.dropped);
         }

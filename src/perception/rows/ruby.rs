@@ -317,6 +317,7 @@ impl Line {
     /// Each fit is one pass over the points (RUBY-FIT's sums about the first
     /// point, in its order): no division by the spread of x, and a
     /// re-weighting computes its weights in the pass that sums them.
+    #[inline]
     fn fit(xs: &[f64], ys: &[f64], rounds: u8) -> Option<Self> {
         let (&x0, &y0) = (xs.first()?, ys.first()?);
         let uv = xs.iter().zip(ys).map(|(&x, &y)| (x - x0, y - y0));
@@ -598,12 +599,15 @@ fn gather_about<const N: usize>(
     count
 }
 
-/// Copies the first `n` entries of `from` into `to`.
+/// Copies the first `n` entries of `from` into `to`, as one block copy
+/// (a loop over the entries is not made one).
 fn copy_first<T: Copy, const N: usize>(to: &mut [T; N], from: &[T; N], n: usize) {
     let n = n.min(N);
     if let (Some(to), Some(from)) = (to.get_mut(..n), from.get(..n)) {
-        for (t, f) in to.iter_mut().zip(from) {
-            *t = *f;
+        // The same length: `copy_from_slice`'s one panic, on lengths that
+        // differ, cannot happen.
+        if to.len() == from.len() {
+            to.copy_from_slice(from);
         }
     }
 }
