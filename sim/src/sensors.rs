@@ -244,6 +244,20 @@ mod tests {
         s
     }
 
+    /// The last readings of `sensors` along `states`, one every `dt`.
+    fn last_reading(
+        sensors: &mut Sensors,
+        states: impl Iterator<Item = VehicleState>,
+        dt: f64,
+        rng: &mut SimRng,
+    ) -> Readings {
+        let mut last = None;
+        for s in states {
+            last = Some(sensors.read(&s, dt, true, rng).unwrap());
+        }
+        last.unwrap()
+    }
+
     #[test]
     fn noiseless_sensors_report_the_truth() {
         let s0 = state(3.0, 4.0, 0.5, 0.0);
@@ -309,16 +323,16 @@ mod tests {
         noise.odometry_yaw_bias_rad_s = 0.01;
         let mut sensors = Sensors::new(noise, &state(0.0, 0.0, 0.0, 0.0), 1);
         let mut rng = SimRng::from_seed(2);
-        let mut last = None;
-        for k in 0..=100 {
-            let d = f64::from(k) * 0.1;
-            last = Some(
-                sensors
-                    .read(&state(d, 0.0, 0.0, d), 0.1, true, &mut rng)
-                    .unwrap(),
-            );
-        }
-        let odo = last.unwrap().odometry;
+        let odo = last_reading(
+            &mut sensors,
+            (0..=100).map(|k| {
+                let d = f64::from(k) * 0.1;
+                state(d, 0.0, 0.0, d)
+            }),
+            0.1,
+            &mut rng,
+        )
+        .odometry;
         // 10 m driven, 10.2 m counted; 10 s of 0.01 rad/s bias: 0.1 rad of heading.
         assert!((odo.heading.get() - 0.1).abs() < 1e-9);
         let counted = odo.position.x().hypot(odo.position.y());
@@ -349,16 +363,10 @@ mod tests {
         let mut sensors = Sensors::new(noise, &s0, seed);
         let mut rng = SimRng::from_seed(seed);
         let ticks = (duration_s / dt).round() as u32;
-        let mut heading = 0.0;
-        for _ in 0..=ticks {
-            heading = sensors
-                .read(&s0, dt, true, &mut rng)
-                .unwrap()
-                .odometry
-                .heading
-                .get();
-        }
-        heading
+        last_reading(&mut sensors, (0..=ticks).map(|_| s0), dt, &mut rng)
+            .odometry
+            .heading
+            .get()
     }
 
     /// The variance of the heading error after `duration_s` over seeds 1..=`seeds`.
@@ -405,16 +413,14 @@ mod tests {
         // Turning: the true turn plus the bias, integrated along the heading.
         let mut sensors = Sensors::new(noise, &state(0.0, 0.0, 0.0, 0.0), 4);
         let mut rng = SimRng::from_seed(4);
-        let mut last = None;
-        for k in 0..=100 {
+        let turning = (0..=100).map(|k| {
             let t = f64::from(k) * 0.1;
-            last = Some(
-                sensors
-                    .read(&state(0.0, 0.0, 0.05 * t, t), 0.1, true, &mut rng)
-                    .unwrap(),
-            );
-        }
-        let heading = last.unwrap().odometry.heading.get();
+            state(0.0, 0.0, 0.05 * t, t)
+        });
+        let heading = last_reading(&mut sensors, turning, 0.1, &mut rng)
+            .odometry
+            .heading
+            .get();
         assert!((heading - (0.5 + 0.01)).abs() < 1e-9, "{heading}");
     }
 
@@ -452,9 +458,11 @@ mod tests {
     #[test]
     fn an_exact_gyro_is_exact_wheels_and_the_gyro_leaves_the_other_draws_alone() {
         let s0 = state(0.0, 0.0, 0.0, 0.0);
-        let mut base = quiet();
-        base.gnss_position_m = 0.015;
-        base.odometry_scale_error = 0.01;
+        let base = SensorNoise {
+            gnss_position_m: 0.015,
+            odometry_scale_error: 0.01,
+            ..quiet()
+        };
         let noisy_gyro = SensorNoise {
             heading: HeadingSource::Gyro(GyroErrors {
                 random_walk_rad_sqrt_s: 0.01,

@@ -100,32 +100,26 @@ fn heading(n: &NoiseSection, check: &Checker<'_>) -> Result<HeadingSource, Scena
     // Datasheet units to SI: °/√h to rad/√s, °/h to rad/s.
     let per_root_hour = |deg: f64| deg.to_radians() / 60.0;
     let per_hour = |deg: f64| deg.to_radians() / 3600.0;
-    let instability = check.range(
-        "noise.gyro_bias_instability_deg_h",
-        n.gyro_bias_instability_deg_h.unwrap_or(0.0),
-        0.0,
-        3600.0,
-    )?;
-    let time_constant = match (n.gyro_bias_instability_deg_h, n.gyro_bias_time_constant_s) {
-        (None, Some(_)) => {
-            return Err(check.error(
-                "noise.gyro_bias_time_constant_s",
-                "needs `noise.gyro_bias_instability_deg_h`",
-            ))
-        }
-        (None, None) => 1.0,
-        (Some(_), t) => check.open_range(
-            "noise.gyro_bias_time_constant_s",
-            t.ok_or_else(|| {
-                check.error(
+    let (instability, time_constant) =
+        match (n.gyro_bias_instability_deg_h, n.gyro_bias_time_constant_s) {
+            (None, None) => (0.0, 1.0),
+            (None, Some(_)) => {
+                return Err(check.error(
+                    "noise.gyro_bias_time_constant_s",
+                    "needs `noise.gyro_bias_instability_deg_h`",
+                ))
+            }
+            (Some(_), None) => {
+                return Err(check.error(
                     "noise.gyro_bias_time_constant_s",
                     "needed with `noise.gyro_bias_instability_deg_h`",
-                )
-            })?,
-            0.0,
-            1e6,
-        )?,
-    };
+                ))
+            }
+            (Some(sigma), Some(tau)) => (
+                check.range("noise.gyro_bias_instability_deg_h", sigma, 0.0, 3600.0)?,
+                check.open_range("noise.gyro_bias_time_constant_s", tau, 0.0, 1e6)?,
+            ),
+        };
     Ok(HeadingSource::Gyro(GyroErrors {
         random_walk_rad_sqrt_s: per_root_hour(check.range(
             "noise.gyro_random_walk_deg_sqrt_h",
