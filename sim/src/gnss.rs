@@ -11,7 +11,7 @@
 use fieldguide::guidance::{FixKind, FixQuality};
 use fieldguide::Meters;
 
-use crate::rng::SimRng;
+use crate::rng::{gauss_markov, SimRng};
 
 /// Mixed into the run's seed to seed the GNSS errors' own generator.
 pub const GNSS_STREAM: u64 = 0x6e55_e440_0f1e_1d00;
@@ -254,11 +254,9 @@ impl GnssErrorState {
             }) => {
                 dx += self.walk.0;
                 dy += self.walk.1;
-                let a = (-dt_s / time_constant_s).exp();
-                let gain = sigma_m * (1.0 - a * a).max(0.0).sqrt();
                 self.walk = (
-                    a * self.walk.0 + gain * draws[0],
-                    a * self.walk.1 + gain * draws[1],
+                    gauss_markov(self.walk.0, sigma_m, time_constant_s, dt_s, draws[0]),
+                    gauss_markov(self.walk.1, sigma_m, time_constant_s, dt_s, draws[1]),
                 );
             }
             Some(Drift::Sinusoid {

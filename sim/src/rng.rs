@@ -35,6 +35,17 @@ impl SimRng {
     }
 }
 
+/// One step of a first-order Gauss-Markov process of stationary standard
+/// deviation `sigma` and correlation time `time_constant_s`: `value` after
+/// `dt_s`, with `draw` a standard normal (x ← a x + σ √(1 − a²) w,
+/// a = e^(−Δt/τ)). Started at zero, its spread grows to `sigma`.
+#[must_use]
+pub fn gauss_markov(value: f64, sigma: f64, time_constant_s: f64, dt_s: f64, draw: f64) -> f64 {
+    let a = (-dt_s / time_constant_s).exp();
+    let gain = sigma * (1.0 - a * a).max(0.0).sqrt();
+    a * value + gain * draw
+}
+
 /// The run's generator as a `rand` generator, so that world generation (crop
 /// plots, grass) and the LiDAR's range noise draw from the same stream.
 impl RngCore for SimRng {

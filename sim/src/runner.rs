@@ -214,7 +214,7 @@ pub fn run_with(setup: &Setup, guidance: &mut dyn Guidance, rng: &mut SimRng) ->
     let max_ticks = (setup.run.duration_s / period).ceil() as u64;
     let terrain = &setup.world.terrain;
     let mut state = VehicleState::at(setup.initial, terrain);
-    let mut sensors = Sensors::new(setup.noise, &state);
+    let mut sensors = Sensors::new(setup.noise, &state, setup.seed);
     let index = PlantIndex::new(setup.world.plants.clone(), PLANT_INDEX_CELL_M);
     let obstacles = &setup.world.obstacles;
     let grid = if obstacles.segments.is_empty() && obstacles.circles.is_empty() {

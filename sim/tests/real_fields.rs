@@ -1,7 +1,7 @@
 //! The simulator expresses real fields: GNSS errors beyond white noise
 //! (bias, drift, float-fix spans), outages placed along the path, a speed
-//! per segment of the path, crushed plants located, turn metrics and the
-//! sweep's worst seeds kept. Every figure is against ground truth; closed
+//! per segment of the path, crushed plants located, turn metrics, the
+//! sweep's worst seeds kept and an odometry heading from a yaw gyro. Every figure is against ground truth; closed
 //! loop bounds over seeds.
 #![allow(
     clippy::unwrap_used,
@@ -484,4 +484,114 @@ fn a_sweep_keeps_the_trace_and_plots_of_each_columns_worst_seed() {
         worst
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The path-tracking built-in, 30 s long, its odometry heading from a gyro
+/// with the `[noise]` fields `gyro`.
+fn path_tracking_with_gyro(gyro: &str) -> String {
+    let text = builtin("path-tracking").replace("duration_s = 150.0", "duration_s = 30.0");
+    let wheels = "odometry_yaw_bias_deg_s = 0.05\nodometry_yaw_noise_deg = 0.02";
+    assert!(text.contains(wheels));
+    text.replace(
+        wheels,
+        &format!("odometry_yaw_bias_deg_s = 0.0\nodometry_yaw_noise_deg = 0.0\nodometry_heading = \"gyro\"\n{gyro}"),
+    )
+}
+
+/// Each tick's odometry heading error (to the true heading change since the
+/// start), wrapped, with its time.
+fn odometry_heading_errors(trace: &[TickRecord]) -> Vec<(f64, f64)> {
+    let start = trace[0].truth.heading.get();
+    trace
+        .iter()
+        .map(|r| {
+            let e = r.readings.odometry.heading.get() - (r.truth.heading.get() - start);
+            (r.t_s, e.sin().atan2(e.cos()))
+        })
+        .collect()
+}
+
+#[test]
+fn a_gyro_heading_drifts_by_its_datasheet_figures() {
+    // 36 °/h of bias, no random walk: 0.01 °/s, exactly, whatever the turns.
+    let (_, out) = run(
+        &path_tracking_with_gyro("gyro_random_walk_deg_sqrt_h = 0.0\ngyro_bias_deg_h = 36.0"),
+        3,
+    );
+    let errors = odometry_heading_errors(&out.trace);
+    assert!(errors.len() > 1000);
+    for (t, e) in &errors {
+        assert!((e - 0.01_f64.to_radians() * t).abs() < 1e-9, "t = {t}: {e}");
+    }
+    // 30 °/√h of random walk, no bias: each tick adds a white error of
+    // σ (0.5 °/√s) √Δt; over the ticks of one run its estimate is within 10 %.
+    let (setup, out) = run(
+        &path_tracking_with_gyro("gyro_random_walk_deg_sqrt_h = 30.0\ngyro_bias_deg_h = 0.0"),
+        3,
+    );
+    let errors = odometry_heading_errors(&out.trace);
+    let steps: Vec<f64> = errors.windows(2).map(|w| w[1].1 - w[0].1).collect();
+    let sigma = (steps.iter().map(|d| d * d).sum::<f64>() / steps.len() as f64).sqrt();
+    let expected = 0.5_f64.to_radians() * setup.control.period_s.sqrt();
+    assert!(
+        (sigma / expected - 1.0).abs() < 0.1,
+        "{sigma} vs {expected}"
+    );
+}
+
+#[test]
+fn gyro_fields_are_checked_and_named() {
+    let wheels = builtin("path-tracking").replace(
+        "odometry_yaw_noise_deg = 0.02",
+        "odometry_yaw_noise_deg = 0.02\ngyro_bias_deg_h = 8.0",
+    );
+    assert_field(
+        &refused(&wheels),
+        "noise.gyro_bias_deg_h",
+        "needs `noise.odometry_heading = \"gyro\"`",
+    );
+    let gyro = |fields: &str| path_tracking_with_gyro(fields);
+    let both = "gyro_random_walk_deg_sqrt_h = 0.3\ngyro_bias_deg_h = 8.0";
+    assert_field(
+        &refused(&gyro(both).replace(
+            "odometry_yaw_noise_deg = 0.0",
+            "odometry_yaw_noise_deg = 0.02",
+        )),
+        "noise.odometry_yaw_noise_deg",
+        "must be 0",
+    );
+    assert_field(
+        &refused(&gyro("gyro_bias_deg_h = 8.0")),
+        "noise.gyro_random_walk_deg_sqrt_h",
+        "needed",
+    );
+    assert_field(
+        &refused(&gyro(
+            "gyro_random_walk_deg_sqrt_h = 61.0\ngyro_bias_deg_h = 8.0",
+        )),
+        "noise.gyro_random_walk_deg_sqrt_h",
+        "within",
+    );
+    assert_field(
+        &refused(&gyro(&format!("{both}\ngyro_bias_time_constant_s = 100.0"))),
+        "noise.gyro_bias_time_constant_s",
+        "needs `noise.gyro_bias_instability_deg_h`",
+    );
+    assert_field(
+        &refused(&gyro(&format!("{both}\ngyro_bias_instability_deg_h = 4.0"))),
+        "noise.gyro_bias_time_constant_s",
+        "needed",
+    );
+    assert_field(
+        &refused(&gyro(&format!(
+            "{both}\ngyro_bias_instability_deg_h = 4.0\ngyro_bias_time_constant_s = 0.0"
+        ))),
+        "noise.gyro_bias_time_constant_s",
+        "strictly between",
+    );
+    assert!(source(&gyro(&format!(
+        "{both}\ngyro_bias_instability_deg_h = 4.0\ngyro_bias_time_constant_s = 300.0"
+    )))
+    .setup(&mut SimRng::from_seed(1))
+    .is_ok());
 }

@@ -439,6 +439,29 @@ pub struct NoiseSection {
     pub odometry_yaw_bias_deg_s: f64,
     /// Noise on each odometry heading increment, degrees.
     pub odometry_yaw_noise_deg: f64,
+    /// Where the odometry's heading comes from (default: the wheels).
+    #[serde(default)]
+    pub odometry_heading: HeadingName,
+    /// The gyro's angle random walk, degrees per √hour (gyro only, needed).
+    pub gyro_random_walk_deg_sqrt_h: Option<f64>,
+    /// The gyro's constant residual bias, degrees per hour (gyro only, needed).
+    pub gyro_bias_deg_h: Option<f64>,
+    /// The gyro's bias instability: stationary σ of the bias wander,
+    /// degrees per hour (gyro only, default 0).
+    pub gyro_bias_instability_deg_h: Option<f64>,
+    /// The correlation time of the bias wander, s (needed with an instability).
+    pub gyro_bias_time_constant_s: Option<f64>,
+}
+
+/// The source of the odometry's heading.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HeadingName {
+    /// The wheels, with `odometry_yaw_bias_deg_s` and `odometry_yaw_noise_deg`.
+    #[default]
+    Wheels,
+    /// A yaw-rate gyro, with the `gyro_*` fields.
+    Gyro,
 }
 
 /// `[run]`: duration and integration.

@@ -7,8 +7,8 @@ use crate::capacity::Reference;
 use crate::error::ScenarioError;
 use crate::gnss::{AbscissaSpan, Drift, FloatFix, GnssErrors, GnssOutages, Spans};
 use crate::scenario::check::Checker;
-use crate::scenario::schema::{DriftName, GnssSection, ScenarioFile};
-use crate::sensors::SensorNoise;
+use crate::scenario::schema::{DriftName, GnssSection, HeadingName, NoiseSection, ScenarioFile};
+use crate::sensors::{GyroErrors, HeadingSource, SensorNoise};
 use crate::world::crops::PlotSpec;
 
 /// The sensor noise of `[noise]`.
@@ -53,7 +53,92 @@ pub(super) fn noise(
                 45.0,
             )?
             .to_radians(),
+        heading: heading(n, check)?,
     })
+}
+
+/// The odometry's heading source of `[noise]`: with a gyro, its random walk
+/// and bias are needed and the wheels' yaw errors must be 0; with the wheels,
+/// the `gyro_*` fields are refused.
+fn heading(n: &NoiseSection, check: &Checker<'_>) -> Result<HeadingSource, ScenarioError> {
+    if n.odometry_heading == HeadingName::Wheels {
+        for (field, given) in [
+            (
+                "noise.gyro_random_walk_deg_sqrt_h",
+                n.gyro_random_walk_deg_sqrt_h,
+            ),
+            ("noise.gyro_bias_deg_h", n.gyro_bias_deg_h),
+            (
+                "noise.gyro_bias_instability_deg_h",
+                n.gyro_bias_instability_deg_h,
+            ),
+            (
+                "noise.gyro_bias_time_constant_s",
+                n.gyro_bias_time_constant_s,
+            ),
+        ] {
+            if given.is_some() {
+                return Err(check.error(field, "needs `noise.odometry_heading = \"gyro\"`"));
+            }
+        }
+        return Ok(HeadingSource::Wheels);
+    }
+    for (field, value) in [
+        ("noise.odometry_yaw_bias_deg_s", n.odometry_yaw_bias_deg_s),
+        ("noise.odometry_yaw_noise_deg", n.odometry_yaw_noise_deg),
+    ] {
+        if value != 0.0 {
+            return Err(check.error(
+                field,
+                "must be 0 with `odometry_heading = \"gyro\"` (the gyro gives the heading)",
+            ));
+        }
+    }
+    let needed = |field: &str, value: Option<f64>| {
+        value.ok_or_else(|| check.error(field, "needed with `odometry_heading = \"gyro\"`"))
+    };
+    // Datasheet units to SI: °/√h to rad/√s, °/h to rad/s.
+    let per_root_hour = |deg: f64| deg.to_radians() / 60.0;
+    let per_hour = |deg: f64| deg.to_radians() / 3600.0;
+    let (instability, time_constant) =
+        match (n.gyro_bias_instability_deg_h, n.gyro_bias_time_constant_s) {
+            (None, None) => (0.0, 1.0),
+            (None, Some(_)) => {
+                return Err(check.error(
+                    "noise.gyro_bias_time_constant_s",
+                    "needs `noise.gyro_bias_instability_deg_h`",
+                ))
+            }
+            (Some(_), None) => {
+                return Err(check.error(
+                    "noise.gyro_bias_time_constant_s",
+                    "needed with `noise.gyro_bias_instability_deg_h`",
+                ))
+            }
+            (Some(sigma), Some(tau)) => (
+                check.range("noise.gyro_bias_instability_deg_h", sigma, 0.0, 3600.0)?,
+                check.open_range("noise.gyro_bias_time_constant_s", tau, 0.0, 1e6)?,
+            ),
+        };
+    Ok(HeadingSource::Gyro(GyroErrors {
+        random_walk_rad_sqrt_s: per_root_hour(check.range(
+            "noise.gyro_random_walk_deg_sqrt_h",
+            needed(
+                "noise.gyro_random_walk_deg_sqrt_h",
+                n.gyro_random_walk_deg_sqrt_h,
+            )?,
+            0.0,
+            60.0,
+        )?),
+        bias_rad_s: per_hour(check.range(
+            "noise.gyro_bias_deg_h",
+            needed("noise.gyro_bias_deg_h", n.gyro_bias_deg_h)?,
+            -3600.0,
+            3600.0,
+        )?),
+        bias_instability_rad_s: per_hour(instability),
+        bias_time_constant_s: time_constant,
+    }))
 }
 
 /// Spans of time `[from, to)` of `field` (`gnss.outages_s`), seconds: each
