@@ -173,8 +173,22 @@ pub fn prepare(source: &Source) -> Result<(Setup, SimRng), ScenarioError> {
 /// the sensors' noise), and `Setup::seed` and the summary report it. The
 /// text is not edited, so every other field is the file's.
 pub fn prepare_with_seed(source: &Source, seed: u64) -> Result<(Setup, SimRng), ScenarioError> {
+    prepare_edited(source, seed, |_| {})
+}
+
+/// [`prepare_with_seed`] with the parsed file changed by `edit` before it
+/// is validated and built (the stress campaign's odometry override).
+///
+/// # Errors
+/// As [`prepare_with_seed`], for the edited file.
+pub fn prepare_edited(
+    source: &Source,
+    seed: u64,
+    edit: impl FnOnce(&mut crate::scenario::ScenarioFile),
+) -> Result<(Setup, SimRng), ScenarioError> {
     let mut file = source.parse()?;
     file.seed = seed;
+    edit(&mut file);
     prepare_file(source, file)
 }
 
