@@ -254,10 +254,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "gnss-drift-random-walk.toml",
                 bounds: CROPS,
-                known_failure: Known::on_seeds(
-                    &[14, 15],
-                    "seeds 14 and 15: 1 plant each, the beans' first at the entry after the headland crossed on the drifted fix (entry work; seed 14 since the entry's reference starts along the robot's heading, GD-ENTRY: the first bean line 0.1 m off, a front wheel 0.2 m from the plant); the hand-overs' drift is gone since path tracking follows the rows' last line for 3 m (GD-HANDOVER-LINE)",
-                ),
+                known_failure: None,
             },
             Case {
                 scenario: "gnss-outage-distance.toml",
