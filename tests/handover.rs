@@ -20,15 +20,15 @@ use core::f64::consts::{PI, TAU};
 
 mod common;
 
-use common::{m, straight_path, PATH_N};
+use common::{edge_scan, fix_rule, m, straight_path, PATH_N};
 use fieldguide::guidance::{
-    EntryParams, FixKind, FixQuality, FixRuleParams, FixUse, Guidance, GuidanceConfig, Handover,
-    HandoverParams, Mode, RoutedScan, TickInput, TickOutput,
+    EntryParams, FixKind, FixQuality, FixUse, Guidance, GuidanceConfig, Handover, HandoverParams,
+    Mode, TickInput, TickOutput,
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::Side;
 use fieldguide::perception::furrow::{FurrowConfig, FurrowParams};
-use fieldguide::perception::{RangeLimits, Scan};
+use fieldguide::perception::RangeLimits;
 use fieldguide::presets::{pierre2022_edge, Pierre2022, Pierre2022Params, EDGE};
 use fieldguide::{Curvature, TrackingError};
 use fieldguide::{Meters, Odom, Pose2, Radians, Robot, Sensor, Transform2, World};
@@ -100,15 +100,7 @@ fn drive_drifting(
         }
         let pose = (x, LINE_OFFSET, 0.0);
         let r = ranges(pose);
-        let scan = [RoutedScan {
-            behaviour: EDGE,
-            scan: Scan {
-                start: Radians::new(-PI).unwrap(),
-                increment: Radians::new(TAU / RAYS as f64).unwrap(),
-                ranges: &r,
-                limits: RangeLimits::new(m(0.05), m(30.0)).unwrap(),
-            },
-        }];
+        let scan = [edge_scan(&r, RangeLimits::new(m(0.05), m(30.0)).unwrap())];
         let out = g
             .step(&TickInput {
                 scans: if k % 10 == 0 { &scan } else { &[] },
@@ -546,14 +538,7 @@ fn a_line_seen_on_the_carried_pose_is_placed_on_the_path_and_entered_from_it() {
     const YAW_DRIFT: f64 = 0.005;
     let path = straight_path(-10.0, 190.0);
     let mut p = params(None);
-    p.fix = Some(FixRuleParams {
-        worst_kind: FixKind::RtkFixed,
-        max_accuracy: m(0.05),
-        path_dead_reckoning: m(15.0),
-        rejoin_slope: 0.1,
-        rejoin_curvature: 0.05,
-        float_averaging: None,
-    });
+    p.fix = Some(fix_rule());
     p.entry = Some(EntryParams {
         closing: m(1.0),
         lead: m(2.0),
@@ -564,15 +549,7 @@ fn a_line_seen_on_the_carried_pose_is_placed_on_the_path_and_entered_from_it() {
     for k in 0..1500_u32 {
         let x = 0.008 * f64::from(k);
         let r = wall_ranges((x, 0.0, 0.0), 6.0);
-        let scan = [RoutedScan {
-            behaviour: EDGE,
-            scan: Scan {
-                start: Radians::new(-PI).unwrap(),
-                increment: Radians::new(TAU / RAYS as f64).unwrap(),
-                ranges: &r,
-                limits: RangeLimits::new(m(0.05), m(30.0)).unwrap(),
-            },
-        }];
+        let scan = [edge_scan(&r, RangeLimits::new(m(0.05), m(30.0)).unwrap())];
         let float = x > 2.0;
         let quality = FixQuality {
             kind: if float {
