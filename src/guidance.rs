@@ -84,7 +84,7 @@ use crate::geometry::carry::pose_in_scan_frame;
 use crate::geometry::frame::{Odom, Pose2, Robot, World};
 use crate::geometry::path::{FrenetError, ReferencePath};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{Meters, MetersPerSecond};
+use crate::geometry::units::{Meters, MetersPerSecond, Radians};
 use crate::model::{Command, Saturated, Vehicle};
 use crate::perception::{Detection, Detector, HeldLine, Scan, Verdict};
 use crate::supervisor::switching::{
@@ -814,6 +814,11 @@ where
             PlanPose::DeadReckoned { frenet, .. } => Some(*frenet),
             PlanPose::Unjudged => None,
         };
+        // Path tracking's carried pose when the plan pose has no projection
+        // (GD-FIX-QUALITY): it places the lines on the path.
+        let carried = path_frenet
+            .filter(|_| plan_frenet.is_none())
+            .map(|f| f.tracking_error());
         for (i, (estimate, b)) in estimates.iter().zip(self.config.behaviours()).enumerate() {
             let reference = plan_frenet.as_ref().map(|f| {
                 PlanReference::new(self.path, f, b.plan, estimate.error.is_some(), &mut ahead)
@@ -823,6 +828,7 @@ where
             let _ = behaviours.push(behaviour_status(
                 estimate,
                 reference.as_ref(),
+                carried.as_ref(),
                 b,
                 &params.vehicle,
                 entry,
@@ -1153,12 +1159,29 @@ impl PlanReference {
 fn behaviour_status<C, L: ControlLaw>(
     estimate: &Estimate,
     plan_reference: Option<&PlanReference>,
+    carried: Option<&TrackingError>,
     behaviour: &BehaviourParams<C, L>,
     vehicle: &Vehicle,
     entry: Option<entry::EntryReference>,
 ) -> BehaviourStatus {
-    let plan = match (&estimate.error, plan_reference) {
-        (Some(line), Some(r)) => line_relative_to_path(line, &r.path).ok(),
+    //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+    //# In a tick in which path tracking steers on the carried pose and the plan
+    //# check's pose has no projection, a behaviour's line MUST be placed on the
+    //# path against the carried pose: its offset from the path as
+    //# `line_relative_to_path` gives it from the carried pose's error, its heading
+    //# from the path's zero.
+    // The carried heading drifts with the odometry's yaw: the line is taken
+    // parallel to the path, so that GD-ENTRY's t₀ and h come from the line.
+    let plan = match (&estimate.error, plan_reference, carried) {
+        (Some(line), Some(r), _) => line_relative_to_path(line, &r.path).ok(),
+        (Some(line), None, Some(path)) => {
+            line_relative_to_path(line, path)
+                .ok()
+                .map(|p| LineRelativeToPath {
+                    heading: Radians::ZERO,
+                    ..p
+                })
+        }
         _ => None,
     };
     //= spec/guidance.md#gd-plan-plan-consistency-of-the-detected-lines

@@ -15,7 +15,7 @@
 
 mod common;
 
-use common::{m, straight_path, PATH_N};
+use common::{fix_rule as rule, m, straight_path, PATH_N};
 use fieldguide::guidance::{
     FixKind, FixQuality, FixRule, FixRuleParams, FixUse, Guidance, GuidanceConfig, Mode, PlanPose,
     TickInput, TickOutput,
@@ -26,17 +26,6 @@ use fieldguide::{Meters, Odom, Pose2, World};
 
 const PERIOD: f64 = 0.01;
 const WHEELBASE: f64 = 2.0;
-
-fn rule() -> FixRuleParams {
-    FixRuleParams {
-        worst_kind: FixKind::RtkFixed,
-        max_accuracy: m(0.05),
-        path_dead_reckoning: m(15.0),
-        rejoin_slope: 0.1,
-        rejoin_curvature: 0.05,
-        float_averaging: None,
-    }
-}
 
 const FIXED: FixQuality = FixQuality {
     kind: FixKind::RtkFixed,

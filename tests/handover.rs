@@ -2,7 +2,9 @@
 //! pipeline: edge following along a wall 0.3 m beside its offset line on the
 //! path, the wall ending; path tracking takes over on the line's offset,
 //! holds it for the hold distance, then brings it to the path at the slope;
-//! the rule's functions alone; the furrow window's lateral reach (FUR-REACH).
+//! the rule's functions alone; the furrow window's lateral reach (FUR-REACH);
+//! a line seen while path tracking steers on the carried pose, placed on the
+//! path by that pose (GD-FIX-QUALITY).
 #![allow(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -18,14 +20,15 @@ use core::f64::consts::{PI, TAU};
 
 mod common;
 
-use common::{m, straight_path, PATH_N};
+use common::{edge_scan, fix_rule, m, straight_path, PATH_N};
 use fieldguide::guidance::{
-    Guidance, GuidanceConfig, Handover, HandoverParams, Mode, RoutedScan, TickInput, TickOutput,
+    EntryParams, FixKind, FixQuality, FixUse, Guidance, GuidanceConfig, Handover, HandoverParams,
+    Mode, TickInput, TickOutput,
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::perception::edge::Side;
 use fieldguide::perception::furrow::{FurrowConfig, FurrowParams};
-use fieldguide::perception::{RangeLimits, Scan};
+use fieldguide::perception::RangeLimits;
 use fieldguide::presets::{pierre2022_edge, Pierre2022, Pierre2022Params, EDGE};
 use fieldguide::{Curvature, TrackingError};
 use fieldguide::{Meters, Odom, Pose2, Radians, Robot, Sensor, Transform2, World};
@@ -43,6 +46,11 @@ fn mount() -> Transform2<Sensor, Robot> {
 
 /// Exact ranges to the wall (y = `WALL_Y`, x ≤ `WALL_END`) from the robot at `pose`.
 fn ranges(pose: (f64, f64, f64)) -> Vec<f64> {
+    wall_ranges(pose, f64::NEG_INFINITY)
+}
+
+/// Exact ranges to the wall (y = `WALL_Y`, `from` ≤ x ≤ `WALL_END`) from the robot at `pose`.
+fn wall_ranges(pose: (f64, f64, f64), from: f64) -> Vec<f64> {
     let (x, y, psi) = pose;
     let (sx, sy) = (x + MOUNT_X * psi.cos(), y + MOUNT_X * psi.sin());
     (0..RAYS)
@@ -55,7 +63,7 @@ fn ranges(pose: (f64, f64, f64)) -> Vec<f64> {
                 (WALL_Y - sy) / s
             };
             let hit = sx + t * c;
-            if t > 0.0 && t <= 30.0 && hit <= WALL_END {
+            if t > 0.0 && t <= 30.0 && hit >= from && hit <= WALL_END {
                 t
             } else {
                 f64::INFINITY
@@ -92,15 +100,7 @@ fn drive_drifting(
         }
         let pose = (x, LINE_OFFSET, 0.0);
         let r = ranges(pose);
-        let scan = [RoutedScan {
-            behaviour: EDGE,
-            scan: Scan {
-                start: Radians::new(-PI).unwrap(),
-                increment: Radians::new(TAU / RAYS as f64).unwrap(),
-                ranges: &r,
-                limits: RangeLimits::new(m(0.05), m(30.0)).unwrap(),
-            },
-        }];
+        let scan = [edge_scan(&r, RangeLimits::new(m(0.05), m(30.0)).unwrap())];
         let out = g
             .step(&TickInput {
                 scans: if k % 10 == 0 { &scan } else { &[] },
@@ -515,4 +515,105 @@ fn the_reach_is_the_outermost_whole_template_on_the_ground() {
             .unwrap_err();
         assert_eq!(e.requirement, "FUR-REACH");
     }
+}
+
+//= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
+//= type=test
+//# In a tick in which path tracking steers on the carried pose and the plan
+//# check's pose has no projection, a behaviour's line MUST be placed on the
+//# path against the carried pose: its offset from the path as
+//# `line_relative_to_path` gives it from the carried pose's error, its heading
+//# from the path's zero.
+/// The robot on the path (y = 0), the wall's edge line 0.3 m left of it
+/// from x = 6 m on, the fix float (0.3 m off, refused by the fix rule) from
+/// x = 2 m: path tracking steers on the carried pose, its heading drifting
+/// with the odometry's, and the plan check's pose (no plan dead reckoning)
+/// has no projection. The edge line is placed
+/// on the path from the carried pose, parallel to it, and the entry starts
+/// in path tracking from the first usable line, before the machine enters
+/// edge following (without the placement, only once it had entered).
+#[test]
+fn a_line_seen_on_the_carried_pose_is_placed_on_the_path_and_entered_from_it() {
+    // The odometry's heading drifts 0.005 rad per metre, its positions exact.
+    const YAW_DRIFT: f64 = 0.005;
+    let path = straight_path(-10.0, 190.0);
+    let mut p = params(None);
+    p.fix = Some(fix_rule());
+    p.entry = Some(EntryParams {
+        closing: m(1.0),
+        lead: m(2.0),
+    });
+    let mut g: Pierre2022<'_, PATH_N> =
+        Guidance::new(GuidanceConfig::new(&p).unwrap(), &path).unwrap();
+    let (mut placed, mut approached) = (0, 0);
+    for k in 0..1500_u32 {
+        let x = 0.008 * f64::from(k);
+        let r = wall_ranges((x, 0.0, 0.0), 6.0);
+        let scan = [edge_scan(&r, RangeLimits::new(m(0.05), m(30.0)).unwrap())];
+        let float = x > 2.0;
+        let quality = FixQuality {
+            kind: if float {
+                FixKind::RtkFloat
+            } else {
+                FixKind::RtkFixed
+            },
+            accuracy: Some(m(if float { 0.3 } else { 0.01 })),
+        };
+        let out = g
+            .step_with_fix(
+                &TickInput {
+                    scans: if k % 10 == 0 { &scan } else { &[] },
+                    gnss: Some(Pose2::<World>::new(x, if float { 0.3 } else { 0.0 }, 0.0).unwrap()),
+                    odometry: Pose2::<Odom>::new(x, 0.0, YAW_DRIFT * x).unwrap(),
+                    extra: Sideslip::ZERO,
+                },
+                &quality,
+            )
+            .unwrap();
+        if float {
+            assert!(matches!(out.path.fix, FixUse::Carried { .. }), "x {x}");
+        }
+        let edge = &out.behaviours[0];
+        if out.mode != Mode::PathTracking || !edge.reported.estimate_is_valid() {
+            continue;
+        }
+        // The line placed by the carried pose, whose heading has drifted
+        // (0.02 rad at 6 m): the offset from its error, the heading zero.
+        let plan = edge.plan.expect("a line placed on the path");
+        let carried = out.path.frenet.unwrap();
+        let line = edge.error.unwrap();
+        assert!(carried.angular_deviation.get().abs() > 0.015, "x {x}");
+        assert!(
+            (plan.offset.get() - (carried.y.get() - line.y.get())).abs() < 1e-3,
+            "x {x}: {plan:?}"
+        );
+        assert!(
+            (plan.offset.get() - LINE_OFFSET).abs() < 0.05,
+            "x {x}: {plan:?}"
+        );
+        assert_eq!(plan.heading.get(), 0.0);
+        placed += 1;
+        // From the tick after the first usable line: path tracking steers on
+        // the entry's shift, which starts at the robot (the carried pose's
+        // error) and moves toward the line.
+        if placed > 1 {
+            let shift = out.path.reference_offset.expect("the entry's shift").get();
+            if approached == 0 {
+                assert!(
+                    (shift - carried.y.get()).abs() < 0.01,
+                    "x {x}: shift {shift}"
+                );
+            }
+            assert!(
+                shift > -0.06 && shift < LINE_OFFSET + 0.05,
+                "x {x}: shift {shift}"
+            );
+            approached += 1;
+        }
+    }
+    assert!(
+        approached > 0,
+        "{placed} ticks with a placed line in path tracking"
+    );
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
 }

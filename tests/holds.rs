@@ -15,16 +15,19 @@
 
 use core::f64::consts::{FRAC_PI_6, PI, TAU};
 
+mod common;
+
+use common::edge_scan;
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::guidance::{Guidance, GuidanceConfig, Mode, RoutedScan, TickInput, TickOutput};
 use fieldguide::model::bicycle::{Bicycle, Sideslip, SteeringLimit, Wheelbase};
 use fieldguide::model::Vehicle;
 use fieldguide::perception::edge::Side;
-use fieldguide::perception::{RangeLimits, Scan};
+use fieldguide::perception::RangeLimits;
 use fieldguide::presets::{pierre2022_edge, Pierre2022, Pierre2022Params, EDGE};
 use fieldguide::{
-    Meters, Odom, Point2, Pose2, Radians, RadiansPerSecond, Robot, Seconds, Sensor, Transform2,
-    Verdict, World,
+    Meters, Odom, Point2, Pose2, RadiansPerSecond, Robot, Seconds, Sensor, Transform2, Verdict,
+    World,
 };
 
 const PATH_N: usize = 256;
@@ -72,19 +75,6 @@ fn wall_ranges(x: f64, present: impl Fn(f64) -> bool) -> Vec<f64> {
             }
         })
         .collect()
-}
-
-/// The hedge scan `ranges` (`RAYS` rays all round), routed to edge following.
-fn edge_scan(ranges: &[f64], limits: RangeLimits) -> RoutedScan<'_> {
-    RoutedScan {
-        behaviour: EDGE,
-        scan: Scan {
-            start: Radians::new(-PI).unwrap(),
-            increment: Radians::new(TAU / RAYS as f64).unwrap(),
-            ranges,
-            limits,
-        },
-    }
 }
 
 fn tick<'a>(x: f64, scans: &'a [RoutedScan<'a>], gnss: bool) -> TickInput<'a, Sideslip> {
