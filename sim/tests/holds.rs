@@ -48,6 +48,25 @@ fn run_stress_edited(
     (setup, out)
 }
 
+/// The stress field `name` with `seed`, rolling off at once after a Stop
+/// (`steer_before_resuming` off), its heading from the wheels: the
+/// conditions GD-RESUME was found under (with the fields' gyro the swing
+/// of these seeds stays within the bound either way).
+fn rolling_off_on_wheels(name: &str, seed: u64) -> (Setup, RunOutput) {
+    let mut source = common::stress_source(name);
+    source.text = source.text.replace(
+        "steer_before_resuming = true",
+        "steer_before_resuming = false",
+    );
+    let (setup, mut rng) = runner::prepare_edited(&source, seed, |f| {
+        fieldguide_sim::stress::Heading::BUILTIN_WHEELS.apply(f);
+    })
+    .unwrap();
+    let out = runner::run(&setup, &mut rng);
+    assert_eq!(out.end, RunEnd::PathEnd, "{name}, seed {seed}");
+    (setup, out)
+}
+
 /// Each seed of `SEEDS` run on `name`, two at a time.
 fn sweep(name: &str) -> Vec<(u64, Setup, RunOutput)> {
     let seeds: Vec<u64> = SEEDS.collect();
@@ -202,7 +221,8 @@ fn outage_1_s_before_the_plot_end_rejects_the_volunteers() {
 /// Seed 19 of the 1 s and 2.6 s fields (beyond `SEEDS`): the robot stops
 /// where the turn begins with its wheels held 9.4° right, the turn going
 /// left; steering first keeps it within the resume bound, rolling off at
-/// once swings it beyond (the failure `steer_before_resuming` removes there).
+/// once swings it beyond with the wheels' heading (the failure
+/// `steer_before_resuming` removes there).
 #[test]
 fn outage_at_the_plot_end_seed_19_steers_before_resuming() {
     for name in ["outage-1s", "outage-2_6s"] {
@@ -215,12 +235,7 @@ fn outage_at_the_plot_end_seed_19_steers_before_resuming() {
                 && f.turn_excursion_m <= RESUME_SWING_M,
             "{name}: {f:?}"
         );
-        let (setup, out) = run_stress_edited(name, 19, |t| {
-            t.replace(
-                "steer_before_resuming = true",
-                "steer_before_resuming = false",
-            )
-        });
+        let (setup, out) = rolling_off_on_wheels(name, 19);
         let f = outage_figures(&setup, &out);
         eprintln!("{name} seed 19 rolling off at once: {f:?}");
         assert!(
@@ -288,13 +303,9 @@ fn outages_by_distance_in_the_plots_crush_nothing_of_their_own() {
 fn outage_in_a_fast_maize_plot_rejects_the_volunteers() {
     check_outage_field("outage-maize-fast", 2.6);
     // Rolling off while the wheels turn from straight to the 5 m turn's
-    // angle swings the robot off the turn (the failure steering first removes).
-    let (setup, out) = run_stress_edited("outage-maize-fast", 1, |t| {
-        t.replace(
-            "steer_before_resuming = true",
-            "steer_before_resuming = false",
-        )
-    });
+    // angle swings the robot off the turn with the wheels' heading (the
+    // failure steering first removes).
+    let (setup, out) = rolling_off_on_wheels("outage-maize-fast", 1);
     let f = outage_figures(&setup, &out);
     eprintln!("outage-maize-fast seed 1 rolling off at once: {f:?}");
     assert!(f.stops == 1 && f.resume_swing_m > RESUME_SWING_M, "{f:?}");

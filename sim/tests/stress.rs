@@ -48,11 +48,15 @@ const IMPOSSIBLE: Case = Case {
     known_failure: None,
 };
 
+/// `case` run over `seeds` with the heading its file gives.
+fn run(case: &Case, seeds: Seeds) -> stress::CaseResult {
+    stress::run_case("test", stress::Heading::AsFile, case, seeds, |_| {}).unwrap()
+}
+
 #[test]
 fn a_broken_bound_names_every_seed_that_broke_it() {
     let seeds = Seeds::new(3, 4).unwrap();
-    let result =
-        stress::run_case("test", stress::Heading::AsFile, &IMPOSSIBLE, seeds, |_| {}).unwrap();
+    let result = run(&IMPOSSIBLE, seeds);
     assert!(!result.pass());
     assert_eq!(result.bounds[0].failed_seeds, vec![3, 4]);
     // From 0.8 m off, the worst |y| is the start's.
@@ -66,8 +70,7 @@ fn a_broken_bound_names_every_seed_that_broke_it() {
 #[test]
 fn the_campaign_writes_its_table_and_keeps_each_worst_seed() {
     let seeds = Seeds::new(1, 2).unwrap();
-    let result =
-        stress::run_case("test", stress::Heading::AsFile, &IMPOSSIBLE, seeds, |_| {}).unwrap();
+    let result = run(&IMPOSSIBLE, seeds);
     let worst = result.worst_seed;
     assert!(seeds.iter().any(|s| s == worst));
     let out = std::env::temp_dir().join(format!("fieldguide-stress-{}", std::process::id()));
@@ -108,25 +111,11 @@ fn a_finding_of_a_few_seeds_is_expected_on_exactly_those_seeds() {
         known_failure: Known::on_seeds(&[3], "seed 3's finding"),
         ..IMPOSSIBLE
     };
-    let r = stress::run_case(
-        "test",
-        stress::Heading::AsFile,
-        &broken,
-        Seeds::new(3, 4).unwrap(),
-        |_| {},
-    )
-    .unwrap();
+    let r = run(&broken, Seeds::new(3, 4).unwrap());
     assert_eq!(r.failed_seeds(), vec![3, 4]);
     assert_eq!(r.expected_failures, vec![3]);
     assert!(!r.as_expected());
-    let r = stress::run_case(
-        "test",
-        stress::Heading::AsFile,
-        &broken,
-        Seeds::new(3, 3).unwrap(),
-        |_| {},
-    )
-    .unwrap();
+    let r = run(&broken, Seeds::new(3, 3).unwrap());
     assert!(r.as_expected() && r.shows_known_failure());
     assert!(stress::table_md(&[r]).contains("known FAIL (seeds 3)"));
     // Holding on every seed: expected where the known seed is not run,
@@ -135,36 +124,15 @@ fn a_finding_of_a_few_seeds_is_expected_on_exactly_those_seeds() {
         known_failure: Known::on_seeds(&[9], "seed 9's finding"),
         ..HOLDS
     };
-    let r = stress::run_case(
-        "test",
-        stress::Heading::AsFile,
-        &holds,
-        Seeds::new(3, 4).unwrap(),
-        |_| {},
-    )
-    .unwrap();
+    let r = run(&holds, Seeds::new(3, 4).unwrap());
     assert!(r.as_expected() && !r.shows_known_failure());
-    let r = stress::run_case(
-        "test",
-        stress::Heading::AsFile,
-        &holds,
-        Seeds::new(9, 9).unwrap(),
-        |_| {},
-    )
-    .unwrap();
+    let r = run(&holds, Seeds::new(9, 9).unwrap());
     assert!(!r.as_expected());
     // A finding of most seeds is expected whenever a seed breaks a bound.
     let most = Case {
         known_failure: Known::most_seeds("most seeds"),
         ..HOLDS
     };
-    let r = stress::run_case(
-        "test",
-        stress::Heading::AsFile,
-        &most,
-        Seeds::new(3, 3).unwrap(),
-        |_| {},
-    )
-    .unwrap();
+    let r = run(&most, Seeds::new(3, 3).unwrap());
     assert!(!r.as_expected());
 }
