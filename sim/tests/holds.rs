@@ -505,24 +505,36 @@ fn envelope_off_its_straight_line(setup: &Setup) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Why the straight structure line cannot hold the ragged hedge within
-/// 0.15 m (README, stress campaign, "Open"): on most seeds the envelope's
-/// line itself strays more than that from its best straight line, so the
-/// robot must follow its wiggles from valid lines, and a bridge across a
-/// gap and the piece ends beside it can only carry a straight line.
+/// Why the robot's offset is judged against the followed line, not the
+/// envelope itself (README, "Choices beyond the papers"): on most seeds the
+/// envelope of a face ragged by ±0.15 m strays more than 0.15 m from its
+/// best straight line, and on a third of them from its followed line (its
+/// straight line over the detector's 3 m l_max, `envelope::profile`) too:
+/// a vehicle exactly on the followed line would break a 0.15 m bound on the
+/// envelope's wiggles, which no steered vehicle follows.
 #[test]
-fn a_ragged_hedge_envelope_is_not_a_straight_line() {
-    let devs: Vec<f64> = (1..=20_u64)
+fn a_ragged_hedge_envelope_wiggles_on_the_scale_of_its_vertices() {
+    let (devs, off_followed): (Vec<f64>, Vec<f64>) = (1..=20_u64)
         .map(|seed| {
             let source = common::stress_source("hedge-ragged");
             let (setup, _) = runner::prepare_with_seed(&source, seed).unwrap();
-            envelope_off_its_straight_line(&setup)
+            let off = envelope::profile(&setup, CIRCLE_M, 3.0)
+                .iter()
+                .map(|p| (p.envelope - p.followed).abs())
+                .fold(0.0, f64::max);
+            (envelope_off_its_straight_line(&setup), off)
         })
-        .collect();
-    eprintln!("hedge-ragged, seeds 1-20: envelope's line off its straight line by {devs:.4?} m");
+        .unzip();
+    eprintln!("hedge-ragged, seeds 1-20: envelope's line off its straight line by {devs:.4?} m, off its followed line by {off_followed:.4?} m");
     let over = devs.iter().filter(|d| **d > 0.15).count();
     assert!(over >= 10, "{devs:?}");
     assert!(devs.iter().all(|d| (0.1..0.25).contains(d)), "{devs:?}");
+    let over = off_followed.iter().filter(|d| **d > 0.15).count();
+    assert!(over >= 5, "{off_followed:?}");
+    assert!(
+        off_followed.iter().all(|d| (0.1..0.2).contains(d)),
+        "{off_followed:?}"
+    );
 }
 
 /// The envelope's offset line against the clearance, the line at D from

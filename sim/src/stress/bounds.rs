@@ -96,14 +96,16 @@ pub enum Bound {
     AlongHedgeMax(f64),
     /// At most this many mode changes in the run.
     SwitchesAtMost(usize),
-    /// Largest |error to the offset line of hedge 0's envelope| in edge
-    /// following, settled, below this, metres ([`super::envelope`]).
-    EnvelopeMax(f64),
+    /// Largest |error to the offset line of hedge 0's followed line| in
+    /// edge following, settled, below this, metres ([`super::envelope`]:
+    /// the face's envelope straightened over the detector's l_max).
+    FollowedMax(f64),
     /// Mean |error to that line| below this, metres.
-    EnvelopeMean(f64),
-    /// Largest error to that line towards the hedge (the clearance lost
-    /// inside the offset), below this, metres: the side the robot must keep
-    /// clear of, judged alone since [`Bound::EnvelopeMax`] counts both.
+    FollowedMean(f64),
+    /// Largest error towards the hedge from the offset line of its face's
+    /// envelope itself (the clearance lost inside the offset), below this,
+    /// metres: the side the robot must keep clear of, judged against the
+    /// vegetation's outermost line, not the straightened one.
     EnvelopeTowards(f64),
 }
 
@@ -258,29 +260,25 @@ impl Bound {
                     .map_or(f64::INFINITY, |e| e.max_abs),
                 limit,
             ),
-            Self::EnvelopeMax(limit) | Self::EnvelopeMean(limit) => {
-                let errors = super::envelope::envelope_errors(setup, trace);
-                let max = matches!(self, Self::EnvelopeMax(_));
+            Self::FollowedMax(limit) | Self::FollowedMean(limit) => {
+                let errors = super::envelope::face_errors(setup, trace);
+                let max = matches!(self, Self::FollowedMax(_));
                 let value = if errors.is_empty() {
                     f64::INFINITY
                 } else if max {
-                    errors.iter().map(|e| e.abs()).fold(0.0, f64::max)
+                    errors.iter().map(|e| e.followed.abs()).fold(0.0, f64::max)
                 } else {
-                    errors.iter().map(|e| e.abs()).sum::<f64>() / errors.len() as f64
+                    errors.iter().map(|e| e.followed.abs()).sum::<f64>() / errors.len() as f64
                 };
                 let what = if max { "max" } else { "mean" };
-                judged(
-                    format!("{what} |y| to the envelope's line (m)"),
-                    value,
-                    limit,
-                )
+                judged(format!("{what} |y| to the followed line (m)"), value, limit)
             }
             Self::EnvelopeTowards(limit) => {
-                let errors = super::envelope::envelope_errors(setup, trace);
+                let errors = super::envelope::face_errors(setup, trace);
                 let value = if errors.is_empty() {
                     f64::INFINITY
                 } else {
-                    errors.iter().map(|e| -e).fold(0.0, f64::max)
+                    errors.iter().map(|e| -e.envelope).fold(0.0, f64::max)
                 };
                 judged(
                     "max towards the hedge from the envelope's line (m)".to_owned(),

@@ -127,7 +127,7 @@ impl Heading {
 }
 
 use Bound::{
-    ConvergesInTime, CurvatureStep, EnvelopeMax, EnvelopeMean, EnvelopeTowards, InPlotMax, MaxFrom,
+    ConvergesInTime, CurvatureStep, EnvelopeTowards, FollowedMax, FollowedMean, InPlotMax, MaxFrom,
     NoPlantCrushed, Overshoot, ScenarioChecks, SettledBefore, SettledInBand, SlipStep,
     SwitchesAtMost,
 };
@@ -138,12 +138,13 @@ const CROPS: &[Bound] = &[ScenarioChecks, NoPlantCrushed];
 /// Rows off the recorded path: the error to the path is the offset, by
 /// design; the rows' centre line is what the robot must hold.
 const ROWS_OFF: &[Bound] = &[NoPlantCrushed, InPlotMax(0.1)];
-/// A ragged hedge: the switches, and the distance to its envelope's line.
+/// A ragged hedge: the switches, the distance to its followed line and how
+/// near it comes to its envelope ([`envelope`]).
 const HEDGE_ENVELOPE: &[Bound] = &[
     ScenarioChecks,
     SwitchesAtMost(2),
-    EnvelopeMean(0.05),
-    EnvelopeMax(0.15),
+    FollowedMean(0.05),
+    FollowedMax(0.15),
     EnvelopeTowards(0.15),
 ];
 
@@ -387,7 +388,7 @@ pub const CLASSES: &[Class] = &[
     },
     Class {
         name: "hedges-and-trunks",
-        stresses: "a row of 0.1 m trunks every metre (a thin hedge, and posts), posts along a bent hedge, ragged hedges with 1-3 m and 0.5-1 m gaps, and with 2-4 m gaps at 1.2 m/s",
+        stresses: "a row of 0.1 m trunks every metre (a thin hedge, and posts), posts along a bent hedge, ragged hedges with 1-3 m and 0.5-1 m gaps, and with 2-4 m gaps at 1.2 m/s; of our own, a hedge at 35 deg followed on the right, and coarse bushes driven westwards 1 m off",
         heading: Heading::AsFile,
         cases: &[
             Case { scenario: "trunks-row.toml", bounds: &[ScenarioChecks, SwitchesAtMost(2)], known_failure: None },
@@ -407,6 +408,16 @@ pub const CLASSES: &[Class] = &[
                 scenario: "hedge-ragged.toml",
                 bounds: HEDGE_ENVELOPE,
                 known_failure: Known::most_seeds("at most 2 switches since EDGE-PIECE-END and GD-BRIDGE-AGREE, but the structure line, straight, is up to 0.32 m off the envelope's line (0.15 m allowed), 0.060 m on average (0.05 m); the envelope's line itself strays 0.13-0.21 m from its best straight line, over 0.15 m in 13 of 20 seeds (sim/tests/holds.rs)"),
+            },
+            Case {
+                scenario: "hedge-turned-right.toml",
+                bounds: HEDGE_ENVELOPE,
+                known_failure: Known::most_seeds("a field of our own: 2 switches, but up to 0.271 m off the followed line (0.15 m allowed) in 4 of 20 seeds, just past the 3 m of entry and on the first metre of a piece after a gap, and 0.169 m inside the envelope's line (seeds 2, 9)"),
+            },
+            Case {
+                scenario: "hedge-bushes-west.toml",
+                bounds: HEDGE_ENVELOPE,
+                known_failure: Known::most_seeds("a field of our own: 2 switches, but up to 0.379 m off the followed line (0.15 m allowed), 0.079 m on average (0.05 m), and 0.364 m inside the envelope's line towards the hedge (0.15 m): the worst within 2 m past the 3 m of entry at the hedge's start and on the first metre of a piece after a gap"),
             },
         ],
     },
