@@ -5,14 +5,16 @@
 //! (GD-BRIDGE-STEADY): the least-squares straight line through the points
 //! the valid detections of the last bridge length put on the followed line,
 //! and a valid detection that disagrees with it (the bent line of a ragged
-//! end of a piece) is bridged over like a gap.
+//! end of a piece) is bridged over like a gap. While it is carried, the
+//! next piece's line seen ahead (EDGE-LOOK-AHEAD) levels it: the structure
+//! line is shifted sideways through that line's point (GD-BRIDGE-LEVEL).
 
 use heapless::Deque;
 
 use crate::geometry::carry::moved_line_error;
 use crate::geometry::carry::pose_in_scan_frame;
 use crate::geometry::carry::straight;
-use crate::geometry::frame::{Odom, Pose2};
+use crate::geometry::frame::{Odom, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{wrap_raw, Meters};
 use crate::perception::Detection;
@@ -122,6 +124,9 @@ pub(super) struct Bridge {
     /// Whether the latest scan was a valid detection that disagreed with
     /// the structure line (GD-BRIDGE-AGREE): held until the next scan.
     disagreed: bool,
+    /// The latest point of the next piece's line seen ahead, odometry frame
+    /// (GD-BRIDGE-LEVEL): the carried structure line passes through it.
+    level: Option<Pose2<Odom>>,
 }
 
 impl Bridge {
@@ -152,6 +157,7 @@ impl Bridge {
                 if let Some(error) = d.error {
                     self.disagreed = self.disagrees(&error, odometry, bridge);
                     if !self.disagreed {
+                        self.level = None;
                         self.last = Some(LastValid {
                             error,
                             odom: *odometry,
@@ -164,10 +170,38 @@ impl Bridge {
             ScanOutcome::Refused => {
                 self.last = None;
                 self.anchors.clear();
+                self.level = None;
             }
-            ScanOutcome::Read(_) | ScanOutcome::None => {}
+            ScanOutcome::Read(d) => {
+                if let Some(ahead) = &d.ahead {
+                    self.level = self.level_of(ahead, odometry, bridge);
+                }
+            }
+            ScanOutcome::None => {}
+        }
+        if self
+            .last
+            .as_ref()
+            .is_none_or(|l| l.travelled > bridge.get())
+        {
+            self.level = None;
         }
         self.disagreed
+    }
+
+    /// The point of the next piece's line `ahead`, seen in the robot frame
+    /// of a scan taken at `odometry`, moved to the odometry frame.
+    //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
+    //# A scan whose detection reports the next piece's line ahead
+    //# (EDGE-LOOK-AHEAD) MUST set the level to that line's point moved to the
+    //# odometry frame at the scan's pose, replacing the previous level.
+    fn level_of(
+        &self,
+        ahead: &Pose2<Robot>,
+        odometry: &Pose2<Odom>,
+        _bridge: Meters,
+    ) -> Option<Pose2<Odom>> {
+        odometry.body_to_frame::<Robot>().apply_pose(*ahead).ok()
     }
 
     /// Whether `error`, a valid detection's error at `odometry`, differs
@@ -220,6 +254,23 @@ impl Bridge {
         }
         // Cannot fail: a slot was freed above when full.
         let _ = self.anchors.push_back(anchor);
+    }
+
+    /// The structure line `line` shifted sideways through the level's
+    /// point, its heading kept (GD-BRIDGE-LEVEL); `line` without a level.
+    //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
+    //# While the bridge carries the structure line (GD-BRIDGE-STEADY) and a
+    //# level is set, the line carried MUST be the structure line shifted
+    //# sideways through the level's point, its heading kept.
+    fn levelled(&self, line: StructureLine) -> StructureLine {
+        match &self.level {
+            Some(level) => StructureLine {
+                x: level.position.x(),
+                y: level.position.y(),
+                ..line
+            },
+            None => line,
+        }
     }
 
     //= spec/guidance.md#gd-bridge-steady-the-structure-line-carried-across-a-gap
@@ -279,7 +330,11 @@ impl Bridge {
         if last.travelled > bridge.get() {
             return None;
         }
-        let error = match self.structure(bridge).and_then(|s| s.error_at(odometry)) {
+        let error = match self
+            .structure(bridge)
+            .map(|s| self.levelled(s))
+            .and_then(|s| s.error_at(odometry))
+        {
             Some(error) => error,
             None => {
                 let pose = pose_in_scan_frame(&last.odom, odometry).ok()?;
@@ -340,6 +395,7 @@ mod tests {
             error: straight(y, theta).ok(),
             quality: Some(0.02),
             line: Some(()),
+            ahead: None,
         }
     }
 

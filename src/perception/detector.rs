@@ -46,6 +46,11 @@ pub struct Detection<L> {
     /// The line, to carry the estimate to later poses; `None` exactly when
     /// the verdict is Absent.
     pub line: Option<L>,
+    /// The structure's next line seen ahead while the verdict is not valid,
+    /// as a point of the followed line and its heading, robot frame of the
+    /// scan (EDGE-LOOK-AHEAD, GD-BRIDGE-LEVEL); `None` for a detector that
+    /// does not look ahead.
+    pub ahead: Option<Pose2<Robot>>,
 }
 
 /// A detector: a scan and its odometry pose in, a [`Detection`] out.
@@ -218,6 +223,7 @@ impl<L> Detection<L> {
             error: self.error,
             quality: self.quality,
             line: self.line.map(f),
+            ahead: self.ahead,
         }
     }
 }

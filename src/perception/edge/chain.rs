@@ -130,11 +130,16 @@ impl<const M: usize> Chain<M> {
 //# MUST NOT be touched by the translation.
 #[must_use]
 pub fn translation_contact(q: Point2<Robot>, side: Side, radius: Meters) -> Option<Meters> {
-    let r = radius.get();
+    contact_from(q, 0.0, side, radius.get()).and_then(|t| Meters::new(t).ok())
+}
+
+/// [`translation_contact`] of a circle whose translation starts at `(x0, 0)`.
+fn contact_from(q: Point2<Robot>, x0: f64, side: Side, r: f64) -> Option<f64> {
     let lateral = side.sign() * q.y();
-    let dx = q.x();
+    let dx = q.x() - x0;
     if lateral > 0.0 && libm::fabs(dx) <= r {
-        Meters::new(lateral - libm::sqrt(r * r - dx * dx)).ok()
+        let t = lateral - libm::sqrt(r * r - dx * dx);
+        t.is_finite().then_some(t)
     } else {
         None
     }
@@ -239,17 +244,28 @@ pub fn build_chain_into<const M: usize>(
     config: &EdgeConfig,
     chain: &mut Chain<M>,
 ) {
+    build_chain_from(points, side, config, 0.0, chain);
+}
+
+/// [`build_chain_into`] with the circle's translation starting at `(x0, 0)`
+/// instead of the robot's rear point: the chain of the points shifted back
+/// by `x0`, without copying them (EDGE-LOOK-AHEAD).
+pub(super) fn build_chain_from<const M: usize>(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    x0: f64,
+    chain: &mut Chain<M>,
+) {
     chain.clear(ChainEnd::NoEdge);
     let r = config.radius().get();
     let s = side.sign();
-    let radius = config.radius();
 
     // Translation (EDGE-CHAIN-TRANSLATE).
     let mut first: Option<(f64, f64, usize)> = None;
     for (i, q) in points.iter().enumerate() {
-        if let Some(t) = translation_contact(*q, side, radius) {
-            let t = t.get();
-            let dx = libm::fabs(q.x());
+        if let Some(t) = contact_from(*q, x0, side, r) {
+            let dx = libm::fabs(q.x() - x0);
             let better = match first {
                 None => true,
                 Some((bt, bdx, _)) => match t.total_cmp(&bt) {
@@ -267,7 +283,7 @@ pub fn build_chain_into<const M: usize>(
         Some((t, _, i)) if t <= config.search_distance().get() => (t, i),
         _ => return,
     };
-    let (Some(&p0), Ok(c0)) = (points.get(i0), Point2::new(0.0, s * t0)) else {
+    let (Some(&p0), Ok(c0)) = (points.get(i0), Point2::new(x0, s * t0)) else {
         return;
     };
     if push(chain, i0, p0, c0).is_err() {

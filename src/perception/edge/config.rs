@@ -86,6 +86,42 @@ pub struct EdgeParameters {
     /// of the robot than x_ahead starts at a piece's end face and is not
     /// followed (EDGE-PIECE-END; not in the paper). `f64::MAX` never acts.
     pub max_start_ahead: f64,
+    /// The search for the next piece's line ahead when the chain gives no
+    /// valid estimate (EDGE-LOOK-AHEAD; not in the paper); `None`: off.
+    pub look_ahead: Option<LookAhead>,
+}
+
+/// The most starts the look-ahead search tries: `x_far / Δx` is at most
+/// this (EDGE-LOOK-AHEAD), which bounds its work to that many chains.
+pub const MAX_LOOK_AHEAD_STEPS: u16 = 64;
+
+/// The parameters of the look-ahead search (EDGE-LOOK-AHEAD): chains are
+/// built with the circle's translation starting at x = Δx, 2Δx, … up to
+/// x_far ahead of the robot; the first chain found, its first `end_cap`
+/// metres dropped, gives the next piece's line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LookAhead {
+    /// l_cap, metres, ≥ 0: the length along x dropped from the start of
+    /// the chain found ahead (the next piece's end cap).
+    pub end_cap: f64,
+    /// Δx, metres, > 0: the step between the abscissae the search starts from.
+    pub step: f64,
+    /// x_far, metres, ≥ Δx and at most [`MAX_LOOK_AHEAD_STEPS`] steps: the
+    /// farthest abscissa the search starts from.
+    pub farthest: f64,
+    /// l_fit, metres, > 0: the shortest extent along x of the part fitted.
+    pub min_span: f64,
+}
+
+impl LookAhead {
+    /// The values measured on ragged hedges with gaps: l_cap = 0.5 m,
+    /// Δx = 0.5 m, x_far = 4 m, l_fit = 1 m (EDGE-LOOK-AHEAD).
+    pub const HEDGE: Self = Self {
+        end_cap: 0.5,
+        step: 0.5,
+        farthest: 4.0,
+        min_span: 1.0,
+    };
 }
 
 impl EdgeParameters {
@@ -94,7 +130,8 @@ impl EdgeParameters {
     /// l_min = 1.5 m, w_max = 1 m, 5 points at least (`spec/pierre2022.md`,
     /// EDGE-CONFIG), and the rules beyond the paper: l_link = 1 m (EDGE-GAP)
     /// and φ_turn = π/4 (EDGE-CORNER); the piece-end rule is off
-    /// (EDGE-PIECE-END: l_end = 0, x_ahead = `f64::MAX`).
+    /// (EDGE-PIECE-END: l_end = 0, x_ahead = `f64::MAX`) and so is the
+    /// look-ahead (EDGE-LOOK-AHEAD).
     pub const PIERRE2022: Self = Self {
         radius: 1.0,
         max_rotation: FRAC_PI_2,
@@ -110,6 +147,7 @@ impl EdgeParameters {
         sigma_exit: 0.5,
         min_end_chain_length: 0.0,
         max_start_ahead: f64::MAX,
+        look_ahead: None,
     };
 }
 
@@ -130,6 +168,7 @@ pub struct EdgeConfig {
     thresholds: QualityThresholds,
     min_end_chain_length: f64,
     max_start_ahead: f64,
+    look_ahead: Option<LookAhead>,
 }
 
 fn require(ok: bool, violated: &'static str) -> Result<(), Precondition> {
@@ -207,6 +246,9 @@ impl EdgeConfig {
             "the farthest chain start ahead x_ahead must be > 0",
         )?;
         let thresholds = QualityThresholds::new(p.sigma_enter, p.sigma_exit, Better::Lower)?;
+        if let Some(a) = &p.look_ahead {
+            check_look_ahead(a)?;
+        }
         Ok(Self {
             radius: p.radius,
             max_rotation: p.max_rotation,
@@ -227,6 +269,7 @@ impl EdgeConfig {
             thresholds,
             min_end_chain_length: p.min_end_chain_length,
             max_start_ahead: p.max_start_ahead,
+            look_ahead: p.look_ahead,
         })
     }
 
@@ -313,9 +356,43 @@ impl EdgeConfig {
         Meters(self.max_start_ahead)
     }
 
+    /// The look-ahead search, when on (EDGE-LOOK-AHEAD).
+    #[must_use]
+    pub const fn look_ahead(&self) -> Option<&LookAhead> {
+        self.look_ahead.as_ref()
+    }
+
     /// σ_edge / σ_path hysteresis on the residual standard deviation.
     #[must_use]
     pub const fn thresholds(&self) -> QualityThresholds {
         self.thresholds
     }
+}
+
+/// Refuses look-ahead parameters out of their domain (EDGE-LOOK-AHEAD).
+//= spec/pierre2022.md#edge-look-ahead-the-next-piece-s-line-seen-ahead
+//# A configuration with the look-ahead on MUST be refused with
+//# `EDGE-LOOK-AHEAD` unless l_cap ≥ 0, Δx > 0, Δx ≤ x_far ≤ 64 Δx and
+//# l_fit > 0, every value finite.
+fn check_look_ahead(a: &LookAhead) -> Result<(), Precondition> {
+    let ok = |ok: bool, violated: &'static str| {
+        if ok {
+            Ok(())
+        } else {
+            Err(Precondition::new("EDGE-LOOK-AHEAD", violated))
+        }
+    };
+    ok(
+        [a.end_cap, a.step, a.farthest, a.min_span]
+            .iter()
+            .all(|v| v.is_finite()),
+        "every look-ahead parameter must be finite",
+    )?;
+    ok(a.end_cap >= 0.0, "the end cap l_cap must be >= 0")?;
+    ok(a.step > 0.0, "the step dx must be > 0")?;
+    ok(
+        a.farthest >= a.step && a.farthest <= f64::from(MAX_LOOK_AHEAD_STEPS) * a.step,
+        "the farthest start x_far must be within [dx, 64 dx]",
+    )?;
+    ok(a.min_span > 0.0, "the fitted extent l_fit must be > 0")
 }

@@ -25,13 +25,14 @@ pub use crate::geometry::fit::ParabolaFit;
 pub use chain::{
     build_chain, build_chain_into, rotation_contact, translation_contact, Chain, ChainEnd,
 };
-pub use config::{EdgeConfig, EdgeParameters, Side};
+pub use config::{EdgeConfig, EdgeParameters, LookAhead, Side, MAX_LOOK_AHEAD_STEPS};
 pub use parabola::tracking_error;
 pub use quality::EdgeQuality;
 pub use scan::{scan_into, scan_to_points, ScanPoints, MAX_COORDINATE};
 
 use crate::error::{finite, Precondition};
 use crate::geometry::carry;
+use crate::geometry::fit::fit_line;
 use crate::geometry::frame::{Odom, Point2, Pose2, Robot, Sensor, Transform2};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::Meters;
@@ -66,6 +67,10 @@ pub struct EdgeOutcome {
     pub chain_end: ChainEnd,
     /// Number of chain points.
     pub chain_points: usize,
+    /// The next piece's line seen ahead when the verdict is not valid
+    /// (EDGE-LOOK-AHEAD): a point of the line at the desired distance from
+    /// it and that line's heading, robot frame.
+    pub ahead: Option<Pose2<Robot>>,
 }
 
 impl EdgeOutcome {
@@ -123,12 +128,14 @@ impl HeldLine for EdgeLine {
 }
 
 /// An edge detector with its buffers: up to `N` scan points and `M` chain
-/// points, reused every tick (Pierre 2022, section 2.2; EDGE-DETECT).
+/// points, reused every tick (Pierre 2022, section 2.2; EDGE-DETECT), and
+/// a second chain of `M` points for the look-ahead (EDGE-LOOK-AHEAD).
 #[derive(Debug, Clone)]
 pub struct EdgeDetector<const N: usize, const M: usize> {
     config: EdgeDetectorConfig,
     points: ScanPoints<N>,
     chain: Chain<M>,
+    ahead: Chain<M>,
 }
 
 impl<const N: usize, const M: usize> EdgeDetector<N, M> {
@@ -140,6 +147,7 @@ impl<const N: usize, const M: usize> EdgeDetector<N, M> {
             config,
             points: ScanPoints::new(),
             chain: Chain::empty(ChainEnd::NoEdge),
+            ahead: Chain::empty(ChainEnd::NoEdge),
         }
     }
 
@@ -171,6 +179,7 @@ impl<const N: usize, const M: usize> EdgeDetector<N, M> {
             side,
             &edge,
             &mut self.chain,
+            &mut self.ahead,
         ))
     }
 
@@ -187,12 +196,14 @@ impl<const N: usize, const M: usize> EdgeDetector<N, M> {
     }
 }
 
-/// Chain, fit and grade `points` (already checked to be bounded) into `chain`.
+/// Chain, fit and grade `points` (already checked to be bounded) into
+/// `chain`; when the verdict is not valid, look ahead with `scratch`.
 fn evaluate<const M: usize>(
     points: &[Point2<Robot>],
     side: Side,
     config: &EdgeConfig,
     chain: &mut Chain<M>,
+    scratch: &mut Chain<M>,
 ) -> EdgeOutcome {
     build_chain_into(points, side, config, chain);
     let fit = if chain.len() >= config.min_points() {
@@ -205,13 +216,113 @@ fn evaluate<const M: usize>(
         Some(f) => f.quality.grade(config),
         None => Verdict::Absent,
     };
+    let ahead = if verdict.estimate_is_valid() {
+        None
+    } else {
+        look_ahead(points, side, config, scratch)
+    };
     EdgeOutcome {
         side,
         fit,
         verdict,
         chain_end: chain.end(),
         chain_points: chain.len(),
+        ahead,
     }
+}
+
+/// The next piece's line ahead (EDGE-LOOK-AHEAD): chains built with the
+/// circle's translation starting at x = Δx, 2Δx, … ≤ x_far (at most
+/// [`MAX_LOOK_AHEAD_STEPS`] chains, built over `points` in place); the
+/// first chain found, without its first l_cap metres along x, gives it.
+//= spec/pierre2022.md#edge-look-ahead-the-next-piece-s-line-seen-ahead
+//# When the look-ahead is on and the verdict of a detection is not Enter or
+//# Hold, the detector MUST build chains as in EDGE-CHAIN-TRANSLATE,
+//# EDGE-CHAIN-ROTATE and EDGE-CHAIN-STOP with the circle's translation
+//# starting at (k Δx, 0) instead of the robot's rear point, for k = 1, 2, …
+//# while k Δx ≤ x_far, and take the first of them that has a point.
+fn look_ahead<const M: usize>(
+    points: &[Point2<Robot>],
+    side: Side,
+    config: &EdgeConfig,
+    scratch: &mut Chain<M>,
+) -> Option<Pose2<Robot>> {
+    let a = config.look_ahead()?;
+    let farthest = a.farthest * (1.0 + 1e-9);
+    let mut x0 = 0.0;
+    for _ in 0..MAX_LOOK_AHEAD_STEPS {
+        x0 += a.step;
+        if x0 > farthest {
+            return None;
+        }
+        chain::build_chain_from(points, side, config, x0, scratch);
+        if let Some(first) = scratch.points().first() {
+            return next_piece_line(scratch.points(), first.x() + a.end_cap, side, config);
+        }
+    }
+    None
+}
+
+/// The line of the chain points beyond abscissa `from` (EDGE-LOOK-AHEAD):
+/// with at least the fewest chain points spanning at least l_fit along x,
+/// the least-squares straight line through them, when its residual
+/// standard deviation grades Enter or Hold; given as the point of the line
+/// at the desired distance abeam the middle of their extent along x, and
+/// its heading.
+//= spec/pierre2022.md#edge-look-ahead-the-next-piece-s-line-seen-ahead
+//# The points of that chain lying more than l_cap along x beyond its first
+//# point MUST give the next piece's line only when they are at least the
+//# fewest chain points, span at least l_fit along x, and the residual
+//# standard deviation of their least-squares straight line y = a x + b is
+//# graded Enter or Hold by σ_edge and σ_path.
+//= spec/pierre2022.md#edge-look-ahead-the-next-piece-s-line-seen-ahead
+//# The detection MUST then report, besides its own verdict and fit, the
+//# point of the line at the desired distance D from that straight line on
+//# the robot's side, abeam the middle of the points' extent along x, with
+//# the line's heading arctan a; otherwise, and when the look-ahead is off
+//# or the verdict is Enter or Hold, it MUST report none.
+fn next_piece_line(
+    chain: &[Point2<Robot>],
+    from: f64,
+    side: Side,
+    config: &EdgeConfig,
+) -> Option<Pose2<Robot>> {
+    let span = config.look_ahead()?.min_span;
+    let part = || chain.iter().filter(move |p| p.x() > from);
+    let (mut n, mut low, mut high) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
+    for p in part() {
+        n += 1.0;
+        low = low.min(p.x());
+        high = high.max(p.x());
+    }
+    // Also false for an empty part (−∞).
+    if part().count() < config.min_points() || !(high - low >= span) {
+        return None;
+    }
+    let line = fit_line(part()).ok()?;
+    let squares: f64 = part()
+        .map(|p| {
+            let r = p.y() - line.a * p.x() - line.b;
+            r * r
+        })
+        .sum();
+    if !config
+        .thresholds()
+        .classify(libm::sqrt(squares / n))
+        .estimate_is_valid()
+    {
+        return None;
+    }
+    let x = (low + high) / 2.0;
+    let heading = libm::atan(line.a);
+    let shift = side.sign() * config.offset().get();
+    // The face's point minus s·D along the line's left normal (−sin φ, cos φ).
+    Pose2::new(
+        x + shift * libm::sin(heading),
+        line.a * x + line.b - shift * libm::cos(heading),
+        heading,
+    )
+    .ok()
 }
 
 /// Whether `chain` sees a piece's end (EDGE-PIECE-END): it stopped at a
@@ -246,6 +357,8 @@ pub struct EdgeDetection<const M: usize> {
     pub fit: Option<EdgeFit>,
     /// Enter / Hold / Exit from eq. 21, or Absent when there is no fit.
     pub verdict: Verdict,
+    /// The next piece's line seen ahead (EDGE-LOOK-AHEAD), as in [`EdgeOutcome`].
+    pub ahead: Option<Pose2<Robot>>,
 }
 
 impl<const M: usize> EdgeDetection<M> {
@@ -294,12 +407,14 @@ pub fn detect_points<const M: usize>(
 ) -> Result<EdgeDetection<M>, Precondition> {
     scan::check_bounded(points)?;
     let mut chain = Chain::empty(ChainEnd::NoEdge);
-    let outcome = evaluate(points, side, config, &mut chain);
+    let mut scratch: Chain<M> = Chain::empty(ChainEnd::NoEdge);
+    let outcome = evaluate(points, side, config, &mut chain, &mut scratch);
     Ok(EdgeDetection {
         side,
         chain,
         fit: outcome.fit,
         verdict: outcome.verdict,
+        ahead: outcome.ahead,
     })
 }
 
@@ -338,6 +453,7 @@ impl<const N: usize, const M: usize> Detector for EdgeDetector<N, M> {
                 side,
                 offset,
             }),
+            ahead: outcome.ahead,
         })
     }
 }

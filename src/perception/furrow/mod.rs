@@ -659,6 +659,7 @@ impl<const RAYS: usize, const SCANS: usize> Detector for FurrowDetector<RAYS, SC
             error: d.error,
             quality: d.quality,
             line: d.lines,
+            ahead: None,
         })
     }
 }

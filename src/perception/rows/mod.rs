@@ -336,6 +336,7 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
             error: None,
             quality: None,
             line: None,
+            ahead: None,
         };
         match &mut self.phase {
             Phase::Measuring(estimator, first, barren) => {
@@ -405,6 +406,7 @@ impl<const POINTS: usize> RowsDetector<POINTS> {
                             error: Some(error),
                             quality: Some(count_f64(outcome.matched())),
                             line: Some(RowLines::Two(Pair { left, right })),
+                            ahead: None,
                         },
                         Some(outcome),
                     ),

@@ -612,6 +612,7 @@ impl<const RAYS: usize, const POINTS: usize> Detector for VineDetector<RAYS, POI
             error: d.error,
             quality: d.quality,
             line: d.line,
+            ahead: None,
         })
     }
 }

@@ -2,7 +2,9 @@
 //! the horizontal LiDAR of `[horizontal_lidar]`.
 
 use fieldguide::control::backstepping::BacksteppingConfig;
-use fieldguide::perception::edge::{EdgeConfig, EdgeParameters, Side};
+use fieldguide::perception::edge::{
+    EdgeConfig, EdgeParameters, LookAhead, Side, MAX_LOOK_AHEAD_STEPS,
+};
 use fieldguide::MetersPerSecond;
 
 use super::control::{forward_speed, gains, within_schedule};
@@ -102,6 +104,7 @@ pub(super) fn edge(
             Some(v) => check.open_range("edge.max_start_ahead_m", v, 0.0, 1000.0)?,
             None => f64::MAX,
         },
+        look_ahead: look_ahead(e, check)?,
     };
     // Every value was range-checked above; what the core still refuses is
     // reported against the section, with the requirement it names.
@@ -116,4 +119,40 @@ pub(super) fn edge(
         backstepping: BacksteppingConfig { gains, ..*path_law },
         speed,
     })
+}
+
+/// The look-ahead of `[edge]` (EDGE-LOOK-AHEAD), `None` when off; an
+/// absent key takes [`LookAhead::HEDGE`]'s value.
+fn look_ahead(e: &EdgeSection, check: &Checker<'_>) -> Result<Option<LookAhead>, ScenarioError> {
+    if !e.look_ahead {
+        return Ok(None);
+    }
+    let d = LookAhead::HEDGE;
+    let step = check.open_range(
+        "edge.look_ahead_step_m",
+        e.look_ahead_step_m.unwrap_or(d.step),
+        0.0,
+        1000.0,
+    )?;
+    Ok(Some(LookAhead {
+        end_cap: check.range(
+            "edge.look_ahead_end_cap_m",
+            e.look_ahead_end_cap_m.unwrap_or(d.end_cap),
+            0.0,
+            1000.0,
+        )?,
+        step,
+        farthest: check.range(
+            "edge.look_ahead_farthest_m",
+            e.look_ahead_farthest_m.unwrap_or(d.farthest),
+            step,
+            f64::from(MAX_LOOK_AHEAD_STEPS) * step,
+        )?,
+        min_span: check.open_range(
+            "edge.look_ahead_min_span_m",
+            e.look_ahead_min_span_m.unwrap_or(d.min_span),
+            0.0,
+            1000.0,
+        )?,
+    }))
 }
