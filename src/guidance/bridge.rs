@@ -179,6 +179,10 @@ impl Bridge {
             }
             ScanOutcome::None => {}
         }
+        //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
+        //# The level MUST be cleared by a valid detection that becomes the
+        //# latest valid line (GD-BRIDGE-AGREE), by a refused scan, and whenever
+        //# there is no latest valid line within the bridge length.
         if self
             .last
             .as_ref()
@@ -189,19 +193,31 @@ impl Bridge {
         self.disagreed
     }
 
-    /// The point of the next piece's line `ahead`, seen in the robot frame
-    /// of a scan taken at `odometry`, moved to the odometry frame.
+    /// The level after a scan that saw the next piece's line `ahead` in the
+    /// robot frame of its pose `odometry`: that line moved to the odometry
+    /// frame, unless its heading disagrees with the structure line's by
+    /// more than [`AGREE_RAD`] (then the level is kept as it was).
     //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
     //# A scan whose detection reports the next piece's line ahead
-    //# (EDGE-LOOK-AHEAD) MUST set the level to that line's point moved to the
-    //# odometry frame at the scan's pose, replacing the previous level.
+    //# (EDGE-LOOK-AHEAD) MUST set the level to that line's point and heading
+    //# moved to the odometry frame at the scan's pose, replacing the previous
+    //# level, unless there is a structure line whose heading differs from that
+    //# heading by more than 0.15 rad.
     fn level_of(
         &self,
         ahead: &Pose2<Robot>,
         odometry: &Pose2<Odom>,
-        _bridge: Meters,
+        bridge: Meters,
     ) -> Option<Pose2<Odom>> {
-        odometry.body_to_frame::<Robot>().apply_pose(*ahead).ok()
+        let level = odometry.body_to_frame::<Robot>().apply_pose(*ahead).ok()?;
+        let agrees = self.structure(bridge).is_none_or(|s| {
+            libm::fabs(wrap_raw(level.heading.get() - s.heading)) <= AGREE_RAD
+        });
+        if agrees {
+            Some(level)
+        } else {
+            self.level
+        }
     }
 
     /// Whether `error`, a valid detection's error at `odometry`, differs
