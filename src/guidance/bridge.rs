@@ -415,6 +415,16 @@ mod tests {
         }
     }
 
+    /// A scan graded Exit (a piece's end) that saw the next piece's line
+    /// `ahead` (EDGE-LOOK-AHEAD).
+    fn exit_seeing(ahead: Pose2<Robot>) -> Detection<()> {
+        Detection {
+            verdict: Verdict::Exit,
+            ahead: Some(ahead),
+            ..valid(0.4, 0.5)
+        }
+    }
+
     /// The robot driving along x at lateral `y_of(x)` and heading `h`,
     /// detecting a line along the x axis: the detection's error is the
     /// truth plus `noise(k)` in offset and heading.
@@ -620,6 +630,122 @@ mod tests {
         // A refused scan clears the flag with the rest.
         bridge.record(ScanOutcome::Read(&valid(5.0, 0.0)), &pose, 0.04, length);
         assert!(!bridge.record(ScanOutcome::<()>::Refused, &pose, 0.04, length));
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
+    //= type=test
+    //# A scan whose detection reports the next piece's line ahead
+    //# (EDGE-LOOK-AHEAD) MUST set the level to that line's point and heading
+    //# moved to the odometry frame at the scan's pose, replacing the previous
+    //# level, unless there is a structure line whose heading differs from that
+    //# heading by more than 0.15 rad.
+    //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
+    //= type=test
+    //# While the bridge carries the structure line (GD-BRIDGE-STEADY) and a
+    //# level is set, the line carried MUST be the structure line shifted
+    //# sideways through the level's point, its heading kept.
+    #[test]
+    fn the_line_ahead_moves_the_carried_line_through_its_point() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+        let line = bridge
+            .structure(length)
+            .ok_or_else(|| Precondition::new("T", "no line"))?;
+        // In the gap, a scan sees the next piece's line 2 m ahead and 0.25 m
+        // to the left, its heading 0.1 rad off the robot's.
+        let pose = Pose2::new(last.position.x() + 0.3, 0.05, 0.02)?;
+        let ahead = Pose2::<Robot>::new(2.0, 0.25, 0.1)?;
+        bridge.record(ScanOutcome::Read(&exit_seeing(ahead)), &pose, 0.3, length);
+        let level = pose.body_to_frame::<Robot>().apply_pose(ahead)?;
+        assert_eq!(bridge.level, Some(level));
+        // Carried 1 m on: the structure line's heading, through the level.
+        let on = Pose2::new(pose.position.x() + 1.0, 0.1, -0.03)?;
+        bridge.record(ScanOutcome::<()>::None, &on, 1.0, length);
+        let (error, _) = bridge
+            .carried(&on, length)
+            .ok_or_else(|| Precondition::new("T", "not carried"))?;
+        let (sin, cos) = (libm::sin(line.heading), libm::cos(line.heading));
+        let (dx, dy) = (
+            on.position.x() - level.position.x(),
+            on.position.y() - level.position.y(),
+        );
+        assert!((error.y.get() - (-dx * sin + dy * cos)).abs() < 1e-9, "{error:?}");
+        assert!(
+            (error.angular_deviation.get() - wrap_raw(on.heading.get() - line.heading)).abs()
+                < 1e-9,
+            "{error:?}"
+        );
+        // The unlevelled line lies as far from it as the level's point
+        // from the structure line: 0.25 m seen from the scan, 0.34 m here.
+        let plain = line
+            .error_at(&on)
+            .ok_or_else(|| Precondition::new("T", "no error"))?;
+        let apart = line
+            .error_at(&level)
+            .ok_or_else(|| Precondition::new("T", "no error"))?;
+        assert!((apart.y.get() - 0.34).abs() < 0.01, "{apart:?}");
+        assert!((plain.y.get() - error.y.get() - apart.y.get()).abs() < 1e-9);
+        // A line ahead 0.2 rad off the structure line's heading is not
+        // taken: the level stays.
+        let askew = Pose2::<Robot>::new(2.0, -0.3, 0.2 + 0.03)?;
+        bridge.record(ScanOutcome::Read(&exit_seeing(askew)), &on, 0.0, length);
+        assert_eq!(bridge.level, Some(level));
+        // One within 0.15 rad replaces it.
+        let close = Pose2::<Robot>::new(2.0, -0.1, 0.1)?;
+        bridge.record(ScanOutcome::Read(&exit_seeing(close)), &on, 0.0, length);
+        assert_eq!(
+            bridge.level,
+            Some(on.body_to_frame::<Robot>().apply_pose(close)?)
+        );
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-level-the-next-piece-s-line-levels-the-structure-line
+    //= type=test
+    //# The level MUST be cleared by a valid detection that becomes the
+    //# latest valid line (GD-BRIDGE-AGREE), by a refused scan, and whenever
+    //# there is no latest valid line within the bridge length.
+    #[test]
+    fn the_level_ends_with_an_agreeing_line_a_refused_scan_or_the_bridge() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+        let pose = Pose2::new(last.position.x() + 0.3, 0.0, 0.0)?;
+        let ahead = Pose2::<Robot>::new(2.0, 0.25, 0.0)?;
+        let seeing = exit_seeing(ahead);
+        let mut set = bridge.clone();
+        set.record(ScanOutcome::Read(&seeing), &pose, 0.3, length);
+        assert!(set.level.is_some());
+        // A disagreeing valid line (0.3 m off) keeps it.
+        let mut copy = set.clone();
+        assert!(copy.record(ScanOutcome::Read(&valid(0.3, 0.0)), &pose, 0.0, length));
+        assert!(copy.level.is_some());
+        // An agreeing one ends it: the structure line is carried again.
+        let mut copy = set.clone();
+        assert!(!copy.record(ScanOutcome::Read(&valid(0.0, 0.0)), &pose, 0.0, length));
+        assert_eq!(copy.level, None);
+        copy.record(ScanOutcome::<()>::None, &pose, 0.0, length);
+        let line = copy
+            .structure(length)
+            .ok_or_else(|| Precondition::new("T", "no line"))?;
+        assert_eq!(
+            copy.carried(&pose, length).map(|(e, _)| e),
+            line.error_at(&pose)
+        );
+        // A refused scan ends it.
+        let mut copy = set.clone();
+        copy.record(ScanOutcome::<()>::Refused, &pose, 0.0, length);
+        assert_eq!(copy.level, None);
+        // So does the bridge's end: 4.5 m without a valid line.
+        let mut copy = set.clone();
+        let far = Pose2::new(pose.position.x() + 4.5, 0.0, 0.0)?;
+        copy.record(ScanOutcome::<()>::None, &far, 4.5, length);
+        assert_eq!(copy.level, None);
+        // A line ahead seen past the bridge sets none.
+        copy.record(ScanOutcome::Read(&seeing), &far, 0.0, length);
+        assert_eq!(copy.level, None);
         Ok(())
     }
 }
