@@ -67,7 +67,7 @@ use fieldguide::perception::edge::{
     build_chain, build_chain_into, detect, detect_points, rotation_contact, scan_into,
     scan_to_points as edge_scan_to_points, tracking_error as edge_tracking_error,
     translation_contact, Chain, ChainEnd, EdgeConfig, EdgeDetector, EdgeDetectorConfig, EdgeLine,
-    EdgeParameters, EdgeQuality, ScanPoints, Side,
+    EdgeParameters, EdgeQuality, LookAhead, ScanPoints, Side,
 };
 use fieldguide::perception::furrow::accumulation::{Accumulator, Selected};
 use fieldguide::perception::furrow::correlation::{
@@ -778,9 +778,10 @@ proptest! {
 
 /// Edge parameters: Table 1's, one of them replaced by anything.
 fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
-    (0..15_usize, raw(), 0..8_usize)
+    (0..20_usize, raw(), 0..8_usize)
         .prop_map(|(field, v, points)| {
             let mut p = EdgeParameters::PIERRE2022;
+            let ahead = LookAhead::HEDGE;
             match field {
                 0 => p.radius = v,
                 1 => p.max_rotation = v,
@@ -796,6 +797,14 @@ fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
                 11 => p.min_points = points,
                 12 => p.min_end_chain_length = v,
                 13 => p.max_start_ahead = v,
+                14 => p.look_ahead = Some(LookAhead { end_cap: v, ..ahead }),
+                15 => p.look_ahead = Some(LookAhead { step: v, ..ahead }),
+                16 => p.look_ahead = Some(LookAhead { farthest: v, ..ahead }),
+                17 => p.look_ahead = Some(LookAhead { min_span: v, ..ahead }),
+                18 => {
+                    p.look_ahead = Some(ahead);
+                    p.max_start_ahead = 0.5;
+                }
                 _ => {}
             }
             p
@@ -846,6 +855,7 @@ proptest! {
         check!("perception::edge::config::EdgeConfig::thresholds", config.thresholds());
         check!("perception::edge::config::EdgeConfig::min_end_chain_length", config.min_end_chain_length());
         check!("perception::edge::config::EdgeConfig::max_start_ahead", config.max_start_ahead());
+        check!("perception::edge::config::EdgeConfig::look_ahead", config.look_ahead());
         check!("perception::edge::config::Side::sign", s.sign());
         check!("perception::edge::config::Side::mirrored", s.mirrored());
         check!("perception::edge::chain::translation_contact", translation_contact(q, s, radius));
