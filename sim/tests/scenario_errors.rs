@@ -852,6 +852,30 @@ fn hedge_horizontal_lidar_and_edge_fields_are_named() {
             "edge.exit_residual_m",
             "above",
         ),
+        (
+            "max_link_m = 1.0",
+            "max_link_m = 1.0\nlook_ahead = true\nlook_ahead_end_cap_m = -0.5",
+            "edge.look_ahead_end_cap_m",
+            "within",
+        ),
+        (
+            "max_link_m = 1.0",
+            "max_link_m = 1.0\nlook_ahead = true\nlook_ahead_step_m = 0.0",
+            "edge.look_ahead_step_m",
+            "between",
+        ),
+        (
+            "max_link_m = 1.0",
+            "max_link_m = 1.0\nlook_ahead = true\nlook_ahead_farthest_m = 40.0",
+            "edge.look_ahead_farthest_m",
+            "within [0.5, 32]",
+        ),
+        (
+            "max_link_m = 1.0",
+            "max_link_m = 1.0\nlook_ahead = true\nlook_ahead_min_span_m = 0.0",
+            "edge.look_ahead_min_span_m",
+            "between",
+        ),
         ("max_link_m = 1.0\n", "", "edge.max_link_m", "missing field"),
         (
             "max_link_m = 1.0",

@@ -122,11 +122,9 @@ pub(super) fn edge(
 }
 
 /// The look-ahead of `[edge]` (EDGE-LOOK-AHEAD), `None` when off; an
-/// absent key takes [`LookAhead::HEDGE`]'s value.
+/// absent key takes [`LookAhead::HEDGE`]'s value, and the keys given are
+/// checked even when it is off.
 fn look_ahead(e: &EdgeSection, check: &Checker<'_>) -> Result<Option<LookAhead>, ScenarioError> {
-    if !e.look_ahead {
-        return Ok(None);
-    }
     let d = LookAhead::HEDGE;
     let step = check.open_range(
         "edge.look_ahead_step_m",
@@ -134,7 +132,7 @@ fn look_ahead(e: &EdgeSection, check: &Checker<'_>) -> Result<Option<LookAhead>,
         0.0,
         1000.0,
     )?;
-    Ok(Some(LookAhead {
+    let look = LookAhead {
         end_cap: check.range(
             "edge.look_ahead_end_cap_m",
             e.look_ahead_end_cap_m.unwrap_or(d.end_cap),
@@ -154,5 +152,6 @@ fn look_ahead(e: &EdgeSection, check: &Checker<'_>) -> Result<Option<LookAhead>,
             0.0,
             1000.0,
         )?,
-    }))
+    };
+    Ok(e.look_ahead.then_some(look))
 }
