@@ -240,17 +240,53 @@ fn look_ahead_parameters_out_of_their_domain_are_refused() {
         (h, true),
         (LookAhead { end_cap: 0.0, ..h }, true),
         (LookAhead { end_cap: -0.1, ..h }, false),
-        (LookAhead { end_cap: f64::NAN, ..h }, false),
+        (
+            LookAhead {
+                end_cap: f64::NAN,
+                ..h
+            },
+            false,
+        ),
         (LookAhead { step: 0.0, ..h }, false),
         (LookAhead { step: -0.5, ..h }, false),
-        (LookAhead { step: f64::INFINITY, ..h }, false),
+        (
+            LookAhead {
+                step: f64::INFINITY,
+                ..h
+            },
+            false,
+        ),
         (LookAhead { farthest: 0.5, ..h }, true),
         (LookAhead { farthest: 0.4, ..h }, false),
-        (LookAhead { farthest: 32.0, ..h }, true),
-        (LookAhead { farthest: 32.5, ..h }, false),
-        (LookAhead { farthest: f64::NAN, ..h }, false),
+        (
+            LookAhead {
+                farthest: 32.0,
+                ..h
+            },
+            true,
+        ),
+        (
+            LookAhead {
+                farthest: 32.5,
+                ..h
+            },
+            false,
+        ),
+        (
+            LookAhead {
+                farthest: f64::NAN,
+                ..h
+            },
+            false,
+        ),
         (LookAhead { min_span: 0.0, ..h }, false),
-        (LookAhead { min_span: f64::INFINITY, ..h }, false),
+        (
+            LookAhead {
+                min_span: f64::INFINITY,
+                ..h
+            },
+            false,
+        ),
     ];
     for (look, ok) in cases {
         let result = EdgeConfig::new(&EdgeParameters {

@@ -797,10 +797,25 @@ fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
                 11 => p.min_points = points,
                 12 => p.min_end_chain_length = v,
                 13 => p.max_start_ahead = v,
-                14 => p.look_ahead = Some(LookAhead { end_cap: v, ..ahead }),
+                14 => {
+                    p.look_ahead = Some(LookAhead {
+                        end_cap: v,
+                        ..ahead
+                    })
+                }
                 15 => p.look_ahead = Some(LookAhead { step: v, ..ahead }),
-                16 => p.look_ahead = Some(LookAhead { farthest: v, ..ahead }),
-                17 => p.look_ahead = Some(LookAhead { min_span: v, ..ahead }),
+                16 => {
+                    p.look_ahead = Some(LookAhead {
+                        farthest: v,
+                        ..ahead
+                    })
+                }
+                17 => {
+                    p.look_ahead = Some(LookAhead {
+                        min_span: v,
+                        ..ahead
+                    })
+                }
                 18 => {
                     p.look_ahead = Some(ahead);
                     p.max_start_ahead = 0.5;

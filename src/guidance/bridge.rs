@@ -210,9 +210,9 @@ impl Bridge {
         bridge: Meters,
     ) -> Option<Pose2<Odom>> {
         let level = odometry.body_to_frame::<Robot>().apply_pose(*ahead).ok()?;
-        let agrees = self.structure(bridge).is_none_or(|s| {
-            libm::fabs(wrap_raw(level.heading.get() - s.heading)) <= AGREE_RAD
-        });
+        let agrees = self
+            .structure(bridge)
+            .is_none_or(|s| libm::fabs(wrap_raw(level.heading.get() - s.heading)) <= AGREE_RAD);
         if agrees {
             Some(level)
         } else {
@@ -413,6 +413,15 @@ mod tests {
             line: Some(()),
             ahead: None,
         }
+    }
+
+    /// A bridge of 4 m after 6 m of detections of the x axis, the bridge
+    /// length and the last pose.
+    fn along_the_x_axis() -> Result<(Bridge, Meters, Pose2<Odom>), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+        Ok((bridge, length, last))
     }
 
     /// A scan graded Exit (a piece's end) that saw the next piece's line
@@ -647,9 +656,7 @@ mod tests {
     //# sideways through the level's point, its heading kept.
     #[test]
     fn the_line_ahead_moves_the_carried_line_through_its_point() -> Result<(), Precondition> {
-        let length = Meters::new(4.0)?;
-        let mut bridge = Bridge::default();
-        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+        let (mut bridge, length, last) = along_the_x_axis()?;
         let line = bridge
             .structure(length)
             .ok_or_else(|| Precondition::new("T", "no line"))?;
@@ -671,7 +678,10 @@ mod tests {
             on.position.x() - level.position.x(),
             on.position.y() - level.position.y(),
         );
-        assert!((error.y.get() - (-dx * sin + dy * cos)).abs() < 1e-9, "{error:?}");
+        assert!(
+            (error.y.get() - (-dx * sin + dy * cos)).abs() < 1e-9,
+            "{error:?}"
+        );
         assert!(
             (error.angular_deviation.get() - wrap_raw(on.heading.get() - line.heading)).abs()
                 < 1e-9,
@@ -708,10 +718,9 @@ mod tests {
     //# latest valid line (GD-BRIDGE-AGREE), by a refused scan, and whenever
     //# there is no latest valid line within the bridge length.
     #[test]
-    fn the_level_ends_with_an_agreeing_line_a_refused_scan_or_the_bridge() -> Result<(), Precondition> {
-        let length = Meters::new(4.0)?;
-        let mut bridge = Bridge::default();
-        let last = drive(&mut bridge, length, 6.0, |_, _| (0.0, 0.0))?;
+    fn the_level_ends_with_an_agreeing_line_a_refused_scan_or_the_bridge(
+    ) -> Result<(), Precondition> {
+        let (bridge, length, last) = along_the_x_axis()?;
         let pose = Pose2::new(last.position.x() + 0.3, 0.0, 0.0)?;
         let ahead = Pose2::<Robot>::new(2.0, 0.25, 0.0)?;
         let seeing = exit_seeing(ahead);

@@ -855,19 +855,15 @@ pub struct EdgeSection {
     pub look_ahead: bool,
     /// l_cap: the length along x dropped from the start of the chain found
     /// ahead (EDGE-LOOK-AHEAD), metres; absent: 0.5.
-    #[serde(default)]
     pub look_ahead_end_cap_m: Option<f64>,
     /// Δx: the step between the search's starts ahead (EDGE-LOOK-AHEAD),
     /// metres; absent: 0.5.
-    #[serde(default)]
     pub look_ahead_step_m: Option<f64>,
     /// x_far: the farthest start of the search ahead (EDGE-LOOK-AHEAD),
     /// metres; absent: 4.
-    #[serde(default)]
     pub look_ahead_farthest_m: Option<f64>,
     /// l_fit: the shortest extent along x of the part fitted ahead
     /// (EDGE-LOOK-AHEAD), metres; absent: 1.
-    #[serde(default)]
     pub look_ahead_min_span_m: Option<f64>,
 }
 

@@ -8,7 +8,9 @@
 //! a gap or a corner (EDGE-GAP, EDGE-CORNER); a least-squares parabola is fitted
 //! to the chain (EDGE-PARABOLA); [`tracking_error`] gives the
 //! robot's errors to the line at the desired lateral distance (EDGE-ERRORS,
-//! EDGE-OFFSET); [`EdgeQuality`] grades the detection (EDGE-QUALITY).
+//! EDGE-OFFSET); [`EdgeQuality`] grades the detection (EDGE-QUALITY); when
+//! the verdict is not valid, the next piece's line may be sought ahead
+//! ([`LookAhead`], EDGE-LOOK-AHEAD).
 //! [`EdgeDetector`] does all of it per tick in buffers it owns (the form a
 //! vehicle stack uses); [`detect`] and [`detect_points`] do the same and
 //! return the chain by value. Nothing allocates and nothing panics; invalid
