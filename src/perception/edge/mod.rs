@@ -297,8 +297,8 @@ fn next_piece_line(
         low = low.min(p.x());
         high = high.max(p.x());
     }
-    // Also false for an empty part (−∞).
-    if part().count() < config.min_points() || !(high - low >= span) {
+    // An empty part spans −∞.
+    if part().count() < config.min_points() || high - low < span {
         return None;
     }
     let line = fit_line(part()).ok()?;
