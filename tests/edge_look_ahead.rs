@@ -235,59 +235,34 @@ fn no_next_piece_a_short_one_or_a_ragged_one_gives_nothing() {
 //# l_fit > 0, every value finite.
 #[test]
 fn look_ahead_parameters_out_of_their_domain_are_refused() {
-    let h = LookAhead::HEDGE;
+    // Each case: one parameter of LookAhead::HEDGE replaced.
+    let with = |field: &str, v: f64| {
+        let mut a = LookAhead::HEDGE;
+        match field {
+            "end_cap" => a.end_cap = v,
+            "step" => a.step = v,
+            "farthest" => a.farthest = v,
+            _ => a.min_span = v,
+        }
+        a
+    };
     let cases = [
-        (h, true),
-        (LookAhead { end_cap: 0.0, ..h }, true),
-        (LookAhead { end_cap: -0.1, ..h }, false),
-        (
-            LookAhead {
-                end_cap: f64::NAN,
-                ..h
-            },
-            false,
-        ),
-        (LookAhead { step: 0.0, ..h }, false),
-        (LookAhead { step: -0.5, ..h }, false),
-        (
-            LookAhead {
-                step: f64::INFINITY,
-                ..h
-            },
-            false,
-        ),
-        (LookAhead { farthest: 0.5, ..h }, true),
-        (LookAhead { farthest: 0.4, ..h }, false),
-        (
-            LookAhead {
-                farthest: 32.0,
-                ..h
-            },
-            true,
-        ),
-        (
-            LookAhead {
-                farthest: 32.5,
-                ..h
-            },
-            false,
-        ),
-        (
-            LookAhead {
-                farthest: f64::NAN,
-                ..h
-            },
-            false,
-        ),
-        (LookAhead { min_span: 0.0, ..h }, false),
-        (
-            LookAhead {
-                min_span: f64::INFINITY,
-                ..h
-            },
-            false,
-        ),
-    ];
+        ("end_cap", 0.5, true),
+        ("end_cap", 0.0, true),
+        ("end_cap", -0.1, false),
+        ("end_cap", f64::NAN, false),
+        ("step", 0.0, false),
+        ("step", -0.5, false),
+        ("step", f64::INFINITY, false),
+        ("farthest", 0.5, true),
+        ("farthest", 0.4, false),
+        ("farthest", 32.0, true),
+        ("farthest", 32.5, false),
+        ("farthest", f64::NAN, false),
+        ("min_span", 0.0, false),
+        ("min_span", f64::INFINITY, false),
+    ]
+    .map(|(field, v, ok)| (with(field, v), ok));
     for (look, ok) in cases {
         let result = EdgeConfig::new(&EdgeParameters {
             look_ahead: Some(look),
