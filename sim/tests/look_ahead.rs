@@ -2,7 +2,7 @@
 //! (`spec/pierre2022.md` EDGE-LOOK-AHEAD, `spec/guidance.md`
 //! GD-BRIDGE-LEVEL), closed loop: the ragged hedge stress fields with the
 //! look-ahead as they set it and without it, over a sweep of seeds,
-//! measured against the envelope's offset line (ground truth).
+//! measured against the offset line of the face followed (ground truth).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 
 mod common;
@@ -12,8 +12,8 @@ use fieldguide_sim::stress::envelope;
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=20;
 
-/// Per seed of [`SEEDS`], the largest and the mean |error to the
-/// envelope's offset line| of stress field `name`, with its look-ahead
+/// Per seed of [`SEEDS`], the largest and the mean |error to the offset
+/// line of the face followed| of stress field `name`, with its look-ahead
 /// (`on`) or with its `look_ahead` keys removed.
 fn figures(name: &str, on: bool) -> Vec<(f64, f64)> {
     SEEDS
@@ -25,7 +25,10 @@ fn figures(name: &str, on: bool) -> Vec<(f64, f64)> {
             let (setup, mut rng) = runner::prepare_with_seed(&source, seed).unwrap();
             let out = runner::run(&setup, &mut rng);
             assert_eq!(out.end, RunEnd::PathEnd, "{name}, seed {seed}");
-            let errors = envelope::envelope_errors(&setup, &out.trace);
+            let errors: Vec<f64> = envelope::face_errors(&setup, &out.trace)
+                .iter()
+                .map(|e| e.followed)
+                .collect();
             assert!(!errors.is_empty(), "{name}, seed {seed}: no edge following");
             let max = errors.iter().map(|e| e.abs()).fold(0.0, f64::max);
             let mean = errors.iter().map(|e| e.abs()).sum::<f64>() / errors.len() as f64;
@@ -47,7 +50,7 @@ fn figures(name: &str, on: bool) -> Vec<(f64, f64)> {
 //# the line's heading arctan a; otherwise, and when the look-ahead is off
 //# or the verdict is Enter or Hold, it MUST report none.
 #[test]
-fn the_line_ahead_brings_the_robot_nearer_the_envelope_beside_gaps() {
+fn the_line_ahead_brings_the_robot_nearer_the_followed_line_beside_gaps() {
     for name in ["hedge-ragged", "hedge-sparse-fast"] {
         let with = figures(name, true);
         let without = figures(name, false);
