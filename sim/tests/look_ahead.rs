@@ -2,7 +2,7 @@
 //! (`spec/pierre2022.md` EDGE-LOOK-AHEAD, `spec/guidance.md`
 //! GD-BRIDGE-LEVEL), closed loop: the ragged hedge stress fields with the
 //! look-ahead as they set it and without it, over a sweep of seeds,
-//! measured against the offset line of the face followed (ground truth).
+//! measured against the followed line (ground truth).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 
 mod common;
@@ -12,8 +12,8 @@ use fieldguide_sim::stress::envelope;
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=20;
 
-/// Per seed of [`SEEDS`], the largest and the mean |error to the offset
-/// line of the face followed| of stress field `name`, with its look-ahead
+/// Per seed of [`SEEDS`], the largest and the mean |error to the
+/// followed line| of stress field `name`, with its look-ahead
 /// (`on`) or with its `look_ahead` keys removed.
 fn figures(name: &str, on: bool) -> Vec<(f64, f64)> {
     SEEDS
