@@ -428,9 +428,10 @@ proptest! {
     //# Each call MUST start from the previous call's set of lines (the empty
     //# set on the first call), refitted to the points they attach on this scan,
     //# and
-    //# MUST run the configured number of iterations, each of which seeds new
-    //# models, merges, re-attaches, deletes and re-attaches again, and is kept
-    //# only when its energy is not above the energy of the set kept before it.
+    //# MUST run the configured number of iterations, unless it ends early
+    //# (below), each of which seeds new models, merges, re-attaches, deletes and
+    //# re-attaches again, and is kept only when its energy is not above the
+    //# energy of the set kept before it.
     //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
     //= type=test
     //# An iteration whose set has a higher energy than the set kept
@@ -852,4 +853,79 @@ fn work_is_bounded_by_the_capacities() {
         assert!(r.models().len() <= MAX_MODELS);
         assert!(f.accepted <= r.config().params().iterations);
     }
+}
+
+//= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
+//= type=test
+//# When the set a call starts from holds at least one model,
+//# the call MUST end once `converged_after` iterations in a row
+//# have been discarded (never when it is 0).
+//= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
+//= type=test
+//# `RubyParams::authors` MUST set `converged_after` to 3 for the one-point
+//# variants and to 0 for Ruby and RG.
+#[test]
+fn a_tracking_call_ends_after_its_discarded_iterations_in_a_row() {
+    use fieldguide::perception::furrow::lines::RowLine;
+    for v in Variant::ALL {
+        let expected = if v.one_point() { 3 } else { 0 };
+        assert_eq!(RubyParams::authors(v).converged_after, expected);
+    }
+    // Four rows with weeds among them (a deterministic scatter), and the
+    // rows 2 cm off as the last scan's lines.
+    let rows = four_rows(0.75, 0.1, 0.02);
+    let mut pts = rows_points(&rows, 0.2, 0.01);
+    pts.extend((0..40).map(|i| {
+        let u = |s: f64| (f64::from(i) * s).sin().abs();
+        point(0.2 + 3.6 * u(12.9898), -1.8 + 3.6 * u(78.233))
+    }));
+    let carried: Vec<RowLine> = rows
+        .iter()
+        .map(|&(a, b)| RowLine::new(a, m(b + 0.02)).unwrap())
+        .collect();
+    let mut early = 0;
+    for seed in 0..20 {
+        for k in [1_u16, 3, 5] {
+            // One call from the carried lines, with `iterations` and `k`.
+            let call = |iterations: u16, k: u16, carry: bool| {
+                let mut r = finder_with(Variant::Rgop, |p| {
+                    p.seed = seed;
+                    p.iterations = iterations;
+                    p.converged_after = k;
+                });
+                if carry {
+                    r.carry(&carried);
+                }
+                let found = r.find(&pts);
+                (found, lines_of(&r))
+            };
+            let (all, _) = call(10, 0, true);
+            // Finders stopped after j iterations draw the same: whether
+            // iteration j was kept is whether their kept count grew.
+            let accepted: Vec<u16> = (1..=10).map(|j| call(j, 0, true).0.accepted).collect();
+            let kept = |j: usize| accepted[j - 1] > if j > 1 { accepted[j - 2] } else { 0 };
+            let k_usize = usize::from(k);
+            let stop = (k_usize..=10)
+                .find(|&j| (j + 1 - k_usize..=j).all(|i| !kept(i)))
+                .map_or(10, |j| j as u16)
+                .min(all.iterations);
+            let (found, lines) = call(10, k, true);
+            assert_eq!(found.iterations, stop, "seed {seed}, k = {k}");
+            // What it returns is the set kept after `stop` iterations.
+            let (limited, limited_lines) = call(stop, 0, true);
+            assert_eq!((found.accepted, &lines), (limited.accepted, &limited_lines));
+            if stop < all.iterations {
+                early += 1;
+            }
+            // From the empty set, every iteration runs.
+            let (fresh, fresh_lines) = call(10, k, false);
+            let (fresh_all, fresh_all_lines) = call(10, 0, false);
+            assert_eq!(
+                (fresh.iterations, fresh.accepted, fresh_lines),
+                (fresh_all.iterations, fresh_all.accepted, fresh_all_lines)
+            );
+        }
+    }
+    // The rule was exercised: a third of the calls or more ended early.
+    assert!(early >= 20, "{early} of 60 calls ended early");
 }

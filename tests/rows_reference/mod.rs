@@ -222,6 +222,10 @@ impl Reference {
         let start_energy = energy(&best, &stats, &weights, &p);
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
+        // A call from a set holding a model ends after `converged_after`
+        // discarded iterations in a row (RUBY-ITERATION).
+        let tracking = !best.slots().is_empty();
+        let mut discarded = 0_u16;
         for _ in 0..p.iterations {
             let mut candidate = best.clone();
             search(&mut candidate, points, &mut self.rng, &p);
@@ -235,6 +239,12 @@ impl Reference {
                 best_energy = e;
                 stats = candidate_stats;
                 accepted += 1;
+                discarded = 0;
+            } else {
+                discarded += 1;
+                if tracking && discarded == p.converged_after {
+                    break;
+                }
             }
         }
         self.models = best

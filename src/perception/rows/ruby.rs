@@ -146,6 +146,9 @@ pub struct RubyParams {
     /// Re-weightings of each model fit towards least absolute deviations
     /// (RUBY-FIT); 0 keeps plain least squares.
     pub fit_rounds: u8,
+    /// A call that starts from a set holding a model ends after this many
+    /// discarded iterations in a row (RUBY-ITERATION); 0 never ends early.
+    pub converged_after: u16,
     /// The seed of the detector's random generator.
     pub seed: u64,
 }
@@ -157,13 +160,18 @@ impl RubyParams {
     /// as well, α = 0.7, τ = 10, the best quarter kept (at least 6 for RG,
     /// 4 for the one-point variants), 10 iterations, 40 models per
     /// iteration, Z* merge distance 0.05 m; the search runs until half the
-    /// outliers are attached.
+    /// outliers are attached. The library's own: four re-weightings of a
+    /// fit (RUBY-FIT), and a call of a one-point variant ends after three
+    /// discarded iterations in a row (RUBY-ITERATION).
     //= spec/guyonneau2022.md#ruby-defaults-constants-of-the-authors-implementation
     //# `RubyParams::authors` MUST give ρ = 3, λ = 4, ζ = 3 m, an outlier distance of
     //# 0.2 m, β = 0.1, a same-model intercept of 0.2 m, α = 0.7, τ = 10, a kept share
     //# of a quarter with at least 6 models for RG and 4 for the one-point variants,
     //# 10 iterations, 40 models per iteration, a search share of one half and a Z*
     //# merge distance of 0.05 m.
+    //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
+    //# `RubyParams::authors` MUST set `converged_after` to 3 for the one-point
+    //# variants and to 0 for Ruby and RG.
     #[must_use]
     pub const fn authors(variant: Variant) -> Self {
         Self {
@@ -183,6 +191,7 @@ impl RubyParams {
             search_until: 0.5,
             merge_distance: Meters(0.05),
             fit_rounds: 4,
+            converged_after: if variant.one_point() { 3 } else { 0 },
             seed: 20_221_118,
         }
     }
@@ -421,6 +430,9 @@ pub struct Found {
     pub points: usize,
     /// Iterations whose set was kept (Alg. 1, lines 26-27).
     pub accepted: u16,
+    /// Iterations run: the configured number, or fewer when the call ended
+    /// early (RUBY-ITERATION, RUBY-BOUND).
+    pub iterations: u16,
 }
 
 /// Bit `k` of a mask.
@@ -742,9 +754,10 @@ impl<const N: usize> Ruby<N> {
     //# Each call MUST start from the previous call's set of lines (the empty
     //# set on the first call), refitted to the points they attach on this scan,
     //# and
-    //# MUST run the configured number of iterations, each of which seeds new
-    //# models, merges, re-attaches, deletes and re-attaches again, and is kept
-    //# only when its energy is not above the energy of the set kept before it.
+    //# MUST run the configured number of iterations, unless it ends early
+    //# (below), each of which seeds new models, merges, re-attaches, deletes and
+    //# re-attaches again, and is kept only when its energy is not above the
+    //# energy of the set kept before it.
     pub fn find(&mut self, points: &[RowPoint]) -> Found {
         let points = points.get(..N.min(points.len())).unwrap_or(&[]);
         let n = points.len();
@@ -792,8 +805,14 @@ impl<const N: usize> Ruby<N> {
         let start_energy = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
+        let mut iterations = 0_u16;
+        // Discarded iterations in a row, counted when the call starts from
+        // a set holding a model.
+        let tracking = best.alive != 0;
+        let mut discarded = 0_u16;
 
         for _ in 0..p.iterations {
+            iterations = iterations.saturating_add(1);
             let (best, candidate) = pair(&mut self.sets, self.kept);
             let (_, candidate_stats) = pair(&mut self.stats, self.kept);
             candidate.copy_from(best, n);
@@ -817,10 +836,20 @@ impl<const N: usize> Ruby<N> {
                 self.kept = 1_usize.saturating_sub(self.kept);
                 best_energy = e;
                 accepted = accepted.saturating_add(1);
+                discarded = 0;
             } else if !drew {
                 // The next iterations would start from the same set with the
                 // generator where it was: the same set, discarded again.
                 break;
+            } else {
+                //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
+                //# When the set a call starts from holds at least one model,
+                //# the call MUST end once `converged_after` iterations in a row
+                //# have been discarded (never when it is 0).
+                discarded = discarded.saturating_add(1);
+                if tracking && discarded == p.converged_after {
+                    break;
+                }
             }
         }
 
@@ -842,6 +871,7 @@ impl<const N: usize> Ruby<N> {
             start_energy,
             points: n,
             accepted,
+            iterations,
         }
     }
 
