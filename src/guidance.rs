@@ -832,6 +832,7 @@ where
                 b,
                 &params.vehicle,
                 entry,
+                self.machine.mode() == MachineMode::Behaviour(i),
             ));
         }
         let approach = self.approach(&behaviours);
@@ -1155,7 +1156,8 @@ impl PlanReference {
 }
 
 /// Plan consistency and the law of one configured behaviour (GD-PLAN,
-/// GD-PREDICTION, GD-COMMAND).
+/// GD-PLAN-ENTRY, GD-PREDICTION, GD-COMMAND); `in_mode` when the tick
+/// started in that behaviour's mode.
 fn behaviour_status<C, L: ControlLaw>(
     estimate: &Estimate,
     plan_reference: Option<&PlanReference>,
@@ -1163,6 +1165,7 @@ fn behaviour_status<C, L: ControlLaw>(
     behaviour: &BehaviourParams<C, L>,
     vehicle: &Vehicle,
     entry: Option<entry::EntryReference>,
+    in_mode: bool,
 ) -> BehaviourStatus {
     //= spec/guidance.md#gd-fix-quality-a-fix-judged-by-its-kind-and-accuracy
     //# In a tick in which path tracking steers on the carried pose and the plan
@@ -1191,7 +1194,20 @@ fn behaviour_status<C, L: ControlLaw>(
     //# its tracking error against the path's.
     let plan_consistent = match (&estimate.error, plan_reference) {
         (Some(line), Some(r)) => match &r.check {
-            Some((tolerance, Some(ahead))) => tolerance.is_consistent(line, &r.path, ahead),
+            //= spec/guidance.md#gd-plan-entry-a-line-entered-only-near-the-path-s-heading
+            //# When a behaviour's plan tolerance has an entry heading, its line MUST be
+            //# reported consistent with the plan in a tick that starts outside that
+            //# behaviour's mode only when, in addition to GD-PLAN, its heading differs
+            //# from the path's by at most the entry heading; in a tick that starts in
+            //# the behaviour's mode, GD-PLAN alone MUST judge it.
+            Some((tolerance, Some(ahead))) => {
+                tolerance.is_consistent(line, &r.path, ahead)
+                    && (in_mode
+                        || tolerance.entry_heading().is_none_or(|entry| {
+                            line_relative_to_path(line, &r.path)
+                                .is_ok_and(|p| p.heading.abs().get() <= entry.get())
+                        }))
+            }
             Some((_, None)) => false,
             None => true,
         },

@@ -1284,6 +1284,79 @@ fn a_line_going_straight_on_where_the_path_turns_is_not_entered() {
     assert_eq!(check(2.0), (false, Mode::PathTracking));
 }
 
+/// A straight path through the origin at `heading` radians from the world x
+/// axis, from 20 m behind to 200 m ahead.
+fn tilted_path(heading: f64) -> ReferencePath<PATH_N> {
+    let points: Vec<Point2<World>> = (0..=44)
+        .map(|i| {
+            let t = -20.0 + 5.0 * f64::from(i);
+            Point2::new(t * heading.cos(), t * heading.sin()).unwrap()
+        })
+        .collect();
+    ReferencePath::from_waypoints(&points, PathConfig::default()).unwrap()
+}
+
+//= spec/guidance.md#gd-plan-entry-a-line-entered-only-near-the-path-s-heading
+//= type=test
+//# When a behaviour's plan tolerance has an entry heading, its line MUST be
+//# reported consistent with the plan in a tick that starts outside that
+//# behaviour's mode only when, in addition to GD-PLAN, its heading differs
+//# from the path's by at most the entry heading; in a tick that starts in
+//# the behaviour's mode, GD-PLAN alone MUST judge it.
+#[test]
+fn a_line_tilted_from_the_path_is_not_entered_but_is_kept() {
+    // A wall along the world x axis 1.5 m left of the robot: the line to
+    // follow is 0.1 m left of it, 0.1 rad from a path turned by −0.1 rad.
+    let pose = (0.0, 0.0, 0.0);
+    let wall = wall_ranges(pose, long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&wall))];
+    let tick = TickInput {
+        scans: &scans,
+        ..bare(pose, true)
+    };
+    let (tilted, straight) = (tilted_path(-0.1), straight_path());
+    let tolerance = PlanTolerance::new(m(0.3), Radians::new(0.2).unwrap()).unwrap();
+    let with_entry = |entry: f64| {
+        with_plan(
+            edge_params(),
+            tolerance
+                .with_entry_heading(Radians::new(entry).unwrap())
+                .unwrap(),
+            Seconds::new(0.5).unwrap(),
+        )
+    };
+    // An entry heading of 0.09 rad: within GD-PLAN's 0.2 rad, but never
+    // entered.
+    let params = with_entry(0.09);
+    let mut g = pipeline(&params, &tilted);
+    for _ in 0..200 {
+        let out = g.step(&tick).unwrap();
+        let edge = status(&out, EDGE);
+        assert_eq!(edge.detected, Verdict::Enter);
+        assert!((edge.plan.unwrap().heading.get() - 0.1).abs() < 1e-6);
+        assert!(!edge.plan_consistent);
+        assert_eq!(out.mode, Mode::PathTracking);
+    }
+    // 0.11 rad: entered after the 40 ticks of the entry delay.
+    let mut g = pipeline(&with_entry(0.11), &tilted);
+    let modes: Vec<Mode> = (0..40).map(|_| g.step(&tick).unwrap().mode).collect();
+    assert_eq!(modes[38], Mode::PathTracking);
+    assert_eq!(modes[39], Mode::Behaviour(EDGE));
+    // Entered along a path parallel to the line, then the path turned: in
+    // the mode only GD-PLAN's 0.2 rad judges, and the line is kept.
+    let mut g = pipeline(&params, &straight);
+    for _ in 0..40 {
+        g.step(&tick).unwrap();
+    }
+    assert_eq!(g.mode(), Mode::Behaviour(EDGE));
+    g.set_path(&tilted);
+    for _ in 0..200 {
+        let out = g.step(&tick).unwrap();
+        assert!(status(&out, EDGE).plan_consistent);
+        assert_eq!(out.mode, Mode::Behaviour(EDGE));
+    }
+}
+
 //= spec/guidance.md#gd-command-the-command-of-the-selected-source
 //= type=test
 //# A behaviour whose law refuses its error MUST be reported to the switching

@@ -1847,6 +1847,9 @@ proptest! {
             .unwrap_or(PlanTolerance::new(m(0.3), rad(0.3)).unwrap());
         check!("supervisor::switching::plan::PlanTolerance::with_lookahead", tolerance.with_lookahead(lookahead));
         let tolerance = tolerance.with_lookahead(lookahead).unwrap_or(tolerance);
+        check!("supervisor::switching::plan::PlanTolerance::with_entry_heading", tolerance.with_entry_heading(max_heading));
+        let tolerance = tolerance.with_entry_heading(max_heading).unwrap_or(tolerance);
+        check!("supervisor::switching::plan::PlanTolerance::entry_heading", tolerance.entry_heading());
         check!("supervisor::switching::plan::PlanTolerance::max_offset", tolerance.max_offset());
         check!("supervisor::switching::plan::PlanTolerance::max_heading", tolerance.max_heading());
         check!("supervisor::switching::plan::PlanTolerance::lookahead", tolerance.lookahead());

@@ -231,6 +231,32 @@ fn a_straight_line_where_the_path_turns_is_caught_ahead() {
     assert_eq!(e.unwrap_err().requirement, "SW-PLAN-AHEAD");
 }
 
+//= spec/guidance.md#gd-plan-entry-a-line-entered-only-near-the-path-s-heading
+//= type=test
+//# An entry heading that is negative or larger than the tolerance's largest
+//# heading MUST be refused with `GD-PLAN-ENTRY`.
+#[test]
+fn an_entry_heading_beyond_the_largest_heading_is_refused() {
+    let tolerance =
+        PlanTolerance::new(Meters::new(0.3).unwrap(), Radians::new(0.2).unwrap()).unwrap();
+    assert_eq!(tolerance.entry_heading(), None);
+    for bad in [-1e-9, -0.1, 0.2 + 1e-9, 3.0] {
+        let e = tolerance.with_entry_heading(Radians::new(bad).unwrap());
+        assert_eq!(e.unwrap_err().requirement, "GD-PLAN-ENTRY", "{bad}");
+    }
+    for good in [0.0, 0.1, 0.2] {
+        let t = tolerance
+            .with_entry_heading(Radians::new(good).unwrap())
+            .unwrap();
+        assert_eq!(t.entry_heading(), Some(Radians::new(good).unwrap()));
+        // The other tolerances are kept.
+        assert_eq!(
+            (t.max_offset(), t.max_heading()),
+            (tolerance.max_offset(), tolerance.max_heading())
+        );
+    }
+}
+
 /// An angle wrapped to (−π, π].
 fn wrap(angle: f64) -> f64 {
     fieldguide::geometry::units::wrap_angle(Radians::new(angle).unwrap()).get()

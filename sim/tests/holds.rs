@@ -407,9 +407,12 @@ fn sweep_pass(name: &str, bridge: bool, envelope_line: bool) -> PassFigures {
                                 t
                             } else {
                                 // The piece-end rule needs the bridge: without
-                                // it, the paper's detector.
+                                // it, the paper's detector; and the paper's
+                                // entry, which the many re-entries would
+                                // otherwise delay (GD-PLAN-ENTRY).
                                 let t = common::without_key(&t, "end_chain_length_m");
                                 let t = common::without_key(&t, "max_start_ahead_m");
+                                let t = common::without_key(&t, "plan_entry_heading_deg");
                                 common::without_key(&t, "bridge_m")
                             }
                         });

@@ -1041,6 +1041,19 @@ fn switching_fields_are_checked_and_named() {
     assert_field(&e, "switching.plan_lookahead_m", "");
     let e = error_of(with("plan_dead_reckoning_m = 20.0"));
     assert_field(&e, "switching.plan_max_offset_m", "dead reckoning");
+    // The entry heading (GD-PLAN-ENTRY): within [0, plan_max_heading_deg].
+    let e = error_of(with("plan_entry_heading_deg = 5.0"));
+    assert_field(&e, "switching.plan_max_offset_m", "entry heading");
+    for bad in ["-1.0", "20.5", "nan"] {
+        let e = error_of(move |t: String| {
+            format!("{t}\n[switching]\nplan_max_offset_m = 0.2\nplan_entry_heading_deg = {bad}\n")
+        });
+        assert_field(&e, "switching.plan_entry_heading_deg", "");
+    }
+    let e = error_of(with(
+        "plan_max_offset_m = 0.2\nplan_max_heading_deg = 10.0\nplan_entry_heading_deg = 12.0",
+    ));
+    assert_field(&e, "switching.plan_entry_heading_deg", "");
     for bad in ["0.0", "-5.0", "1001.0", "nan"] {
         let e = error_of(move |t: String| {
             format!("{t}\n[switching]\nplan_max_offset_m = 0.2\nplan_dead_reckoning_m = {bad}\n")

@@ -140,6 +140,10 @@ pub struct SwitchingSection {
     pub plan_max_offset_m: Option<f64>,
     /// Plan consistency: largest heading difference to the path, degrees (default 20).
     pub plan_max_heading_deg: Option<f64>,
+    /// Plan consistency of a line whose behaviour is not entered: largest
+    /// heading difference to the path, degrees, in [0, plan_max_heading_deg]
+    /// (default: plan_max_heading_deg; GD-PLAN-ENTRY).
+    pub plan_entry_heading_deg: Option<f64>,
     /// Plan consistency: how long a line may disagree, s (default 0.3).
     pub plan_delay_s: Option<f64>,
     /// Plan consistency: how far ahead along the path the line's offset is

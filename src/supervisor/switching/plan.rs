@@ -133,6 +133,7 @@ pub struct PlanTolerance {
     max_offset: Meters,
     max_heading: Radians,
     lookahead: Meters,
+    entry_heading: Option<Radians>,
 }
 
 impl PlanTolerance {
@@ -159,7 +160,37 @@ impl PlanTolerance {
             max_offset,
             max_heading,
             lookahead: Meters(0.0),
+            entry_heading: None,
         })
+    }
+
+    /// The same tolerances, with a tighter heading `entry_heading` for the
+    /// line of a behaviour in a tick that starts outside its mode, so that
+    /// a line turned from the path is not entered (GD-PLAN-ENTRY).
+    ///
+    /// # Errors
+    /// `GD-PLAN-ENTRY` when `entry_heading` is outside [0, max_heading].
+    //= spec/guidance.md#gd-plan-entry-a-line-entered-only-near-the-path-s-heading
+    //# An entry heading that is negative or larger than the tolerance's largest
+    //# heading MUST be refused with `GD-PLAN-ENTRY`.
+    pub fn with_entry_heading(self, entry_heading: Radians) -> Result<Self, Precondition> {
+        if entry_heading.get() < 0.0 || entry_heading.get() > self.max_heading.get() {
+            return Err(Precondition::new(
+                "GD-PLAN-ENTRY",
+                "the entry heading must be within [0, max_heading]",
+            ));
+        }
+        Ok(Self {
+            entry_heading: Some(entry_heading),
+            ..self
+        })
+    }
+
+    /// The heading within which a line of a behaviour not entered is
+    /// consistent, radians (`None`: [`Self::max_heading`]).
+    #[must_use]
+    pub const fn entry_heading(&self) -> Option<Radians> {
+        self.entry_heading
     }
 
     /// The same tolerances, also checking the line's offset `lookahead`

@@ -92,13 +92,14 @@ pub(super) fn switching(
     let plan = match s.plan_max_offset_m {
         None => {
             if s.plan_max_heading_deg.is_some()
+                || s.plan_entry_heading_deg.is_some()
                 || s.plan_delay_s.is_some()
                 || s.plan_lookahead_m.is_some()
                 || s.plan_dead_reckoning_m.is_some()
             {
                 return Err(check.error(
                     "switching.plan_max_offset_m",
-                    "plan consistency needs its offset when its heading, delay, look-ahead or dead reckoning is set",
+                    "plan consistency needs its offset when its heading, entry heading, delay, look-ahead or dead reckoning is set",
                 ));
             }
             None
@@ -124,15 +125,28 @@ pub(super) fn switching(
                 s.plan_dead_reckoning_m,
                 1000.0,
             )?;
+            let tolerance = PlanTolerance::new(
+                Meters::new(offset).map_err(err("switching.plan_max_offset_m"))?,
+                Radians::new(heading.to_radians())
+                    .map_err(err("switching.plan_max_heading_deg"))?,
+            )
+            .map_err(err("switching.plan_max_offset_m"))?
+            .with_lookahead(Meters::new(lookahead).map_err(err("switching.plan_lookahead_m"))?)
+            .map_err(err("switching.plan_lookahead_m"))?;
+            let tolerance = match s.plan_entry_heading_deg {
+                None => tolerance,
+                Some(h) => {
+                    let h = check.range("switching.plan_entry_heading_deg", h, 0.0, heading)?;
+                    tolerance
+                        .with_entry_heading(
+                            Radians::new(h.to_radians())
+                                .map_err(err("switching.plan_entry_heading_deg"))?,
+                        )
+                        .map_err(err("switching.plan_entry_heading_deg"))?
+                }
+            };
             Some(PlanSetup {
-                tolerance: PlanTolerance::new(
-                    Meters::new(offset).map_err(err("switching.plan_max_offset_m"))?,
-                    Radians::new(heading.to_radians())
-                        .map_err(err("switching.plan_max_heading_deg"))?,
-                )
-                .map_err(err("switching.plan_max_offset_m"))?
-                .with_lookahead(Meters::new(lookahead).map_err(err("switching.plan_lookahead_m"))?)
-                .map_err(err("switching.plan_lookahead_m"))?,
+                tolerance,
                 delay: Seconds::new(delay).map_err(err("switching.plan_delay_s"))?,
                 dead_reckoning,
             })
