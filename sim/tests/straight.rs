@@ -6,34 +6,18 @@
 
 mod common;
 
-use fieldguide_sim::runner::{self, RunEnd};
-use fieldguide_sim::stress::envelope;
-
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=20;
 
 /// Per seed of [`SEEDS`], the largest and the mean |error to the followed
 /// line| and the largest error towards the hedge from the envelope's
 /// line, of stress field `name` as written (`on`) or with its `straight`
-/// key removed.
+/// key removed (the detector reads the chain as a straight line only then).
 fn figures(name: &str, on: bool) -> Vec<(f64, f64, f64)> {
-    SEEDS
-        .map(|seed| {
-            let mut source = common::stress_source(name);
-            if !on {
-                source.text = common::without_key(&source.text, "straight");
-            }
-            let (setup, mut rng) = runner::prepare_with_seed(&source, seed).unwrap();
-            assert_eq!(setup.edge.as_ref().unwrap().detector.straight(), on);
-            let out = runner::run(&setup, &mut rng);
-            assert_eq!(out.end, RunEnd::PathEnd, "{name}, seed {seed}");
-            let errors = envelope::face_errors(&setup, &out.trace);
-            assert!(!errors.is_empty(), "{name}, seed {seed}: no edge following");
-            let max = errors.iter().map(|e| e.followed.abs()).fold(0.0, f64::max);
-            let mean = errors.iter().map(|e| e.followed.abs()).sum::<f64>() / errors.len() as f64;
-            let towards = errors.iter().map(|e| -e.envelope).fold(0.0, f64::max);
-            (max, mean, towards)
-        })
-        .collect()
+    let off = (!on).then_some("straight");
+    let source = common::stress_source_without(name, off);
+    let (setup, _) = fieldguide_sim::runner::prepare_with_seed(&source, 1).unwrap();
+    assert_eq!(setup.edge.as_ref().unwrap().detector.straight(), on);
+    common::followed_figures(name, off, SEEDS)
 }
 
 //= spec/pierre2022.md#edge-straight-the-chain-read-as-a-straight-line
