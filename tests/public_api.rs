@@ -778,7 +778,7 @@ proptest! {
 
 /// Edge parameters: Table 1's, one of them replaced by anything.
 fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
-    (0..20_usize, raw(), 0..8_usize)
+    (0..21_usize, raw(), 0..8_usize)
         .prop_map(|(field, v, points)| {
             let mut p = EdgeParameters::PIERRE2022;
             let ahead = LookAhead::HEDGE;
@@ -819,6 +819,11 @@ fn edge_parameters() -> BoxedStrategy<EdgeParameters> {
                 18 => {
                     p.look_ahead = Some(ahead);
                     p.max_start_ahead = 0.5;
+                }
+                19 => {
+                    p.look_ahead = Some(ahead);
+                    p.max_start_ahead = 0.5;
+                    p.straight = true;
                 }
                 _ => {}
             }
@@ -871,6 +876,7 @@ proptest! {
         check!("perception::edge::config::EdgeConfig::min_end_chain_length", config.min_end_chain_length());
         check!("perception::edge::config::EdgeConfig::max_start_ahead", config.max_start_ahead());
         check!("perception::edge::config::EdgeConfig::look_ahead", config.look_ahead());
+        check!("perception::edge::config::EdgeConfig::straight", config.straight());
         check!("perception::edge::config::Side::sign", s.sign());
         check!("perception::edge::config::Side::mirrored", s.mirrored());
         check!("perception::edge::chain::translation_contact", translation_contact(q, s, radius));

@@ -407,11 +407,13 @@ fn sweep_pass(name: &str, bridge: bool, envelope_line: bool) -> PassFigures {
                                 t
                             } else {
                                 // The piece-end rule needs the bridge: without
-                                // it, the paper's detector; and the paper's
-                                // entry, which the many re-entries would
-                                // otherwise delay (GD-PLAN-ENTRY).
+                                // it, the paper's detector and its parabola
+                                // (EDGE-STRAIGHT); and the paper's entry, which
+                                // the many re-entries would otherwise delay
+                                // (GD-PLAN-ENTRY).
                                 let t = common::without_key(&t, "end_chain_length_m");
                                 let t = common::without_key(&t, "max_start_ahead_m");
+                                let t = common::without_key(&t, "straight");
                                 let t = common::without_key(&t, "plan_entry_heading_deg");
                                 common::without_key(&t, "bridge_m")
                             }

@@ -7,33 +7,15 @@
 
 mod common;
 
-use fieldguide_sim::runner::{self, RunEnd};
-use fieldguide_sim::stress::envelope;
-
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=20;
 
 /// Per seed of [`SEEDS`], the largest and the mean |error to the
 /// followed line| of stress field `name`, with its look-ahead
 /// (`on`) or with its `look_ahead` keys removed.
 fn figures(name: &str, on: bool) -> Vec<(f64, f64)> {
-    SEEDS
-        .map(|seed| {
-            let mut source = common::stress_source(name);
-            if !on {
-                source.text = common::without_key(&source.text, "look_ahead");
-            }
-            let (setup, mut rng) = runner::prepare_with_seed(&source, seed).unwrap();
-            let out = runner::run(&setup, &mut rng);
-            assert_eq!(out.end, RunEnd::PathEnd, "{name}, seed {seed}");
-            let errors: Vec<f64> = envelope::face_errors(&setup, &out.trace)
-                .iter()
-                .map(|e| e.followed)
-                .collect();
-            assert!(!errors.is_empty(), "{name}, seed {seed}: no edge following");
-            let max = errors.iter().map(|e| e.abs()).fold(0.0, f64::max);
-            let mean = errors.iter().map(|e| e.abs()).sum::<f64>() / errors.len() as f64;
-            (max, mean)
-        })
+    common::followed_figures(name, (!on).then_some("look_ahead"), SEEDS)
+        .into_iter()
+        .map(|(max, mean, _)| (max, mean))
         .collect()
 }
 

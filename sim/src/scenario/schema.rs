@@ -869,6 +869,10 @@ pub struct EdgeSection {
     /// l_fit: the shortest extent along x of the part fitted ahead
     /// (EDGE-LOOK-AHEAD), metres; absent: 1.
     pub look_ahead_min_span_m: Option<f64>,
+    /// Whether the chain is read as its least-squares straight line
+    /// instead of the paper's parabola (EDGE-STRAIGHT); absent: false.
+    #[serde(default)]
+    pub straight: bool,
 }
 
 fn default_period_s() -> f64 {

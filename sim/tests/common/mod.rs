@@ -44,6 +44,42 @@ pub fn without_key(text: &str, key: &str) -> String {
         .join("\n")
 }
 
+/// The stress field `name` with its lines starting with `off` removed when
+/// given (an optional rule switched off).
+pub fn stress_source_without(name: &str, off: Option<&str>) -> Source {
+    let mut source = stress_source(name);
+    if let Some(key) = off {
+        source.text = without_key(&source.text, key);
+    }
+    source
+}
+
+/// Per seed of `seeds`, of the stress field `name` without its lines
+/// starting with `off` ([`stress_source_without`]): the largest
+/// and the mean |error to the followed line| and the largest error towards
+/// the hedge from the envelope's line (`stress::envelope::face_errors`).
+/// Every run must reach the path's end and follow the edge.
+pub fn followed_figures(
+    name: &str,
+    off: Option<&str>,
+    seeds: std::ops::RangeInclusive<u64>,
+) -> Vec<(f64, f64, f64)> {
+    seeds
+        .map(|seed| {
+            let source = stress_source_without(name, off);
+            let (setup, mut rng) = runner::prepare_with_seed(&source, seed).unwrap();
+            let out = runner::run(&setup, &mut rng);
+            assert_eq!(out.end, runner::RunEnd::PathEnd, "{name}, seed {seed}");
+            let errors = fieldguide_sim::stress::envelope::face_errors(&setup, &out.trace);
+            assert!(!errors.is_empty(), "{name}, seed {seed}: no edge following");
+            let max = errors.iter().map(|e| e.followed.abs()).fold(0.0, f64::max);
+            let mean = errors.iter().map(|e| e.followed.abs()).sum::<f64>() / errors.len() as f64;
+            let towards = errors.iter().map(|e| -e.envelope).fold(0.0, f64::max);
+            (max, mean, towards)
+        })
+        .collect()
+}
+
 /// The worst of `values` over a sweep: the largest, with the seed it came from.
 pub fn worst_of(values: impl IntoIterator<Item = (u64, f64)>) -> (u64, f64) {
     values.into_iter().fold(

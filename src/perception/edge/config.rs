@@ -89,6 +89,10 @@ pub struct EdgeParameters {
     /// The search for the next piece's line ahead when the chain gives no
     /// valid estimate (EDGE-LOOK-AHEAD; not in the paper); `None`: off.
     pub look_ahead: Option<LookAhead>,
+    /// Whether the chain is read as its least-squares straight line
+    /// instead of eq. 10's parabola (EDGE-STRAIGHT; not in the paper);
+    /// `false`: the paper's parabola.
+    pub straight: bool,
 }
 
 /// The most starts the look-ahead search tries: `x_far / Δx` is at most
@@ -130,8 +134,8 @@ impl EdgeParameters {
     /// l_min = 1.5 m, w_max = 1 m, 5 points at least (`spec/pierre2022.md`,
     /// EDGE-CONFIG), and the rules beyond the paper: l_link = 1 m (EDGE-GAP)
     /// and φ_turn = π/4 (EDGE-CORNER); the piece-end rule is off
-    /// (EDGE-PIECE-END: l_end = 0, x_ahead = `f64::MAX`) and so is the
-    /// look-ahead (EDGE-LOOK-AHEAD).
+    /// (EDGE-PIECE-END: l_end = 0, x_ahead = `f64::MAX`) and so are the
+    /// look-ahead (EDGE-LOOK-AHEAD) and the straight reading (EDGE-STRAIGHT).
     pub const PIERRE2022: Self = Self {
         radius: 1.0,
         max_rotation: FRAC_PI_2,
@@ -148,6 +152,7 @@ impl EdgeParameters {
         min_end_chain_length: 0.0,
         max_start_ahead: f64::MAX,
         look_ahead: None,
+        straight: false,
     };
 }
 
@@ -169,6 +174,7 @@ pub struct EdgeConfig {
     min_end_chain_length: f64,
     max_start_ahead: f64,
     look_ahead: Option<LookAhead>,
+    straight: bool,
 }
 
 fn require(ok: bool, violated: &'static str) -> Result<(), Precondition> {
@@ -270,6 +276,7 @@ impl EdgeConfig {
             min_end_chain_length: p.min_end_chain_length,
             max_start_ahead: p.max_start_ahead,
             look_ahead: p.look_ahead,
+            straight: p.straight,
         })
     }
 
@@ -360,6 +367,12 @@ impl EdgeConfig {
     #[must_use]
     pub const fn look_ahead(&self) -> Option<&LookAhead> {
         self.look_ahead.as_ref()
+    }
+
+    /// Whether the chain is read as a straight line (EDGE-STRAIGHT).
+    #[must_use]
+    pub const fn straight(&self) -> bool {
+        self.straight
     }
 
     /// σ_edge / σ_path hysteresis on the residual standard deviation.

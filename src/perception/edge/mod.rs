@@ -421,7 +421,11 @@ pub fn detect_points<const M: usize>(
 }
 
 fn fit_chain<const M: usize>(chain: &Chain<M>, side: Side, config: &EdgeConfig) -> Option<EdgeFit> {
-    let parabola = parabola::fit_chain_parabola(chain.points()).ok()?;
+    let parabola = if config.straight() {
+        parabola::fit_chain_line(chain.points()).ok()?
+    } else {
+        parabola::fit_chain_parabola(chain.points()).ok()?
+    };
     let quality = EdgeQuality::measure(chain.points(), chain.length(), &parabola).ok()?;
     let error = tracking_error(&parabola, side, config.offset(), ROBOT_X).ok()?;
     Some(EdgeFit {

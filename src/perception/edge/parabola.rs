@@ -4,7 +4,7 @@
 
 use super::config::Side;
 use crate::error::Precondition;
-use crate::geometry::fit::{fit_parabola, ParabolaFit};
+use crate::geometry::fit::{fit_line, fit_parabola, ParabolaFit};
 use crate::geometry::frame::{Point2, Robot};
 use crate::geometry::tracking::TrackingError;
 use crate::geometry::units::{Meters, Radians};
@@ -56,4 +56,26 @@ pub fn tracking_error(
 //# parabola.
 pub(super) fn fit_chain_parabola(points: &[Point2<Robot>]) -> Result<ParabolaFit, Precondition> {
     fit_parabola(points.iter())
+}
+
+/// The chain read as its least-squares straight line y = b x + c
+/// (EDGE-STRAIGHT): the parabola with a = 0, so that its errors, its
+/// residual and the line held between scans are those of that line
+/// ([`fit_line`], `spec/geometry.md` FIT-LINE).
+///
+/// Errors with `FIT-DEGENERATE` for fewer than 2 points or a single
+/// abscissa, and with `LIB-FINITE` on overflow.
+//= spec/pierre2022.md#edge-straight-the-chain-read-as-a-straight-line
+//# When the straight reading is on, a fitted chain MUST be read as the
+//# parabola with a = 0 whose b and c are those of the least-squares
+//# straight line y = b x + c through the chain points, for its errors
+//# (EDGE-ERRORS, EDGE-OFFSET), its residual (EDGE-QUALITY) and the line
+//# held between scans.
+pub(super) fn fit_chain_line(points: &[Point2<Robot>]) -> Result<ParabolaFit, Precondition> {
+    let line = fit_line(points.iter())?;
+    Ok(ParabolaFit {
+        a: 0.0,
+        b: line.a,
+        c: line.b,
+    })
 }

@@ -105,6 +105,7 @@ pub(super) fn edge(
             None => f64::MAX,
         },
         look_ahead: look_ahead(e, check)?,
+        straight: e.straight,
     };
     // Every value was range-checked above; what the core still refuses is
     // reported against the section, with the requirement it names.
