@@ -835,6 +835,16 @@ where
                 self.machine.mode() == MachineMode::Behaviour(i),
             ));
         }
+        //= spec/guidance.md#gd-bridge-plan-only-lines-consistent-with-the-plan-anchor-the-structure-line
+        //# The anchor of a valid detection whose line is not consistent with the
+        //# plan in its tick (GD-PLAN, GD-PLAN-ENTRY) MUST be taken back once that
+        //# tick's plan consistency is known, so that it takes no part in the
+        //# structure line of the later ticks.
+        for (slot, status) in self.slots.iter_mut().zip(behaviours.iter()) {
+            if !status.plan_consistent {
+                slot.bridge.take_back_anchor();
+            }
+        }
         let approach = self.approach(&behaviours);
         let held_line = held_line.filter(|_| approach.is_none());
         let reference_offset = self.reference_offset();

@@ -127,6 +127,9 @@ pub(super) struct Bridge {
     /// The latest point of the next piece's line seen ahead, odometry frame
     /// (GD-BRIDGE-LEVEL): the carried structure line passes through it.
     level: Option<Pose2<Odom>>,
+    /// Whether the scan of this tick put an anchor: the plan check may
+    /// take it back (GD-BRIDGE-PLAN).
+    anchored: bool,
 }
 
 impl Bridge {
@@ -146,6 +149,7 @@ impl Bridge {
         bridge: Meters,
     ) -> bool {
         self.odometer += travelled;
+        self.anchored = false;
         if let Some(l) = self.last.as_mut() {
             l.travelled += travelled;
         }
@@ -191,6 +195,15 @@ impl Bridge {
             self.level = None;
         }
         self.disagreed
+    }
+
+    /// Takes back the anchor the scan of this tick put, if it put one: its
+    /// line is not consistent with the plan (GD-BRIDGE-PLAN).
+    pub(super) fn take_back_anchor(&mut self) {
+        if self.anchored {
+            self.anchors.pop_back();
+            self.anchored = false;
+        }
     }
 
     /// The level after a scan that saw the next piece's line `ahead` in the
@@ -269,7 +282,7 @@ impl Bridge {
             self.anchors.pop_front();
         }
         // Cannot fail: a slot was freed above when full.
-        let _ = self.anchors.push_back(anchor);
+        self.anchored = self.anchors.push_back(anchor).is_ok();
     }
 
     /// The structure line `line` shifted sideways through the level's
@@ -639,6 +652,42 @@ mod tests {
         // A refused scan clears the flag with the rest.
         bridge.record(ScanOutcome::Read(&valid(5.0, 0.0)), &pose, 0.04, length);
         assert!(!bridge.record(ScanOutcome::<()>::Refused, &pose, 0.04, length));
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-plan-only-lines-consistent-with-the-plan-anchor-the-structure-line
+    //= type=test
+    //# The anchor of a valid detection whose line is not consistent with the
+    //# plan in its tick (GD-PLAN, GD-PLAN-ENTRY) MUST be taken back once that
+    //# tick's plan consistency is known, so that it takes no part in the
+    //# structure line of the later ticks.
+    #[test]
+    fn an_anchor_taken_back_leaves_the_structure_line_as_it_was() -> Result<(), Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        let last = drive(&mut bridge, length, 3.0, |_, _| (0.0, 0.0))?;
+        let (n, newest) = (bridge.anchors.len(), bridge.anchors.back().map(|a| a.at));
+        // A line 0.3 m off, one spacing further: anchored, then taken back.
+        let pose = Pose2::new(last.position.x() + 0.3, 0.0, 0.0)?;
+        bridge.record(ScanOutcome::Read(&valid(0.3, 0.0)), &pose, 0.3, length);
+        assert_eq!(bridge.anchors.len(), n + 1);
+        bridge.take_back_anchor();
+        assert_eq!(bridge.anchors.len(), n);
+        assert_eq!(bridge.anchors.back().map(|a| a.at), newest);
+        // Once only: a second call in the same tick takes nothing more.
+        bridge.take_back_anchor();
+        assert_eq!(bridge.anchors.len(), n);
+        // A tick without a scan put no anchor: nothing to take back.
+        let later = Pose2::new(pose.position.x() + 0.3, 0.0, 0.0)?;
+        bridge.record(ScanOutcome::<()>::None, &later, 0.3, length);
+        bridge.take_back_anchor();
+        assert_eq!(bridge.anchors.len(), n);
+        // A scan too close to the newest anchor put none either.
+        bridge.record(ScanOutcome::Read(&valid(0.0, 0.0)), &later, 0.01, length);
+        let kept = bridge.anchors.len();
+        bridge.record(ScanOutcome::Read(&valid(0.0, 0.0)), &later, 0.01, length);
+        bridge.take_back_anchor();
+        assert_eq!(bridge.anchors.len(), kept);
         Ok(())
     }
 

@@ -402,22 +402,22 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "hedge-sparse-fast.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[12], "at most 2 switches, but 0.151 m off the followed line (0.15 m allowed) 1 m before a gap, on the structure line carried past the piece's bent end (GD-BRIDGE-AGREE)"),
+                known_failure: None,
             },
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[7, 12, 19], "at most 2 switches and 0.045 m on average, but up to 0.191 m off the followed line (0.15 m allowed): within 0.7 m before a piece's end on the structure line carried past it (seeds 7, 19), and where a piece starts after a gap (seed 12, 0.154 m)"),
+                known_failure: Known::on_seeds(&[9, 12], "at most 2 switches and 0.020 m on average, but 0.153 m off the followed line (0.15 m allowed) where a piece starts after a gap: the level keeps the structure line's heading while the new piece's first metres turn"),
             },
             Case {
                 scenario: "hedge-turned-right.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[2, 9, 18], "a field of our own: 2 switches and 0.039 m on average, but 0.155 m off the followed line (0.15 m allowed) where a piece starts after a gap (seed 18), and 0.165 m inside the envelope's line towards the hedge just past the 3 m settling after entering at the hedge's start (seed 9), where the next lines, fitted round the piece's start, turn the robot, and mid-hedge (seed 2)"),
+                known_failure: None,
             },
             Case {
                 scenario: "hedge-bushes-west.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::most_seeds("a field of our own: 2 switches, but up to 0.325 m off the followed line (0.15 m allowed), 0.057 m on average (0.05 m), and 0.288 m inside the envelope's line (0.15 m): the worst at the end of the first piece and on the first metre after the first gap, on a structure line fitted to the lines of the hedge's start"),
+                known_failure: Known::on_seeds(&[1, 7, 19], "a field of our own: 2 switches and 0.033 m on average, but up to 0.268 m off the followed line (0.15 m allowed) round the first gap, at the first piece's end (seed 19) and where the next piece starts (seeds 1, 7), and 0.249 m inside the envelope's line towards the hedge (seed 19): the structure line fitted to the first piece's lines"),
             },
         ],
     },
@@ -458,7 +458,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[1, 4, 5, 7, 12, 19], "at most 2 switches and 0.048 m on average, but up to 0.220 m off the followed line (0.15 m allowed): the level seen 2-4 m ahead and the structure line are carried by a drifting heading"),
+                known_failure: Known::on_seeds(&[5, 9, 12, 19], "at most 2 switches and 0.031 m on average, but up to 0.210 m off the followed line (0.15 m allowed): the level seen 2-4 m ahead and the structure line are carried by a drifting heading"),
             },
         ],
     },
