@@ -127,9 +127,10 @@ pub(super) struct Bridge {
     /// The latest point of the next piece's line seen ahead, odometry frame
     /// (GD-BRIDGE-LEVEL): the carried structure line passes through it.
     level: Option<Pose2<Odom>>,
-    /// Whether the scan of this tick put an anchor: the plan check may
-    /// take it back (GD-BRIDGE-PLAN).
-    anchored: bool,
+    /// `Some` when the scan of this tick put an anchor, which the plan
+    /// check may take back (GD-BRIDGE-PLAN), holding the oldest anchor
+    /// dropped to make room for it, if one was.
+    anchored: Option<Option<Anchor>>,
 }
 
 impl Bridge {
@@ -149,7 +150,7 @@ impl Bridge {
         bridge: Meters,
     ) -> bool {
         self.odometer += travelled;
-        self.anchored = false;
+        self.anchored = None;
         if let Some(l) = self.last.as_mut() {
             l.travelled += travelled;
         }
@@ -197,12 +198,16 @@ impl Bridge {
         self.disagreed
     }
 
-    /// Takes back the anchor the scan of this tick put, if it put one: its
-    /// line is not consistent with the plan (GD-BRIDGE-PLAN).
+    /// Takes back the anchor the scan of this tick put, if it put one, and
+    /// restores the oldest one it displaced: its line is not consistent
+    /// with the plan (GD-BRIDGE-PLAN).
     pub(super) fn take_back_anchor(&mut self) {
-        if self.anchored {
+        if let Some(displaced) = self.anchored.take() {
             self.anchors.pop_back();
-            self.anchored = false;
+            if let Some(oldest) = displaced {
+                // Cannot fail: the slot was freed just above.
+                let _ = self.anchors.push_front(oldest);
+            }
         }
     }
 
@@ -278,11 +283,15 @@ impl Bridge {
         {
             return;
         }
-        if self.anchors.is_full() {
-            self.anchors.pop_front();
-        }
+        let displaced = if self.anchors.is_full() {
+            self.anchors.pop_front()
+        } else {
+            None
+        };
         // Cannot fail: a slot was freed above when full.
-        self.anchored = self.anchors.push_back(anchor).is_ok();
+        if self.anchors.push_back(anchor).is_ok() {
+            self.anchored = Some(displaced);
+        }
     }
 
     /// The structure line `line` shifted sideways through the level's
@@ -682,6 +691,18 @@ mod tests {
         bridge.record(ScanOutcome::<()>::None, &later, 0.3, length);
         bridge.take_back_anchor();
         assert_eq!(bridge.anchors.len(), n);
+        // With every slot taken, the oldest anchor dropped for the new one
+        // comes back with the take-back.
+        let far = drive(&mut bridge, length, 12.0, |_, _| (0.0, 0.0))?;
+        assert_eq!(bridge.anchors.len(), ANCHOR_CAPACITY);
+        let oldest = bridge.anchors.front().map(|a| a.at);
+        let end = Pose2::new(far.position.x() + 0.3, 0.0, 0.0)?;
+        bridge.record(ScanOutcome::Read(&valid(0.3, 0.0)), &end, 0.3, length);
+        assert_ne!(bridge.anchors.front().map(|a| a.at), oldest);
+        bridge.take_back_anchor();
+        assert_eq!(bridge.anchors.len(), ANCHOR_CAPACITY);
+        assert_eq!(bridge.anchors.front().map(|a| a.at), oldest);
+        let later = Pose2::new(end.position.x() + 0.3, 0.0, 0.0)?;
         // A scan too close to the newest anchor put none either.
         bridge.record(ScanOutcome::Read(&valid(0.0, 0.0)), &later, 0.01, length);
         let kept = bridge.anchors.len();
