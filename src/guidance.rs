@@ -84,7 +84,7 @@ use crate::geometry::carry::pose_in_scan_frame;
 use crate::geometry::frame::{Odom, Pose2, Robot, World};
 use crate::geometry::path::{FrenetError, ReferencePath};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{Meters, MetersPerSecond, Radians};
+use crate::geometry::units::{wrap_angle, Meters, MetersPerSecond, Radians};
 use crate::model::{Command, Saturated, Vehicle};
 use crate::perception::{Detection, Detector, HeldLine, Scan, Verdict};
 use crate::supervisor::switching::{
@@ -492,6 +492,9 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     rejoining: Option<fix::Rejoin>,
     /// The float span since the last good fix (GD-FIX-FLOAT).
     floating: Option<fix::FloatSpan>,
+    /// The path's heading in the odometry frame at the last tick path
+    /// tracking had a pose, given to the detectors (GD-EXPECTED-HEADING).
+    expected_heading: Option<Radians>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -551,6 +554,7 @@ where
             carried_y: None,
             rejoining: None,
             floating: None,
+            expected_heading: None,
         })
     }
 
@@ -762,6 +766,12 @@ where
                 bridge: self.config.params().bridge,
                 active: self.machine.mode() == MachineMode::Behaviour(i),
             };
+            //= spec/guidance.md#gd-expected-heading-the-paths-heading-given-to-the-detectors
+            //# Before each behaviour's scan, the pipeline MUST give its detector the
+            //# path's heading in the odometry frame, the odometry heading less path
+            //# tracking's angular deviation in the latest tick that had a path pose,
+            //# or none when no tick had one.
+            slot.detector.expect_heading(self.expected_heading);
             *estimate = slot.estimate(scan, &carry);
         }
 
@@ -775,6 +785,12 @@ where
             travelled,
         );
         let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &input.odometry);
+        if let Some(f) = &path_frenet {
+            self.expected_heading =
+                Radians::new(input.odometry.heading.get() - f.angular_deviation.get())
+                    .ok()
+                    .map(wrap_angle);
+        }
         let rejoin = self.rejoin(path_frenet.as_ref(), &fix_use, travelled);
         for active in [
             self.handing_over.as_mut(),
