@@ -452,6 +452,11 @@ impl<D: Detector> Slot<D> {
     }
 }
 
+/// How far ahead of the projection the path's chord is taken for the
+/// heading given to the detectors, m (GD-EXPECTED-HEADING): about where an
+/// inclined LiDAR meets the ground.
+const EXPECTED_HEADING_CHORD: f64 = 4.0;
+
 /// The per-tick guidance pipeline (`spec/guidance.md`).
 ///
 /// `PATH` is the capacity of the borrowed reference path, `D` the detector
@@ -672,6 +677,24 @@ where
         }
     }
 
+    /// The heading in the odometry frame of the path's chord from the
+    /// projection `frenet` to [`EXPECTED_HEADING_CHORD`] ahead, as seen
+    /// from the robot at `odometry` (GD-EXPECTED-HEADING); `None` on overflow.
+    fn path_heading_in_odometry(
+        &self,
+        frenet: &FrenetError,
+        odometry: &Pose2<Odom>,
+    ) -> Option<Radians> {
+        let from = self.path.point_at(frenet.s).ok()?;
+        let ahead = Meters::new(frenet.s.get() + EXPECTED_HEADING_CHORD).ok()?;
+        let to = self.path.point_at(ahead).ok()?;
+        let chord = libm::atan2(to.y() - from.y(), to.x() - from.x());
+        let tangent = self.path.heading_at(frenet.s).get();
+        Radians::new(odometry.heading.get() - frenet.angular_deviation.get() - tangent + chord)
+            .ok()
+            .map(wrap_angle)
+    }
+
     /// One control tick (`spec/guidance.md`; the module documentation lists
     /// the steps).
     ///
@@ -766,11 +789,12 @@ where
                 bridge: self.config.params().bridge,
                 active: self.machine.mode() == MachineMode::Behaviour(i),
             };
-            //= spec/guidance.md#gd-expected-heading-the-paths-heading-given-to-the-detectors
+            //= spec/guidance.md#gd-expected-heading-the-path-s-heading-given-to-the-detectors
             //# Before each behaviour's scan, the pipeline MUST give its detector the
-            //# path's heading in the odometry frame, the odometry heading less path
-            //# tracking's angular deviation in the latest tick that had a path pose,
-            //# or none when no tick had one.
+            //# heading of the path's chord from path tracking's projection to 4 m ahead of
+            //# it, in the odometry frame (the odometry heading less the angular deviation,
+            //# less the path's heading at the projection, plus the chord's), from the
+            //# latest tick that had a path pose, or none when no tick had one.
             slot.detector.expect_heading(self.expected_heading);
             *estimate = slot.estimate(scan, &carry);
         }
@@ -786,10 +810,7 @@ where
         );
         let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &input.odometry);
         if let Some(f) = &path_frenet {
-            self.expected_heading =
-                Radians::new(input.odometry.heading.get() - f.angular_deviation.get())
-                    .ok()
-                    .map(wrap_angle);
+            self.expected_heading = self.path_heading_in_odometry(f, &input.odometry);
         }
         let rejoin = self.rejoin(path_frenet.as_ref(), &fix_use, travelled);
         for active in [

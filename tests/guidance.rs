@@ -2294,12 +2294,13 @@ proptest! {
 /// first line is the rows', θ̃ the robot's heading to them, since the
 /// pipeline gives it the path's heading in the odometry frame (along the
 /// robot's own heading, θ̃ would be 0 and y 0.2 m off).
-//= spec/guidance.md#gd-expected-heading-the-paths-heading-given-to-the-detectors
+//= spec/guidance.md#gd-expected-heading-the-path-s-heading-given-to-the-detectors
 //= type=test
 //# Before each behaviour's scan, the pipeline MUST give its detector the
-//# path's heading in the odometry frame, the odometry heading less path
-//# tracking's angular deviation in the latest tick that had a path pose,
-//# or none when no tick had one.
+//# heading of the path's chord from path tracking's projection to 4 m ahead of
+//# it, in the odometry frame (the odometry heading less the angular deviation,
+//# less the path's heading at the projection, plus the chord's), from the
+//# latest tick that had a path pose, or none when no tick had one.
 #[test]
 fn the_furrow_first_line_is_taken_along_the_path() {
     let path = straight_path();
