@@ -84,7 +84,7 @@ use crate::geometry::carry::pose_in_scan_frame;
 use crate::geometry::frame::{Odom, Pose2, Robot, World};
 use crate::geometry::path::{FrenetError, ReferencePath};
 use crate::geometry::tracking::TrackingError;
-use crate::geometry::units::{Meters, MetersPerSecond, Radians};
+use crate::geometry::units::{wrap_angle, Meters, MetersPerSecond, Radians};
 use crate::model::{Command, Saturated, Vehicle};
 use crate::perception::{Detection, Detector, HeldLine, Scan, Verdict};
 use crate::supervisor::switching::{
@@ -452,6 +452,11 @@ impl<D: Detector> Slot<D> {
     }
 }
 
+/// How far ahead of the projection the path's chord is taken for the
+/// heading given to the detectors, m (GD-EXPECTED-HEADING): about where an
+/// inclined LiDAR meets the ground.
+const EXPECTED_HEADING_CHORD: f64 = 4.0;
+
 /// The per-tick guidance pipeline (`spec/guidance.md`).
 ///
 /// `PATH` is the capacity of the borrowed reference path, `D` the detector
@@ -492,6 +497,9 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     rejoining: Option<fix::Rejoin>,
     /// The float span since the last good fix (GD-FIX-FLOAT).
     floating: Option<fix::FloatSpan>,
+    /// The path's heading in the odometry frame at the last tick path
+    /// tracking had a pose, given to the detectors (GD-EXPECTED-HEADING).
+    expected_heading: Option<Radians>,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -551,6 +559,7 @@ where
             carried_y: None,
             rejoining: None,
             floating: None,
+            expected_heading: None,
         })
     }
 
@@ -668,6 +677,24 @@ where
         }
     }
 
+    /// The heading in the odometry frame of the path's chord from the
+    /// projection `frenet` to [`EXPECTED_HEADING_CHORD`] ahead, as seen
+    /// from the robot at `odometry` (GD-EXPECTED-HEADING); `None` on overflow.
+    fn path_heading_in_odometry(
+        &self,
+        frenet: &FrenetError,
+        odometry: &Pose2<Odom>,
+    ) -> Option<Radians> {
+        let from = self.path.point_at(frenet.s).ok()?;
+        let ahead = Meters::new(frenet.s.get() + EXPECTED_HEADING_CHORD).ok()?;
+        let to = self.path.point_at(ahead).ok()?;
+        let chord = libm::atan2(to.y() - from.y(), to.x() - from.x());
+        let tangent = self.path.heading_at(frenet.s).get();
+        Radians::new(odometry.heading.get() - frenet.angular_deviation.get() - tangent + chord)
+            .ok()
+            .map(wrap_angle)
+    }
+
     /// One control tick (`spec/guidance.md`; the module documentation lists
     /// the steps).
     ///
@@ -762,6 +789,13 @@ where
                 bridge: self.config.params().bridge,
                 active: self.machine.mode() == MachineMode::Behaviour(i),
             };
+            //= spec/guidance.md#gd-expected-heading-the-path-s-heading-given-to-the-detectors
+            //# Before each behaviour's scan, the pipeline MUST give its detector the
+            //# heading of the path's chord from path tracking's projection to 4 m ahead of
+            //# it, in the odometry frame (the odometry heading less the angular deviation,
+            //# less the path's heading at the projection, plus the chord's), from the
+            //# latest tick that had a path pose, or none when no tick had one.
+            slot.detector.expect_heading(self.expected_heading);
             *estimate = slot.estimate(scan, &carry);
         }
 
@@ -775,6 +809,9 @@ where
             travelled,
         );
         let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &input.odometry);
+        if let Some(f) = &path_frenet {
+            self.expected_heading = self.path_heading_in_odometry(f, &input.odometry);
+        }
         let rejoin = self.rejoin(path_frenet.as_ref(), &fix_use, travelled);
         for active in [
             self.handing_over.as_mut(),

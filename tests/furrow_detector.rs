@@ -714,3 +714,48 @@ fn the_first_line_ends_without_a_jump_when_the_accumulation_fills() {
     let last = errors[59].unwrap();
     assert!((last.1 - psi).abs() < 0.01, "{last:?}");
 }
+
+/// A robot driving straight at 0.08 rad across the rows when it first sees
+/// them (path tracking still swinging back to the path): along its own
+/// heading the first line lies beside the rows at O; along the expected
+/// heading, the rows' own, it is on them.
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# When an expected heading was given before the scan, the first-line
+//# heading MUST be that heading instead.
+#[test]
+fn the_first_line_takes_the_expected_heading() {
+    let params = FurrowParams::table2();
+    let l = lidar();
+    let psi = 0.08_f64;
+    for expected in [None, Some(0.0)] {
+        let mut det = Detector::new(FurrowConfig::new(&params).unwrap()).unwrap();
+        det.expect_heading(expected.map(rad));
+        let mut pose = (0.0_f64, 0.05_f64, psi);
+        for _ in 1..5 {
+            let ranges = ridge_scan(&params, &l, pose, &rows(0.3));
+            let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+            det.detect(&scan(&ranges, &l), &odom).unwrap();
+            pose = (pose.0 + 0.028 * psi.cos(), pose.1 + 0.028 * psi.sin(), psi);
+        }
+        let ranges = ridge_scan(&params, &l, pose, &rows(0.3));
+        let odom = Pose2::<Odom>::new(pose.0, pose.1, pose.2).unwrap();
+        let e = det
+            .detect(&scan(&ranges, &l), &odom)
+            .unwrap()
+            .error
+            .unwrap();
+        let (y, th) = (e.y.get(), e.angular_deviation.get());
+        if expected.is_some() {
+            // On the rows within the ridges' faces seen at 0.08 rad (0.05 m),
+            // θ̃ the robot's heading to them.
+            assert!((y - pose.1).abs() < 0.06, "{y} vs {}", pose.1);
+            assert!((th - psi).abs() < 0.005, "{th}");
+        } else {
+            // Along the robot: θ̃ 0 and y off by psi times the distance
+            // from O to the first points.
+            assert!(th.abs() < 0.005, "{th}");
+            assert!((y - pose.1).abs() > 0.15, "{y} vs {}", pose.1);
+        }
+    }
+}

@@ -2288,3 +2288,57 @@ proptest! {
         }
     }
 }
+
+/// A robot at 0.08 rad across the path and the rows along it, its odometry
+/// frame turned 0.5 rad from the world's and shifted: the furrow detector's
+/// first line is the rows', θ̃ the robot's heading to them, since the
+/// pipeline gives it the path's heading in the odometry frame (along the
+/// robot's own heading, θ̃ would be 0 and y 0.2 m off).
+//= spec/guidance.md#gd-expected-heading-the-path-s-heading-given-to-the-detectors
+//= type=test
+//# Before each behaviour's scan, the pipeline MUST give its detector the
+//# heading of the path's chord from path tracking's projection to 4 m ahead of
+//# it, in the odometry frame (the odometry heading less the angular deviation,
+//# less the path's heading at the projection, plus the chord's), from the
+//# latest tick that had a path pose, or none when no tick had one.
+#[test]
+fn the_furrow_first_line_is_taken_along_the_path() {
+    let path = straight_path();
+    let params = pierre2022_furrow().unwrap();
+    let mut g = pipeline(&params, &path);
+    let lidar = furrow_lidar();
+    let rows = two_rows();
+    let (psi, turn, shift) = (0.08_f64, 0.5_f64, (3.0, -2.0));
+    let in_odom = |p: (f64, f64, f64)| {
+        let (s, c) = turn.sin_cos();
+        (
+            shift.0 + c * p.0 - s * p.1,
+            shift.1 + s * p.0 + c * p.1,
+            p.2 + turn,
+        )
+    };
+    let mut first = None;
+    for k in 0..200 {
+        let pose = (
+            0.007 * k as f64 * psi.cos(),
+            0.05 + 0.007 * k as f64 * psi.sin(),
+            psi,
+        );
+        let ranges = ridge_scan(&furrow_params(), &lidar, pose, &rows);
+        let scans = (k % 10 == 0).then(|| routed(FURROW, furrow_scan(&ranges, &lidar)));
+        let out = g
+            .step(&TickInput {
+                scans: scans.as_slice(),
+                gnss: Some(world(pose)),
+                odometry: odom(in_odom(pose)),
+                extra: Sideslip::ZERO,
+            })
+            .unwrap();
+        if let Some(e) = status(&out, FURROW).error {
+            first.get_or_insert((e, pose));
+        }
+    }
+    let (e, pose) = first.expect("a first line");
+    assert!((e.angular_deviation.get() - psi).abs() < 0.01, "{e:?}");
+    assert!((e.y.get() - pose.1).abs() < 0.06, "{e:?} at {pose:?}");
+}

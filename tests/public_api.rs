@@ -1184,6 +1184,7 @@ proptest! {
         };
         for (odom, ranges) in &drive {
             let scan = Scan { ranges, ..scan };
+            check!("perception::furrow::FurrowDetector::expect_heading", detector.expect_heading(Some(odom.heading)));
             check!("perception::furrow::FurrowDetector::detect", detector.detect(&scan, odom));
             check!("perception::furrow::FurrowDetector::accumulated", detector.accumulated());
         }
@@ -1222,6 +1223,7 @@ proptest! {
         let ranges = if edge { wall_ranges(d, 360, &faults) } else { wild };
         let scan = Scan { start, increment, ranges: &ranges, limits: RangeLimits::new(m(0.05), m(30.0)).unwrap() };
         for odom in &odometry {
+            check!("perception::detector::Detector::expect_heading", detector.expect_heading(Some(odom.heading)));
             let seen = check!("perception::detector::Detector::observe", detector.observe(&scan, odom));
             if let Ok(seen) = seen {
                 let kind: Detection<&str> = check!("perception::detector::Detection::map_line", seen.map_line(|_| "held"));

@@ -493,6 +493,23 @@ fn exp1_with_maize_follows_the_hedge_then_pursues_the_rows() {
     }
 }
 
+/// The maize seen while path tracking still swings back to the path after
+/// the hedge (up to 0.09 rad across it on seeds 21-40): the first line, taken
+/// along the path's heading rather than the robot's, is on the rows, and no
+/// plant is run over (along the robot's heading seeds 23 and 33 put it
+/// 0.18-0.21 m off and a front wheel on the first plants).
+//= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+//= type=test
+//# When an expected heading was given before the scan, the first-line
+//# heading MUST be that heading instead.
+#[test]
+fn exp1_with_maize_enters_the_rows_after_the_hedge_without_a_swing() {
+    for seed in 21..=40 {
+        let (_, out) = run_seed("exp1-hedge-maize", seed);
+        assert_eq!(out.plants_crushed, 0, "seed {seed}");
+    }
+}
+
 /// In the one world every LiDAR sees, the inclined LiDAR beside the hedge
 /// of `exp1-hedge-maize` sees the hedge (rays to the left end on it, short
 /// of the ground), and the horizontal LiDAR, 1 m up, passes over the maize.

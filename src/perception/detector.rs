@@ -13,6 +13,7 @@
 use crate::error::Precondition;
 use crate::geometry::frame::{Odom, Pose2, Robot};
 use crate::geometry::tracking::TrackingError;
+use crate::geometry::units::Radians;
 use crate::perception::edge::{EdgeDetector, EdgeDetectorConfig, EdgeLine};
 use crate::perception::furrow::{FurrowConfig, FurrowDetector, RowLines};
 use crate::perception::vine::{VineConfig, VineDetector, VineLine};
@@ -82,6 +83,14 @@ pub trait Detector: Sized {
         scan: &Scan<'_>,
         odometry: &Pose2<Odom>,
     ) -> Result<Detection<Self::Line>, Precondition>;
+
+    /// The heading, in the odometry frame, that the pipeline expects the
+    /// followed structure to have (the path's), or `None`; given before each
+    /// scan (GD-EXPECTED-HEADING). A detector that has no use for it keeps
+    /// this default, which ignores it.
+    fn expect_heading(&mut self, heading: Option<Radians>) {
+        let _ = heading;
+    }
 }
 
 /// The configuration of one of the library's detectors.
@@ -210,6 +219,14 @@ impl<
                 .observe(scan, odometry)
                 .map(|x| x.map_line(AnyLine::Furrow)),
             Self::Vine(d) => d.observe(scan, odometry).map(|x| x.map_line(AnyLine::Vine)),
+        }
+    }
+
+    fn expect_heading(&mut self, heading: Option<Radians>) {
+        match self {
+            Self::Edge(d) => d.expect_heading(heading),
+            Self::Furrow(d) => d.expect_heading(heading),
+            Self::Vine(d) => d.expect_heading(heading),
         }
     }
 }

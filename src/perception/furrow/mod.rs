@@ -372,6 +372,9 @@ pub struct FurrowDetector<const RAYS: usize, const SCANS: usize> {
     config: FurrowConfig,
     accumulator: Accumulator<SCANS>,
     first: FirstLine,
+    /// The rows' heading the pipeline expects, odometry frame (the path's,
+    /// GD-EXPECTED-HEADING); `None` when it gives none.
+    expected: Option<Radians>,
 }
 
 /// Where the first line of an accumulation stands (FUR-FIRST-LINE): the
@@ -401,6 +404,7 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
             config,
             accumulator,
             first: FirstLine::default(),
+            expected: None,
         })
     }
 
@@ -553,9 +557,19 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
             .accumulator
             .recent_turn(self.config.params.min_points)
             .is_some_and(|turn| libm::fabs(turn.get()) <= FIRST_LINE_STRAIGHT);
+        //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
+        //# When an expected heading was given before the scan, the first-line
+        //# heading MUST be that heading instead.
         if straight {
-            self.first.heading = self.accumulator.newest_heading();
+            self.first.heading = self.expected.or_else(|| self.accumulator.newest_heading());
         }
+    }
+
+    /// Sets the rows' heading expected in the odometry frame (the path's,
+    /// GD-EXPECTED-HEADING), or `None`: the first line is taken along it
+    /// rather than along the robot's heading (FUR-FIRST-LINE).
+    pub fn expect_heading(&mut self, heading: Option<Radians>) {
+        self.expected = heading;
     }
 
     /// The row lines and tracking error from the accumulated selections, or
@@ -661,5 +675,9 @@ impl<const RAYS: usize, const SCANS: usize> Detector for FurrowDetector<RAYS, SC
             line: d.lines,
             ahead: None,
         })
+    }
+
+    fn expect_heading(&mut self, heading: Option<Radians>) {
+        FurrowDetector::expect_heading(self, heading);
     }
 }
