@@ -1396,3 +1396,58 @@ fn fix_rule_fields_are_checked_and_named() {
         Some(3.0)
     );
 }
+
+/// The odometry aid (GD-ODOMETRY-AID): its rate needs its time constant;
+/// each out-of-range value is named; off by default, 0.5°/s when only the
+/// time constant is given.
+#[test]
+fn odometry_aid_fields_are_checked_and_named() {
+    let e = error_of(|t: String| format!("{t}\n[switching]\nodometry_aid_max_rate_deg_s = 1.0\n"));
+    assert_field(
+        &e,
+        "switching.odometry_aid_time_constant_s",
+        "time constant",
+    );
+    for (text, field) in [
+        (
+            "odometry_aid_time_constant_s = 0.0",
+            "switching.odometry_aid_time_constant_s",
+        ),
+        (
+            "odometry_aid_time_constant_s = nan",
+            "switching.odometry_aid_time_constant_s",
+        ),
+        (
+            "odometry_aid_time_constant_s = 1001.0",
+            "switching.odometry_aid_time_constant_s",
+        ),
+        (
+            "odometry_aid_time_constant_s = 1.0\nodometry_aid_max_rate_deg_s = 0.0",
+            "switching.odometry_aid_max_rate_deg_s",
+        ),
+        (
+            "odometry_aid_time_constant_s = 1.0\nodometry_aid_max_rate_deg_s = -1.0",
+            "switching.odometry_aid_max_rate_deg_s",
+        ),
+    ] {
+        let e = error_of(move |t: String| format!("{t}\n[switching]\n{text}\n"));
+        assert_field(&e, field, "");
+    }
+    let setup = |text: String| {
+        let source = Source {
+            origin: "edited.toml".into(),
+            text,
+            base_dir: None,
+        };
+        source.setup(&mut SimRng::from_seed(1)).unwrap().switching
+    };
+    assert!(setup(builtin_text()).odometry_aid.is_none());
+    let aid = setup(format!(
+        "{}\n[switching]\nodometry_aid_time_constant_s = 2.0\n",
+        builtin_text()
+    ))
+    .odometry_aid
+    .unwrap();
+    assert!((aid.time_constant.get() - 2.0).abs() < 1e-15);
+    assert!((aid.max_rate.get() - 0.5_f64.to_radians()).abs() < 1e-15);
+}
