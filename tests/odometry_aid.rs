@@ -4,11 +4,7 @@
 //! its configuration.
 #![allow(
     clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::panic,
     clippy::as_conversions,
-    clippy::arithmetic_side_effects,
-    clippy::float_cmp,
     clippy::cast_precision_loss
 )]
 

@@ -16,9 +16,9 @@ pub struct OdometryAidParams {
     /// τ, the filter's time constant, s, > 0 (about 1-3 s for a
     /// dual-antenna heading: GD-ODOMETRY-AID's reading).
     pub time_constant: Seconds,
-    /// The largest rate the correction turns the odometry frame at, rad/s,
-    /// > 0: above the odometry's drift rate, low enough that what the frame
-    /// holds never jumps.
+    /// The largest rate the correction turns the odometry frame at, in
+    /// rad/s and positive: above the odometry's drift rate, low enough that
+    /// what the frame holds never jumps.
     pub max_rate: RadiansPerSecond,
 }
 
@@ -43,30 +43,20 @@ impl OdometryAid {
     //# An odometry aid whose time constant or largest rate is not positive MUST be
     //# refused with `GD-ODOMETRY-AID`.
     pub fn new(params: &OdometryAidParams, period: Seconds) -> Result<Self, Precondition> {
-        if params.time_constant.get() <= 0.0 {
-            return Err(Precondition::new(
-                "GD-ODOMETRY-AID",
-                "odometry aid time_constant must be > 0",
-            ));
-        }
-        if params.max_rate.get() <= 0.0 {
-            return Err(Precondition::new(
-                "GD-ODOMETRY-AID",
-                "odometry aid max_rate must be > 0",
-            ));
-        }
-        if period.get() <= 0.0 {
-            return Err(Precondition::new(
-                "GD-ODOMETRY-AID",
-                "the control period must be > 0",
-            ));
+        let (tau, rate) = (params.time_constant.get(), params.max_rate.get());
+        let refused = [
+            (tau, "odometry aid time_constant must be > 0"),
+            (rate, "odometry aid max_rate must be > 0"),
+            (period.get(), "the control period must be > 0"),
+        ]
+        .into_iter()
+        .find(|(value, _)| *value <= 0.0);
+        if let Some((_, violated)) = refused {
+            return Err(Precondition::new("GD-ODOMETRY-AID", violated));
         }
         // Δt / τ is positive and may be +∞ (τ tiny): α is then 1.
-        let gain = 1.0 - libm::exp(-(period.get() / params.time_constant.get()));
-        let max_step = finite(
-            params.max_rate.get() * period.get(),
-            "odometry aid largest step overflows",
-        )?;
+        let gain = 1.0 - libm::exp(-(period.get() / tau));
+        let max_step = finite(rate * period.get(), "odometry aid largest step overflows")?;
         Ok(Self {
             params: *params,
             gain,

@@ -331,12 +331,8 @@ fn odometry_aid(
         return Ok(None);
     };
     let tau = check.range(field, tau, 0.0, 1000.0)?;
-    let rate = check.range(
-        rate_field,
-        s.odometry_aid_max_rate_deg_s.unwrap_or(0.5),
-        0.0,
-        180.0,
-    )?;
+    let rate = s.odometry_aid_max_rate_deg_s.unwrap_or(0.5);
+    let rate = check.range(rate_field, rate, 0.0, 180.0)?;
     let params = OdometryAidParams {
         time_constant: Seconds::new(tau).map_err(|e| check.error(field, &e.to_string()))?,
         max_rate: RadiansPerSecond::new(rate.to_radians())
