@@ -9,7 +9,9 @@
 //! control period, [`Guidance::step`] takes a [`TickInput`] (the scans that
 //! arrived in this tick, each routed to its behaviour, the GNSS pose if
 //! localisation has one, the odometry pose and the law's extra input, such as
-//! a sideslip estimate) and, in this order (GD-ORDER):
+//! a sideslip estimate) and, in this order (GD-ORDER), with the odometry
+//! pose aided by the good fix's heading when an aid is configured
+//! (GD-ODOMETRY-AID):
 //!
 //! 1. runs each behaviour's detector on its scan; on ticks without a scan,
 //!    carries the latest detection to the current pose through odometry, for
@@ -66,6 +68,7 @@ mod config;
 pub mod entry;
 pub mod fix;
 pub mod handover;
+pub mod odometry;
 mod resume;
 
 pub use config::{
@@ -75,6 +78,7 @@ pub use config::{
 pub use entry::{Entry, EntryParams};
 pub use fix::{FixKind, FixQuality, FixRule, FixRuleParams, FixUse};
 pub use handover::{Handover, HandoverParams};
+pub use odometry::{AidedOdometry, OdometryAid, OdometryAidParams};
 
 use heapless::Vec;
 
@@ -110,7 +114,9 @@ pub struct TickInput<'a, X> {
     /// The robot's pose from GNSS-RTK localisation, `World` frame; `None`
     /// when localisation has no valid pose (GD-LOCALISATION).
     pub gnss: Option<Pose2<World>>,
-    /// The robot's pose from wheel odometry, `Odom` frame, every tick.
+    /// The robot's pose from wheel odometry, `Odom` frame, every tick (the
+    /// pipeline moves by its aided pose when an aid is configured,
+    /// GD-ODOMETRY-AID).
     pub odometry: Pose2<Odom>,
     /// The law's extra input (backstepping: the observer's sideslip
     /// estimate, |β| < π/2); used only by path tracking with compensation on
@@ -500,6 +506,8 @@ pub struct Guidance<'p, const PATH: usize, D: Detector, L: ControlLaw, const K: 
     /// The path's heading in the odometry frame at the last tick path
     /// tracking had a pose, given to the detectors (GD-EXPECTED-HEADING).
     expected_heading: Option<Radians>,
+    /// The aided odometry, when an aid is configured (GD-ODOMETRY-AID).
+    aided: AidedOdometry,
 }
 
 /// A GNSS fix, the odometry pose of its tick and the odometry distance
@@ -560,6 +568,7 @@ where
             rejoining: None,
             floating: None,
             expected_heading: None,
+            aided: AidedOdometry::new(),
         })
     }
 
@@ -748,18 +757,23 @@ where
             Some(rule) => rule.filter(input.gnss, quality),
             None => input.gnss,
         };
+        // Every step below moves by this pose, never by the tick's own.
+        let odometry = match self.config.odometry_aid() {
+            Some(aid) => self.aided.step(aid, input.odometry, gnss.as_ref()),
+            None => input.odometry,
+        };
         let travelled = self.last_odometry.map_or(0.0, |p| {
             // A distance that overflows is an absurd jump: the whole path is searched.
             p.position
-                .distance_to(input.odometry.position)
+                .distance_to(odometry.position)
                 .map_or(f64::INFINITY, Meters::get)
         });
-        self.last_odometry = Some(input.odometry);
+        self.last_odometry = Some(odometry);
         match (gnss, self.last_fix.as_mut()) {
             (Some(world), _) => {
                 self.last_fix = Some(LastFix {
                     world,
-                    odometry: input.odometry,
+                    odometry,
                     travelled: 0.0,
                 });
             }
@@ -783,7 +797,7 @@ where
                 .find(|s| s.behaviour == b.id)
                 .map(|s| &s.scan);
             let carry = Carry {
-                odometry: input.odometry,
+                odometry,
                 travelled,
                 max_age,
                 bridge: self.config.params().bridge,
@@ -805,12 +819,12 @@ where
             input.gnss.as_ref(),
             quality,
             gnss.is_some(),
-            &input.odometry,
+            &odometry,
             travelled,
         );
-        let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &input.odometry);
+        let (path_frenet, fix_use) = self.path_pose(frenet, gnss.is_some(), &odometry);
         if let Some(f) = &path_frenet {
-            self.expected_heading = self.path_heading_in_odometry(f, &input.odometry);
+            self.expected_heading = self.path_heading_in_odometry(f, &odometry);
         }
         let rejoin = self.rejoin(path_frenet.as_ref(), &fix_use, travelled);
         for active in [
@@ -822,7 +836,7 @@ where
         {
             active.travelled += travelled;
         }
-        let held_line = self.line_hold(path_frenet.as_ref(), &input.odometry);
+        let held_line = self.line_hold(path_frenet.as_ref(), &odometry);
 
         // 3-4. Plan consistency and the laws.
         let params = self.config.params();
@@ -842,7 +856,7 @@ where
         let plan_pose = match (&frenet, gnss) {
             (Some(_), _) => PlanPose::Gnss,
             (None, Some(_)) => PlanPose::Unjudged,
-            (None, None) => self.dead_reckoned(&input.odometry),
+            (None, None) => self.dead_reckoned(&odometry),
         };
         let mut behaviours = Vec::<BehaviourStatus, K>::new();
         let mut ahead = None;
@@ -940,7 +954,7 @@ where
             behaviours: reports,
             localisation_valid,
         });
-        self.track_handover(before, &switching, &behaviours, travelled, &input.odometry);
+        self.track_handover(before, &switching, &behaviours, travelled, &odometry);
         self.track_entry(before, &switching, &behaviours, path.reference_offset);
 
         // 6. The command of the selected source.

@@ -142,6 +142,7 @@ pub fn pierre2022_path() -> Result<Pierre2022Params, Precondition> {
         handover: None,
         entry: None,
         fix: None,
+        odometry_aid: None,
     })
 }
 

@@ -26,7 +26,8 @@ use fieldguide::geometry::carry::{moved_line_error, pose_in_scan_frame};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::guidance::{
     BehaviourId, BehaviourParams, BehaviourStatus, Guidance, GuidanceConfig, GuidanceParams,
-    LawOutcome, Mode, PlanPose, RoutedScan, TickInput, TickOutput, MAX_SCAN_AGE_TICKS,
+    LawOutcome, Mode, OdometryAidParams, PlanPose, RoutedScan, TickInput, TickOutput,
+    MAX_SCAN_AGE_TICKS,
 };
 use fieldguide::model::bicycle::Sideslip;
 use fieldguide::model::{Actuation, Command, Saturated, Vehicle};
@@ -43,8 +44,8 @@ use fieldguide::presets::{
 };
 use fieldguide::supervisor::switching::{Mode as MachineMode, PathAhead, PlanTolerance};
 use fieldguide::{
-    Meters, MetersPerSecond, Odom, Point2, Pose2, Precondition, Radians, Robot, Seconds, Sensor,
-    TrackingError, Transform2, Verdict, World,
+    Meters, MetersPerSecond, Odom, Point2, Pose2, Precondition, Radians, RadiansPerSecond, Robot,
+    Seconds, Sensor, TrackingError, Transform2, Verdict, World,
 };
 use furrow_common::{ridge_scan, Lidar, Ridge};
 use proptest::prelude::*;
@@ -1576,6 +1577,7 @@ fn each_bad_parameter_is_refused_naming_its_requirement() {
             handover: None,
             entry: None,
             fix: None,
+            odometry_aid: None,
             ..good.clone()
         };
         assert_eq!(GuidanceConfig::new(&p).unwrap().max_scan_age_ticks(), ticks);
@@ -1816,6 +1818,7 @@ fn declared(
         handover: params.handover,
         entry: params.entry,
         fix: params.fix,
+        odometry_aid: params.odometry_aid,
     }
 }
 
@@ -2341,4 +2344,54 @@ fn the_furrow_first_line_is_taken_along_the_path() {
     let (e, pose) = first.expect("a first line");
     assert!((e.angular_deviation.get() - psi).abs() < 0.01, "{e:?}");
     assert!((e.y.get() - pose.1).abs() < 0.06, "{e:?} at {pose:?}");
+}
+
+//= spec/guidance.md#gd-odometry-aid-the-odometry-s-heading-aided-by-the-good-fix-s
+//= type=test
+//# When an odometry aid is configured, every step of a tick MUST use, in place
+//# of the tick's odometry pose, the aided pose: in the first tick the odometry
+//# pose itself, in every later tick the previous aided pose moved by the
+//# odometry's increment since the previous tick (the tick's odometry pose in
+//# the robot frame of the previous tick's), its heading then turned by the
+//# tick's correction.
+#[test]
+fn a_held_detection_is_carried_by_the_aided_odometry() {
+    let path = straight_path();
+    let pose = (0.0, 0.0, 0.0);
+    let ranges = wall_ranges(pose, long_wall(1.5));
+    let scans = [routed(EDGE, edge_scan(&ranges))];
+    // The robot and its fix stand still; the wheels turn the odometry
+    // 0.01 rad a tick. The held wall's heading error turns with the pose
+    // the pipeline carries it by: the raw one, or the aided one, held by
+    // the fix's heading at most the largest step a tick.
+    let turned = |aid: Option<(f64, f64)>| {
+        let mut params = edge_params();
+        params.odometry_aid = aid.map(|(tau, rate)| OdometryAidParams {
+            time_constant: Seconds::new(tau).unwrap(),
+            max_rate: RadiansPerSecond::new(rate).unwrap(),
+        });
+        let mut g = pipeline(&params, &path);
+        let first = g
+            .step(&TickInput {
+                scans: &scans,
+                ..bare(pose, true)
+            })
+            .unwrap();
+        let seen = status(&first, EDGE).error.unwrap().angular_deviation.get();
+        let mut held = seen;
+        for k in 1..=5 {
+            let out = g
+                .step(&TickInput {
+                    odometry: odom((0.0, 0.0, 0.01 * f64::from(k))),
+                    ..bare(pose, true)
+                })
+                .unwrap();
+            held = status(&out, EDGE).error.unwrap().angular_deviation.get();
+        }
+        held - seen
+    };
+    assert!((turned(None) - 0.05).abs() < 1e-9);
+    assert!(turned(Some((1.0e-6, 100.0))).abs() < 1e-9);
+    // 0.5 rad/s: 0.005 rad a tick taken out of the wheels' 0.01.
+    assert!((turned(Some((1.0e-6, 0.5))) - 0.025).abs() < 1e-9);
 }

@@ -52,6 +52,7 @@ use fieldguide::geometry::carry::{moved_lateral, moved_line_error, pose_in_scan_
 use fieldguide::geometry::fit::{fit_line, fit_line_weighted, fit_parabola, LineFit, ParabolaFit};
 use fieldguide::geometry::path::{PathConfig, ReferencePath};
 use fieldguide::geometry::units::wrap_angle;
+use fieldguide::guidance::{AidedOdometry, OdometryAid, OdometryAidParams};
 use fieldguide::guidance::{
     BehaviourId, Guidance, GuidanceConfig, GuidanceParams, Mode as GuidanceMode, RoutedScan,
     TickInput,
@@ -1911,6 +1912,12 @@ fn guidance_params(
                 float_averaging: Some(m(0.5)),
             });
         }
+        11 => {
+            p.odometry_aid = Some(OdometryAidParams {
+                time_constant: seconds,
+                max_rate: RadiansPerSecond::new(v).unwrap(),
+            });
+        }
         _ => {}
     }
     p
@@ -1925,7 +1932,7 @@ proptest! {
     fn presets_and_the_guidance_pipeline(
         s in side(),
         mount in prop_oneof![3 => Just((0.0, 0.0, 0.0)), 1 => (near(2.0), near(1.0), near(4.0))],
-        change in 0..12_usize, v in prop_oneof![2 => 0.01..2.0_f64, 1 => fin()],
+        change in 0..13_usize, v in prop_oneof![2 => 0.01..2.0_f64, 1 => fin()],
         points in waypoints(), other in waypoints(),
         ticks in prop::collection::vec((
             gnss(), pose::<Odom>(), (slip(), slip()),
@@ -1955,6 +1962,7 @@ proptest! {
         check!("guidance::config::GuidanceConfig::handover", config.handover());
         check!("guidance::config::GuidanceConfig::entry", config.entry());
         check!("guidance::config::GuidanceConfig::fix", config.fix());
+        check!("guidance::config::GuidanceConfig::odometry_aid", config.odometry_aid());
         let (path, replacement) = (path_of(&points), path_of(&other));
         let mut guidance: Pipeline<'_> = check!("guidance::Guidance::new", Guidance::new(config, &path)).unwrap();
         check!("guidance::Guidance::config", guidance.config());
@@ -2614,6 +2622,22 @@ proptest! {
 // ---------------------------------------------------------------- fix quality (GD-FIX-QUALITY)
 
 proptest! {
+    #[test]
+    fn odometry_aid(tau in seconds(), rate in fin(), period in seconds(), ticks in prop::collection::vec((pose::<Odom>(), prop::option::of(pose::<World>())), 1..12)) {
+        let params = OdometryAidParams { time_constant: tau, max_rate: RadiansPerSecond::new(rate).unwrap() };
+        check!("guidance::odometry::OdometryAid::new", OdometryAid::new(&params, period));
+        let fallback = OdometryAidParams { time_constant: Seconds::new(1.0).unwrap(), max_rate: RadiansPerSecond::new(0.01).unwrap() };
+        let aid = OdometryAid::new(&params, period).unwrap_or(OdometryAid::new(&fallback, Seconds::new(0.01).unwrap()).unwrap());
+        check!("guidance::odometry::OdometryAid::params", aid.params());
+        check!("guidance::odometry::OdometryAid::gain", aid.gain());
+        check!("guidance::odometry::OdometryAid::max_step", aid.max_step());
+        let mut aided = check!("guidance::odometry::AidedOdometry::new", AidedOdometry::new());
+        for (odometry, fix) in ticks {
+            check!("guidance::odometry::AidedOdometry::step", aided.step(&aid, odometry, fix.as_ref()));
+            check!("guidance::odometry::AidedOdometry::reference", aided.reference());
+        }
+    }
+
     #[test]
     fn fix_rule(max_accuracy in meters(), carry in meters(), slope in raw(), float in meters(), sigma in meters(), start in meters(), travelled in meters(), path in tracking(), p in pose::<World>()) {
         let params = FixRuleParams { worst_kind: FixKind::RtkFloat, max_accuracy, path_dead_reckoning: carry, rejoin_slope: slope, rejoin_curvature: slope, float_averaging: Some(float) };

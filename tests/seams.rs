@@ -604,6 +604,7 @@ fn a_pipeline_without_behaviour_slots_is_refused() {
         handover: None,
         entry: None,
         fix: None,
+        odometry_aid: None,
     };
     let e = GuidanceConfig::new(&none).unwrap_err();
     assert_eq!(e.requirement, "SW-MODES");

@@ -1361,14 +1361,7 @@ fn fix_rule_fields_are_checked_and_named() {
     assert!(e.to_string().contains("fix_worst_kind"), "{e}");
     // Off by default; set, its defaults: RTK fixed, no carry, slope 0.1,
     // curvature 0.05 /m.
-    let setup = |text: String| {
-        let source = Source {
-            origin: "edited.toml".into(),
-            text,
-            base_dir: None,
-        };
-        source.setup(&mut SimRng::from_seed(1)).unwrap().switching
-    };
+    let setup = switching_of;
     assert!(setup(builtin_text()).fix.is_none());
     let fix = setup(format!(
         "{}\n[switching]\nfix_max_accuracy_m = 0.05\n",
@@ -1395,4 +1388,49 @@ fn fix_rule_fields_are_checked_and_named() {
         s.handover.unwrap().line_hold.map(fieldguide::Meters::get),
         Some(3.0)
     );
+}
+
+/// The `[switching]` of the scenario `text`, which must be accepted.
+fn switching_of(text: String) -> fieldguide_sim::scenario::setup::SwitchingSetup {
+    let source = Source {
+        origin: "edited.toml".into(),
+        text,
+        base_dir: None,
+    };
+    source.setup(&mut SimRng::from_seed(1)).unwrap().switching
+}
+
+/// The odometry aid (GD-ODOMETRY-AID): its rate needs its time constant;
+/// each out-of-range value is named; off by default, 0.5°/s when only the
+/// time constant is given.
+#[test]
+fn odometry_aid_fields_are_checked_and_named() {
+    let e = error_of(|t: String| format!("{t}\n[switching]\nodometry_aid_max_rate_deg_s = 1.0\n"));
+    assert_field(
+        &e,
+        "switching.odometry_aid_time_constant_s",
+        "time constant",
+    );
+    let aid = |tau: &'static str, rate: &'static str| {
+        move |t: String| {
+            format!("{t}\n[switching]\nodometry_aid_time_constant_s = {tau}\nodometry_aid_max_rate_deg_s = {rate}\n")
+        }
+    };
+    for tau in ["0.0", "nan", "1001.0", "-1.0"] {
+        let e = error_of(aid(tau, "0.5"));
+        assert_field(&e, "switching.odometry_aid_time_constant_s", "");
+    }
+    for rate in ["0.0", "-1.0", "181.0", "inf"] {
+        let e = error_of(aid("1.0", rate));
+        assert_field(&e, "switching.odometry_aid_max_rate_deg_s", "");
+    }
+    assert!(switching_of(builtin_text()).odometry_aid.is_none());
+    // The rate left out: 0.5°/s.
+    let text = builtin_text() + "\n[switching]\nodometry_aid_time_constant_s = 2.0\n";
+    let given = switching_of(text)
+        .odometry_aid
+        .map(|a| (a.time_constant, a.max_rate));
+    let (tau, rate) = given.unwrap();
+    assert!((tau.get() - 2.0).abs() < 1e-15);
+    assert!((rate.get() - 0.5_f64.to_radians()).abs() < 1e-15);
 }

@@ -7,6 +7,7 @@ use heapless::Vec;
 use super::entry::{Entry, EntryParams};
 use super::fix::{FixRule, FixRuleParams};
 use super::handover::{Handover, HandoverParams};
+use super::odometry::{OdometryAid, OdometryAidParams};
 use crate::control::ControlLaw;
 use crate::error::{finite, Precondition};
 use crate::geometry::units::{Meters, MetersPerSecond, Seconds};
@@ -116,6 +117,9 @@ pub struct GuidanceParams<C, L, const K: usize> {
     /// Which GNSS fixes are good enough, and how far path tracking carries
     /// the last good one (GD-FIX-QUALITY); `None`: every fix is taken.
     pub fix: Option<FixRuleParams>,
+    /// The odometry's heading aided by the good fix's (GD-ODOMETRY-AID);
+    /// `None`: the odometry as it comes.
+    pub odometry_aid: Option<OdometryAidParams>,
 }
 
 /// A validated pipeline configuration (GD-CONFIG): the behaviours in
@@ -130,6 +134,7 @@ pub struct GuidanceConfig<C, L, const K: usize> {
     handover: Option<Handover>,
     entry: Option<Entry>,
     fix: Option<FixRule>,
+    odometry_aid: Option<OdometryAid>,
 }
 
 fn positive_speed(speed: MetersPerSecond, violated: &'static str) -> Result<(), Precondition> {
@@ -270,6 +275,8 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
     /// - `GD-FIX-QUALITY` when the fix rule's largest accuracy is not
     ///   positive, its carry distance negative or its rejoin slope outside
     ///   (0, 1].
+    /// - `GD-ODOMETRY-AID` when the odometry aid's time constant or largest
+    ///   rate is not positive.
     //= spec/guidance.md#gd-config-configuration-validated-once
     //# A guidance configuration MUST be validated once, at construction, and refused
     //# with an error naming the requirement that fails: a speed that is not positive
@@ -362,6 +369,11 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
         let handover = params.handover.as_ref().map(Handover::new).transpose()?;
         let entry = params.entry.as_ref().map(Entry::new).transpose()?;
         let fix = params.fix.as_ref().map(FixRule::new).transpose()?;
+        let odometry_aid = params
+            .odometry_aid
+            .as_ref()
+            .map(|aid| OdometryAid::new(aid, params.period))
+            .transpose()?;
         Ok(Self {
             params: GuidanceParams {
                 behaviours: ordered,
@@ -375,6 +387,7 @@ impl<C: Copy, L: ControlLaw + Copy, const K: usize> GuidanceConfig<C, L, K> {
             handover,
             entry,
             fix,
+            odometry_aid,
         })
     }
 }
@@ -471,5 +484,11 @@ impl<C, L, const K: usize> GuidanceConfig<C, L, K> {
     #[must_use]
     pub const fn fix(&self) -> Option<&FixRule> {
         self.fix.as_ref()
+    }
+
+    /// The validated odometry aid, if one is configured (GD-ODOMETRY-AID).
+    #[must_use]
+    pub const fn odometry_aid(&self) -> Option<&OdometryAid> {
+        self.odometry_aid.as_ref()
     }
 }

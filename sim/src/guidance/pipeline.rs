@@ -122,6 +122,7 @@ pub fn params(
         handover: sw.handover,
         entry: sw.entry,
         fix: sw.fix,
+        odometry_aid: sw.odometry_aid,
     })
 }
 

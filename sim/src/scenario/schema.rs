@@ -201,6 +201,13 @@ pub struct SwitchingSection {
     /// averaged over this odometry distance, m, in (0, 1000], and its
     /// changes then correct the carried pose (GD-FIX-FLOAT) [off when absent].
     pub fix_float_averaging_m: Option<f64>,
+    /// Odometry aid (GD-ODOMETRY-AID): the odometry's heading is pulled to
+    /// each good fix's heading with this time constant, s, in (0, 1000]
+    /// [off when absent].
+    pub odometry_aid_time_constant_s: Option<f64>,
+    /// Odometry aid: the largest rate of its correction, degrees per
+    /// second, in (0, 180] [0.5].
+    pub odometry_aid_max_rate_deg_s: Option<f64>,
 }
 
 /// A fix kind in `switching.fix_worst_kind`.

@@ -152,6 +152,7 @@ pub fn drive_in(
         handover: None,
         entry: None,
         fix: None,
+        odometry_aid: None,
     };
     let config = GuidanceConfig::new(&params).map_err(s)?;
     let mut core: Box<Guidance<'_, PATH_VERTICES, VineDetector<RAYS, POINTS>, Strategy1, 1>> =

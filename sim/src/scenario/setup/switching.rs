@@ -3,10 +3,10 @@
 
 use fieldguide::guidance::{
     BehaviourId, Entry, EntryParams, FixKind, FixRule, FixRuleParams, Handover, HandoverParams,
-    MAX_SCAN_AGE_TICKS,
+    OdometryAid, OdometryAidParams, MAX_SCAN_AGE_TICKS,
 };
 use fieldguide::supervisor::switching::{PlanTolerance, MAX_DELAY_TICKS};
-use fieldguide::{Meters, Radians, Seconds};
+use fieldguide::{Meters, Radians, RadiansPerSecond, Seconds};
 
 use crate::error::ScenarioError;
 use crate::scenario::check::Checker;
@@ -61,6 +61,8 @@ pub struct SwitchingSetup {
     pub entry: Option<EntryParams>,
     /// The fix rule, when on (GD-FIX-QUALITY).
     pub fix: Option<FixRuleParams>,
+    /// The odometry aid, when on (GD-ODOMETRY-AID).
+    pub odometry_aid: Option<OdometryAidParams>,
 }
 
 /// The switching settings of `[switching]`, each default taken when a field is absent.
@@ -208,6 +210,7 @@ pub(super) fn switching(
     let fix = fix_rule(&s, check)?;
     Ok(SwitchingSetup {
         fix,
+        odometry_aid: odometry_aid(&s, period_s, check)?,
         priority: priority(s.priority.as_deref(), configured, check)?,
         edge_enter_s: pos("edge_enter_s", s.edge_enter_s, 0.4)?,
         edge_exit_s: pos("edge_exit_s", s.edge_exit_s, 0.26)?,
@@ -304,6 +307,40 @@ fn fix_rule(
         } else {
             "switching.fix_rejoin_slope"
         };
+        check.error(field, &e.to_string())
+    })?;
+    Ok(Some(params))
+}
+
+/// The odometry aid of `switching.odometry_aid_*` (GD-ODOMETRY-AID), on
+/// when its time constant is set.
+fn odometry_aid(
+    s: &SwitchingSection,
+    period_s: f64,
+    check: &Checker<'_>,
+) -> Result<Option<OdometryAidParams>, ScenarioError> {
+    let field = "switching.odometry_aid_time_constant_s";
+    let rate_field = "switching.odometry_aid_max_rate_deg_s";
+    let Some(tau) = s.odometry_aid_time_constant_s else {
+        if s.odometry_aid_max_rate_deg_s.is_some() {
+            return Err(check.error(
+                field,
+                "the odometry aid needs its time constant when its largest rate is set",
+            ));
+        }
+        return Ok(None);
+    };
+    let tau = check.range(field, tau, 0.0, 1000.0)?;
+    let rate = s.odometry_aid_max_rate_deg_s.unwrap_or(0.5);
+    let rate = check.range(rate_field, rate, 0.0, 180.0)?;
+    let params = OdometryAidParams {
+        time_constant: Seconds::new(tau).map_err(|e| check.error(field, &e.to_string()))?,
+        max_rate: RadiansPerSecond::new(rate.to_radians())
+            .map_err(|e| check.error(rate_field, &e.to_string()))?,
+    };
+    let period = Seconds::new(period_s).map_err(|e| check.error(field, &e.to_string()))?;
+    OdometryAid::new(&params, period).map_err(|e| {
+        let field = if tau <= 0.0 { field } else { rate_field };
         check.error(field, &e.to_string())
     })?;
     Ok(Some(params))
