@@ -802,7 +802,11 @@ impl<const N: usize> Ruby<N> {
         reattach(best, points, &mut self.columns, &p, stats);
         merge(best, &self.columns, n, &mut self.scratch, &p);
         reattach(best, points, &mut self.columns, &p, stats);
-        let start_energy = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
+        let start = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
+        let start_energy = start.total;
+        // The kept set's outliers and neighbour sum, for an iteration that
+        // ends with its models and points.
+        let mut kept_terms = start;
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
         let mut iterations = 0_u16;
@@ -820,20 +824,55 @@ impl<const N: usize> Ruby<N> {
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
             reattach(candidate, points, &mut self.columns, &p, candidate_stats);
             let gone = delete(candidate, candidate_stats, &p);
-            reattach_deleted(candidate, gone, points, candidate_stats, &p);
-            let e = energy(
-                candidate,
-                candidate_stats,
-                n,
-                &self.weights,
-                &mut self.scratch.xs,
-                &p,
-            );
+            // An iteration whose deletion leaves the kept set's models with
+            // their points ends as the kept set (the deleted models' points
+            // were its outliers): its energy is the kept set's terms with
+            // the sums of this re-attachment, and the kept set stands for
+            // it, with those sums, where the deleted models' re-attachment
+            // and the energy's passes would give the same, bit for bit.
+            let same_set = ends_as(best, candidate, gone, n);
+            let terms = if same_set {
+                Energy {
+                    total: total(
+                        &p,
+                        kept_terms.outliers,
+                        kept_terms.neighbour,
+                        model_sum(best.alive, candidate_stats),
+                    ),
+                    ..kept_terms
+                }
+            } else {
+                reattach_deleted(candidate, gone, points, candidate_stats, &p);
+                energy(
+                    candidate,
+                    candidate_stats,
+                    n,
+                    &self.weights,
+                    &mut self.scratch.xs,
+                    &p,
+                )
+            };
+            let e = terms.total;
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
             //# before it MUST be discarded (Alg. 1, lines 26-27).
             if e <= best_energy {
-                self.kept = 1_usize.saturating_sub(self.kept);
+                if same_set {
+                    let (kept_stats, candidate_stats) = pair(&mut self.stats, self.kept);
+                    for k in slots(best.alive) {
+                        if let (Some(c), Some(e), Some(&cc), Some(&ce)) = (
+                            kept_stats.count.get_mut(k),
+                            kept_stats.energy.get_mut(k),
+                            candidate_stats.count.get(k),
+                            candidate_stats.energy.get(k),
+                        ) {
+                            (*c, *e) = (cc, ce);
+                        }
+                    }
+                } else {
+                    self.kept = 1_usize.saturating_sub(self.kept);
+                }
+                kept_terms = terms;
                 best_energy = e;
                 accepted = accepted.saturating_add(1);
                 discarded = 0;
@@ -915,7 +954,7 @@ fn energy<const N: usize>(
     weights: &[f64; N],
     terms: &mut [f64; N],
     p: &RubyParams,
-) -> f64 {
+) -> Energy {
     let alive = set.alive;
     let masks = set.masks.get(..n).unwrap_or(&[]);
     // Without shared points, the re-attachments count the outliers in the
@@ -936,8 +975,54 @@ fn energy<const N: usize>(
     for &t in terms.get(..after.len()).unwrap_or(&[]) {
         neighbour += t;
     }
-    let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
+    Energy {
+        outliers,
+        neighbour,
+        total: total(p, outliers, neighbour, model_sum(alive, stats)),
+    }
+}
+
+/// E(L) of a set (eq. 1) and the two terms of it that depend on its points'
+/// masks alone: its outliers and its neighbour sum (without λ).
+#[derive(Debug, Clone, Copy)]
+struct Energy {
+    outliers: usize,
+    neighbour: f64,
+    total: f64,
+}
+
+/// Σ_j E_L(L_j) over the models of `alive`, in slot order.
+fn model_sum(alive: u64, stats: &Stats) -> f64 {
+    slots(alive).filter_map(|k| stats.energy.get(k)).sum()
+}
+
+/// E(L) from its terms: ρ·|P(L∅)| + λ·(neighbour sum) + Σ_j E_L(L_j).
+fn total(p: &RubyParams, outliers: usize, neighbour: f64, models: f64) -> f64 {
     p.outlier_energy * count_f64(outliers) + p.neighbour_penalty * neighbour + models
+}
+
+/// Whether `candidate`, once the models of `gone` are removed and their
+/// points re-attached, is `kept`: the same live models with the same lines,
+/// bit for bit, each point of a model left holding the models it holds in
+/// `kept`, and the removed models' points outliers of `kept`, which the
+/// models left, being `kept`'s, leave outliers again (RUBY-REATTACH).
+fn ends_as<const N: usize>(
+    kept: &ModelSet<N>,
+    candidate: &ModelSet<N>,
+    gone: u64,
+    n: usize,
+) -> bool {
+    let alive = kept.alive;
+    let bits = |l: Line| (l.a.to_bits(), l.b.to_bits(), l.inv_norm.to_bits());
+    let masks = candidate.masks.get(..n).unwrap_or(&[]);
+    let before = kept.masks.get(..n).unwrap_or(&[]);
+    candidate.alive & !gone == alive
+        && slots(alive).all(|k| bits(candidate.line(k)) == bits(kept.line(k)))
+        && masks
+            .iter()
+            .zip(before)
+            .fold(0_u64, |acc, (&m, &k)| acc | ((m & alive) ^ k))
+            == 0
 }
 
 /// A uniform index below `len` (> 0) from 32 random bits (Lemire's
