@@ -818,7 +818,7 @@ impl<const N: usize> Ruby<N> {
         for _ in 0..p.iterations {
             iterations = iterations.saturating_add(1);
             let (best, candidate) = pair(&mut self.sets, self.kept);
-            let (_, candidate_stats) = pair(&mut self.stats, self.kept);
+            let (kept_stats, candidate_stats) = pair(&mut self.stats, self.kept);
             candidate.copy_from(best, n);
             let drew = search(candidate, points, &mut self.rng, &p);
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
@@ -830,7 +830,7 @@ impl<const N: usize> Ruby<N> {
             // the sums of this re-attachment, and the kept set stands for
             // it, with those sums, where the deleted models' re-attachment
             // and the energy's passes would give the same, bit for bit.
-            let same_set = ends_as(best, candidate, gone, n);
+            let same_set = ends_as(best, kept_stats, candidate, candidate_stats, gone);
             let terms = if same_set {
                 Energy {
                     total: total(
@@ -858,7 +858,6 @@ impl<const N: usize> Ruby<N> {
             //# before it MUST be discarded (Alg. 1, lines 26-27).
             if e <= best_energy {
                 if same_set {
-                    let (kept_stats, candidate_stats) = pair(&mut self.stats, self.kept);
                     for k in slots(best.alive) {
                         if let (Some(c), Some(e), Some(&cc), Some(&ce)) = (
                             kept_stats.count.get_mut(k),
@@ -1003,26 +1002,25 @@ fn total(p: &RubyParams, outliers: usize, neighbour: f64, models: f64) -> f64 {
 
 /// Whether `candidate`, once the models of `gone` are removed and their
 /// points re-attached, is `kept`: the same live models with the same lines,
-/// bit for bit, each point of a model left holding the models it holds in
-/// `kept`, and the removed models' points outliers of `kept`, which the
-/// models left, being `kept`'s, leave outliers again (RUBY-REATTACH).
+/// bit for bit, each holding as many points as in `kept` (`counts`,
+/// `kept`'s). With the same lines, a model of `kept` can only lose points to
+/// the models it does not share (a point is attached to its closest models,
+/// RUBY-REATTACH), so the same count is the same points; the removed models'
+/// points were then `kept`'s outliers, which the models left leave outliers.
 fn ends_as<const N: usize>(
     kept: &ModelSet<N>,
+    counts: &Stats,
     candidate: &ModelSet<N>,
+    stats: &Stats,
     gone: u64,
-    n: usize,
 ) -> bool {
     let alive = kept.alive;
     let bits = |l: Line| (l.a.to_bits(), l.b.to_bits(), l.inv_norm.to_bits());
-    let masks = candidate.masks.get(..n).unwrap_or(&[]);
-    let before = kept.masks.get(..n).unwrap_or(&[]);
     candidate.alive & !gone == alive
-        && slots(alive).all(|k| bits(candidate.line(k)) == bits(kept.line(k)))
-        && masks
-            .iter()
-            .zip(before)
-            .fold(0_u64, |acc, (&m, &k)| acc | ((m & alive) ^ k))
-            == 0
+        && slots(alive).all(|k| {
+            bits(candidate.line(k)) == bits(kept.line(k))
+                && stats.count.get(k) == counts.count.get(k)
+        })
 }
 
 /// A uniform index below `len` (> 0) from 32 random bits (Lemire's
