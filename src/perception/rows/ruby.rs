@@ -858,14 +858,14 @@ impl<const N: usize> Ruby<N> {
             //# before it MUST be discarded (Alg. 1, lines 26-27).
             if e <= best_energy {
                 if same_set {
+                    // The same counts; the sums of this re-attachment, in
+                    // ray order, where the kept ones may have added a
+                    // deleted model's points last.
                     for k in slots(best.alive) {
-                        if let (Some(c), Some(e), Some(&cc), Some(&ce)) = (
-                            kept_stats.count.get_mut(k),
-                            kept_stats.energy.get_mut(k),
-                            candidate_stats.count.get(k),
-                            candidate_stats.energy.get(k),
-                        ) {
-                            (*c, *e) = (cc, ce);
+                        if let (Some(e), Some(&c)) =
+                            (kept_stats.energy.get_mut(k), candidate_stats.energy.get(k))
+                        {
+                            *e = c;
                         }
                     }
                 } else {
@@ -1773,6 +1773,61 @@ mod tests {
             Line::fit(&cols.xs[..5], &cols.ys[..5], p.fit_rounds)
         );
         assert_eq!((set.lines[0].a, set.lines[0].b), (0.0, 0.0));
+        Ok(())
+    }
+
+    /// A kept row (slot 0, y = 0) and a candidate with a new model in
+    /// slot 1, re-attached, slot 1 then deleted: it ends as the kept set
+    /// when the new model took the kept set's outliers alone, and not when
+    /// it took a point of the row or the row's line moved.
+    #[test]
+    fn an_iteration_ends_as_the_kept_set_only_with_its_points_and_lines() -> Result<(), Precondition>
+    {
+        let p = RubyParams::authors(Variant::Rgop);
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.1),
+            (0.5, 1.0),
+            (1.5, 1.0),
+            (2.25, 0.55),
+            (2.5, 1.0),
+        ];
+        let line = |a: f64, b: f64| Line::new(a, b).ok_or(Precondition::new("RUBY-FIT", "a line"));
+        let (cols, points) = laid_out(&pts)?;
+        let mut kept = ModelSet::<N> {
+            alive: 0b1,
+            fitted: 0b1,
+            moved: 0b1,
+            dist: [p.outlier_distance.get(); N],
+            ..ModelSet::EMPTY
+        };
+        kept.lines[0] = line(0.0, 0.0)?;
+        let mut kept_stats = Stats::ZERO;
+        reattach(&mut kept, &points, &mut cols.clone(), &p, &mut kept_stats);
+        assert_eq!(&kept.masks[..8], &[1, 1, 1, 1, 0, 0, 0, 0]);
+        let ends = |new: Line, row: Line| -> bool {
+            let mut candidate = kept.clone();
+            candidate.lines[1] = new;
+            candidate.alive |= 0b10;
+            candidate.moved = 0b10;
+            if row != kept.lines[0] {
+                candidate.lines[0] = row;
+                candidate.moved |= 0b1;
+            }
+            let mut stats = Stats::ZERO;
+            reattach(&mut candidate, &points, &mut cols.clone(), &p, &mut stats);
+            // The new model kept its three points: the deletion removes it.
+            assert_eq!(stats.count[1], 3);
+            ends_as(&kept, &kept_stats, &candidate, &stats, 0b10)
+        };
+        // y = 1 takes the three outliers on it.
+        assert!(ends(line(0.0, 1.0)?, kept.lines[0]));
+        // y = −0.6 x + 1.9 takes two outliers and the row's (3, 0.1).
+        assert!(!ends(line(-0.6, 1.9)?, kept.lines[0]));
+        // The row refitted to a line a bit off.
+        assert!(!ends(line(0.0, 1.0)?, line(0.0, 1.0e-9)?));
         Ok(())
     }
 
