@@ -1784,16 +1784,10 @@ mod tests {
     fn an_iteration_ends_as_the_kept_set_only_with_its_points_and_lines() -> Result<(), Precondition>
     {
         let p = RubyParams::authors(Variant::Rgop);
-        let pts = [
-            (0.0, 0.0),
-            (1.0, 0.0),
-            (2.0, 0.0),
-            (3.0, 0.1),
-            (0.5, 1.0),
-            (1.5, 1.0),
-            (2.25, 0.55),
-            (2.5, 1.0),
-        ];
+        // The row's four points (the last 0.1 off it), then four outliers.
+        let xs = [0.0, 1.0, 2.0, 3.0, 0.5, 1.5, 2.25, 2.5];
+        let ys = [0.0, 0.0, 0.0, 0.1, 1.0, 1.0, 0.55, 1.0];
+        let pts: [(f64, f64); 8] = core::array::from_fn(|i| (xs[i], ys[i]));
         let line = |a: f64, b: f64| Line::new(a, b).ok_or(Precondition::new("RUBY-FIT", "a line"));
         let (cols, points) = laid_out(&pts)?;
         let mut kept = ModelSet::<N> {
