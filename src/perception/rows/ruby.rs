@@ -802,7 +802,11 @@ impl<const N: usize> Ruby<N> {
         reattach(best, points, &mut self.columns, &p, stats);
         merge(best, &self.columns, n, &mut self.scratch, &p);
         reattach(best, points, &mut self.columns, &p, stats);
-        let start_energy = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
+        let start = energy(best, stats, n, &self.weights, &mut self.scratch.xs, &p);
+        let start_energy = start.total;
+        // The kept set's outliers and neighbour sum, for an iteration that
+        // ends with its models and points.
+        let mut kept_terms = start;
         let mut best_energy = start_energy;
         let mut accepted = 0_u16;
         let mut iterations = 0_u16;
@@ -814,26 +818,60 @@ impl<const N: usize> Ruby<N> {
         for _ in 0..p.iterations {
             iterations = iterations.saturating_add(1);
             let (best, candidate) = pair(&mut self.sets, self.kept);
-            let (_, candidate_stats) = pair(&mut self.stats, self.kept);
+            let (kept_stats, candidate_stats) = pair(&mut self.stats, self.kept);
             candidate.copy_from(best, n);
             let drew = search(candidate, points, &mut self.rng, &p);
             merge(candidate, &self.columns, n, &mut self.scratch, &p);
             reattach(candidate, points, &mut self.columns, &p, candidate_stats);
             let gone = delete(candidate, candidate_stats, &p);
-            reattach_deleted(candidate, gone, points, candidate_stats, &p);
-            let e = energy(
-                candidate,
-                candidate_stats,
-                n,
-                &self.weights,
-                &mut self.scratch.xs,
-                &p,
-            );
+            // An iteration whose deletion leaves the kept set's models with
+            // their points ends as the kept set (the deleted models' points
+            // were its outliers): its energy is the kept set's terms with
+            // the sums of this re-attachment, and the kept set stands for
+            // it, with those sums, where the deleted models' re-attachment
+            // and the energy's passes would give the same, bit for bit.
+            let same_set = ends_as(best, kept_stats, candidate, candidate_stats, gone);
+            let terms = if same_set {
+                Energy {
+                    total: total(
+                        &p,
+                        kept_terms.outliers,
+                        kept_terms.neighbour,
+                        model_sum(best.alive, candidate_stats),
+                    ),
+                    ..kept_terms
+                }
+            } else {
+                reattach_deleted(candidate, gone, points, candidate_stats, &p);
+                energy(
+                    candidate,
+                    candidate_stats,
+                    n,
+                    &self.weights,
+                    &mut self.scratch.xs,
+                    &p,
+                )
+            };
+            let e = terms.total;
             //= spec/guyonneau2022.md#ruby-iteration-alg-1-iterations
             //# An iteration whose set has a higher energy than the set kept
             //# before it MUST be discarded (Alg. 1, lines 26-27).
             if e <= best_energy {
-                self.kept = 1_usize.saturating_sub(self.kept);
+                if same_set {
+                    // The same counts; the sums of this re-attachment, in
+                    // ray order, where the kept ones may have added a
+                    // deleted model's points last.
+                    for k in slots(best.alive) {
+                        if let (Some(e), Some(&c)) =
+                            (kept_stats.energy.get_mut(k), candidate_stats.energy.get(k))
+                        {
+                            *e = c;
+                        }
+                    }
+                } else {
+                    self.kept = 1_usize.saturating_sub(self.kept);
+                }
+                kept_terms = terms;
                 best_energy = e;
                 accepted = accepted.saturating_add(1);
                 discarded = 0;
@@ -915,7 +953,7 @@ fn energy<const N: usize>(
     weights: &[f64; N],
     terms: &mut [f64; N],
     p: &RubyParams,
-) -> f64 {
+) -> Energy {
     let alive = set.alive;
     let masks = set.masks.get(..n).unwrap_or(&[]);
     // Without shared points, the re-attachments count the outliers in the
@@ -936,8 +974,53 @@ fn energy<const N: usize>(
     for &t in terms.get(..after.len()).unwrap_or(&[]) {
         neighbour += t;
     }
-    let models: f64 = slots(set.alive).filter_map(|k| stats.energy.get(k)).sum();
+    Energy {
+        outliers,
+        neighbour,
+        total: total(p, outliers, neighbour, model_sum(alive, stats)),
+    }
+}
+
+/// E(L) of a set (eq. 1) and the two terms of it that depend on its points'
+/// masks alone: its outliers and its neighbour sum (without λ).
+#[derive(Debug, Clone, Copy)]
+struct Energy {
+    outliers: usize,
+    neighbour: f64,
+    total: f64,
+}
+
+/// Σ_j E_L(L_j) over the models of `alive`, in slot order.
+fn model_sum(alive: u64, stats: &Stats) -> f64 {
+    slots(alive).filter_map(|k| stats.energy.get(k)).sum()
+}
+
+/// E(L) from its terms: ρ·|P(L∅)| + λ·(neighbour sum) + Σ_j E_L(L_j).
+fn total(p: &RubyParams, outliers: usize, neighbour: f64, models: f64) -> f64 {
     p.outlier_energy * count_f64(outliers) + p.neighbour_penalty * neighbour + models
+}
+
+/// Whether `candidate`, once the models of `gone` are removed and their
+/// points re-attached, is `kept`: the same live models with the same lines,
+/// bit for bit, each holding as many points as in `kept` (`counts`,
+/// `kept`'s). With the same lines, a model of `kept` can only lose points to
+/// the models it does not share (a point is attached to its closest models,
+/// RUBY-REATTACH), so the same count is the same points; the removed models'
+/// points were then `kept`'s outliers, which the models left leave outliers.
+fn ends_as<const N: usize>(
+    kept: &ModelSet<N>,
+    counts: &Stats,
+    candidate: &ModelSet<N>,
+    stats: &Stats,
+    gone: u64,
+) -> bool {
+    let alive = kept.alive;
+    let bits = |l: Line| (l.a.to_bits(), l.b.to_bits(), l.inv_norm.to_bits());
+    candidate.alive & !gone == alive
+        && slots(alive).all(|k| {
+            bits(candidate.line(k)) == bits(kept.line(k))
+                && stats.count.get(k) == counts.count.get(k)
+        })
 }
 
 /// A uniform index below `len` (> 0) from 32 random bits (Lemire's
@@ -1690,6 +1773,55 @@ mod tests {
             Line::fit(&cols.xs[..5], &cols.ys[..5], p.fit_rounds)
         );
         assert_eq!((set.lines[0].a, set.lines[0].b), (0.0, 0.0));
+        Ok(())
+    }
+
+    /// A kept row (slot 0, y = 0) and a candidate with a new model in
+    /// slot 1, re-attached, slot 1 then deleted: it ends as the kept set
+    /// when the new model took the kept set's outliers alone, and not when
+    /// it took a point of the row or the row's line moved.
+    #[test]
+    fn an_iteration_ends_as_the_kept_set_only_with_its_points_and_lines() -> Result<(), Precondition>
+    {
+        let p = RubyParams::authors(Variant::Rgop);
+        // The row's four points (the last 0.1 off it), then four outliers.
+        let xs = [0.0, 1.0, 2.0, 3.0, 0.5, 1.5, 2.25, 2.5];
+        let ys = [0.0, 0.0, 0.0, 0.1, 1.0, 1.0, 0.55, 1.0];
+        let pts: [(f64, f64); 8] = core::array::from_fn(|i| (xs[i], ys[i]));
+        let line = |a: f64, b: f64| Line::new(a, b).ok_or(Precondition::new("RUBY-FIT", "a line"));
+        let (cols, points) = laid_out(&pts)?;
+        let mut kept = ModelSet::<N> {
+            alive: 0b1,
+            fitted: 0b1,
+            moved: 0b1,
+            dist: [p.outlier_distance.get(); N],
+            ..ModelSet::EMPTY
+        };
+        kept.lines[0] = line(0.0, 0.0)?;
+        let mut kept_stats = Stats::ZERO;
+        reattach(&mut kept, &points, &mut cols.clone(), &p, &mut kept_stats);
+        assert_eq!(&kept.masks[..8], &[1, 1, 1, 1, 0, 0, 0, 0]);
+        let ends = |new: Line, row: Line| -> bool {
+            let mut candidate = kept.clone();
+            candidate.lines[1] = new;
+            candidate.alive |= 0b10;
+            candidate.moved = 0b10;
+            if row != kept.lines[0] {
+                candidate.lines[0] = row;
+                candidate.moved |= 0b1;
+            }
+            let mut stats = Stats::ZERO;
+            reattach(&mut candidate, &points, &mut cols.clone(), &p, &mut stats);
+            // The new model kept its three points: the deletion removes it.
+            assert_eq!(stats.count[1], 3);
+            ends_as(&kept, &kept_stats, &candidate, &stats, 0b10)
+        };
+        // y = 1 takes the three outliers on it.
+        assert!(ends(line(0.0, 1.0)?, kept.lines[0]));
+        // y = −0.6 x + 1.9 takes two outliers and the row's (3, 0.1).
+        assert!(!ends(line(-0.6, 1.9)?, kept.lines[0]));
+        // The row refitted to a line a bit off.
+        assert!(!ends(line(0.0, 1.0)?, line(0.0, 1.0e-9)?));
         Ok(())
     }
 
