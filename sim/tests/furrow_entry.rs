@@ -13,6 +13,7 @@ use fieldguide::perception::furrow::FurrowParams;
 use fieldguide::{Meters, Point2, Pose2, Radians, Verdict, World};
 use fieldguide_sim::odometry::OdometryErrors;
 use fieldguide_sim::world::crops::PlotSpec;
+use fieldguide_sim::world::Plant;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
 
@@ -27,12 +28,9 @@ fn params() -> FurrowParams {
     p
 }
 
-/// One entry: where the front axle was, before the first plant, when the
-/// first line came (m, positive before it), the first line's error to the
-/// true centre line, and the largest error of the lines until the front axle
-/// reached the first plant (m).
-fn entry(beans: bool, offset: f64, seed: u64) -> (f64, f64, f64) {
-    let mut rng = StdRng::seed_from_u64(seed);
+/// A straight 10 m plot of beans (or maize) from x = 0, its centre line
+/// `offset` m left of the x axis, and the x of its first plant.
+fn straight_plot(beans: bool, offset: f64, rng: &mut StdRng) -> (Vec<Plant>, f64) {
     let start = Point2::new(0.0, offset).unwrap();
     let mut spec = if beans {
         PlotSpec::beans(start, 0.0, 10.0)
@@ -40,11 +38,21 @@ fn entry(beans: bool, offset: f64, seed: u64) -> (f64, f64, f64) {
         PlotSpec::maize(start, 0.0, 10.0)
     };
     spec.bend_amplitude = 0.0;
-    let plants = spec.generate(&mut rng);
+    let plants = spec.generate(rng);
     let first = plants
         .iter()
         .map(|p| p.position.x())
         .fold(f64::INFINITY, f64::min);
+    (plants, first)
+}
+
+/// One entry: where the front axle was, before the first plant, when the
+/// first line came (m, positive before it), the first line's error to the
+/// true centre line, and the largest error of the lines until the front axle
+/// reached the first plant (m).
+fn entry(beans: bool, offset: f64, seed: u64) -> (f64, f64, f64) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let (plants, first) = straight_plot(beans, offset, &mut rng);
     let mut rig = FurrowRig::new(plants, &params());
     let mut pose = Pose2::<World>::new(-6.0, 0.0, 0.0).unwrap();
     let truth = -offset;
@@ -110,13 +118,7 @@ fn outage_params() -> FurrowParams {
 /// heading drifts `drift` rad/m and has no other error.
 fn drifting_entry(drift: f64, seed: u64) -> f64 {
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut spec = PlotSpec::beans(Point2::new(0.0, 0.0).unwrap(), 0.0, 10.0);
-    spec.bend_amplitude = 0.0;
-    let plants = spec.generate(&mut rng);
-    let first = plants
-        .iter()
-        .map(|p| p.position.x())
-        .fold(f64::INFINITY, f64::min);
+    let (plants, first) = straight_plot(true, 0.0, &mut rng);
     let errors = OdometryErrors {
         yaw_drift: drift,
         ..OdometryErrors::EXACT
