@@ -543,7 +543,7 @@ fn bad_mounts_and_windows_are_refused() {
 //# Σ (a p_x + b − p_y)² + Λ (a − tan φ)² over the row's accumulated points,
 //# with φ the first-line heading read in the current robot frame,
 //# Λ = n max(E² − D², 0) / 12, n the number of points, D their extent along x
-//# and E the larger of the minimum extent and 1 m.
+//# and E the larger of the minimum extent and 2 m.
 #[test]
 fn the_first_line_comes_with_the_fifth_scan_on_the_rows_centre() {
     let params = FurrowParams::table2();
@@ -668,7 +668,7 @@ fn the_first_line_keeps_the_heading_of_the_straight_entry() {
 }
 
 /// A robot slower than its accumulation (0.028 m a scan: 25 scans span
-/// 0.7 m, less than E = 1 m) driving straight at 0.05 rad to the rows: the
+/// 0.7 m, less than E = 2 m) driving straight at 0.05 rad to the rows: the
 /// line does not jump when the accumulation fills (the first line carries
 /// on, its prior fading over the next 25 scans), and after twice its
 /// capacity it is FUR-LINE's, the rows' own direction rather than the
@@ -683,7 +683,7 @@ fn the_first_line_keeps_the_heading_of_the_straight_entry() {
 //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
 //= type=test
 //# Once the accumulation has held its capacity c, Λ MUST be multiplied by
-//# 1 − k/c, k the number of selections kept beyond c since it was last empty.
+//# (1 − k/c)², k the number of selections kept beyond c since it was last empty.
 #[test]
 fn the_first_line_ends_without_a_jump_when_the_accumulation_fills() {
     let params = FurrowParams::table2();

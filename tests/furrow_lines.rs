@@ -406,7 +406,7 @@ proptest! {
 //# Σ (a p_x + b − p_y)² + Λ (a − tan φ)² over the row's accumulated points,
 //# with φ the first-line heading read in the current robot frame,
 //# Λ = n max(E² − D², 0) / 12, n the number of points, D their extent along x
-//# and E the larger of the minimum extent and 1 m.
+//# and E the larger of the minimum extent and 2 m.
 #[test]
 fn first_lines_lean_on_the_heading_until_the_points_spread() {
     let rad = |v: f64| Radians::new(v).unwrap();

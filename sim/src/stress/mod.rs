@@ -461,14 +461,8 @@ pub const CLASSES: &[Class] = &[
         heading: Heading::BUILTIN_WHEELS,
         cases: &[
             RANDOM_WALK,
-            Case {
-                known_failure: Known::on_seeds(&[6], "entering rows 0.3 m off with the wheels' heading aided by the fix's (GD-ODOMETRY-AID): O within 0.099 m of the rows' centre at worst (0.102 m, seeds 1, 8, 16, 20, without the aid), but on seed 6 the beans' entry leaves furrow pursuing (Exit) and enters again, as it does without the aid, and swings a little wider: the front right wheel touches the first plant of a row (none without the aid)"),
-                ..OFFSET_ENTRY
-            },
-            Case {
-                known_failure: Known::on_seeds(&[4, 12], "at 1 m/s the front axle swings past the rows' centre at the entry (1 plant each on seeds 4 and 12; 8 on seeds 12 and 18 without GD-ODOMETRY-AID): the reference's curvature steps to r0 / (mu l) at its start and the steering lags it, and the detector's line, its points carried by the odometry, is a few centimetres off at O in the turn-in, which r0 re-evaluated passes to the reference's heading as s'(d) times that offset"),
-                ..BEANS_FAST
-            },
+            OFFSET_ENTRY,
+            BEANS_FAST,
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: HEDGE_ENVELOPE,

@@ -227,16 +227,26 @@ impl FurrowRig {
         plants: Vec<fieldguide_sim::world::Plant>,
         params: &fieldguide::perception::furrow::FurrowParams,
     ) -> Self {
+        Self::with_odometry(
+            plants,
+            params,
+            fieldguide_sim::odometry::OdometryErrors::FIELD,
+        )
+    }
+
+    /// As [`Self::new`], with the odometry's error model `errors`.
+    pub fn with_odometry(
+        plants: Vec<fieldguide_sim::world::Plant>,
+        params: &fieldguide::perception::furrow::FurrowParams,
+        errors: fieldguide_sim::odometry::OdometryErrors,
+    ) -> Self {
         use fieldguide::perception::furrow::{FurrowConfig, FurrowDetector};
-        use fieldguide_sim::odometry::{OdometryErrors, WheelOdometry};
+        use fieldguide_sim::odometry::WheelOdometry;
         Self {
             index: fieldguide_sim::world::crops::PlantIndex::new(plants, 0.5),
             ground: fieldguide_sim::world::terrain::Ground::default(),
             lidar: fieldguide_sim::lidar::inclined::InclinedLidar::furrow_default(),
-            odometry: WheelOdometry::new(
-                fieldguide::Pose2::new(10.0, -3.0, 1.0).unwrap(),
-                OdometryErrors::FIELD,
-            ),
+            odometry: WheelOdometry::new(fieldguide::Pose2::new(10.0, -3.0, 1.0).unwrap(), errors),
             detector: FurrowDetector::new(FurrowConfig::new(params).unwrap()).unwrap(),
         }
     }

@@ -100,10 +100,12 @@ pub const FIRST_LINE_STRAIGHT: f64 = 0.01;
 
 /// The extent along x, m, over which the detector's first line fades from the
 /// heading to the points' own direction (FUR-FIRST-LINE), unless the minimum
-/// extent is longer: 1 m. Bean plants 0.15 m apart spread the first points
+/// extent is longer: 2 m. Bean plants 0.15 m apart spread the first points
 /// over 0.3 m in five scans, and a slope from 0.3 m of points, extrapolated
-/// 3 m back to O, is 0.1-0.2 m off there.
-pub const FIRST_LINE_SPREAD: f64 = 1.0;
+/// 3 m back to O, is 0.1-0.2 m off there; over 1 m, the odometry's heading
+/// drift, which turns the older points most, still put the lines at O
+/// 0.06-0.09 m off (FUR-FIRST-LINE, "Reason (odometry drift)").
+pub const FIRST_LINE_SPREAD: f64 = 2.0;
 
 /// A row line whose direction is drawn toward the heading the robot had when
 /// it first went straight beside the rows (FUR-FIRST-LINE): the (a, b) minimising
@@ -128,7 +130,7 @@ pub const FIRST_LINE_SPREAD: f64 = 1.0;
 //# Σ (a p_x + b − p_y)² + Λ (a − tan φ)² over the row's accumulated points,
 //# with φ the first-line heading read in the current robot frame,
 //# Λ = n max(E² − D², 0) / 12, n the number of points, D their extent along x
-//# and E the larger of the minimum extent and 1 m.
+//# and E the larger of the minimum extent and 2 m.
 //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
 //# A fit over no point, or whose direction φ is π/4 or more from the robot's
 //# current heading, MUST be refused with an error naming FUR-FIRST-LINE.

@@ -633,11 +633,12 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
             _ => return spread_enough.then(|| fit_row_line(points.iter()).ok())?,
         };
         let direction = wrap_angle(Radians::new(heading.get() - odom.heading.get()).ok()?);
-        // Past the capacity n, the prior's weight fades as 1 − k/n over the
-        // next k selections: E'² − D² = w (E² − D²) gives Λ' = w Λ.
+        // Past the capacity n, the prior's weight fades as (1 − k/n)² over
+        // the next k selections, its last steps small:
+        // E'² − D² = w (E² − D²) gives Λ' = w Λ.
         //= spec/pierre2022.md#fur-first-line-a-row-line-from-its-first-points
         //# Once the accumulation has held its capacity c, Λ MUST be multiplied by
-        //# 1 − k/c, k the number of selections kept beyond c since it was last empty.
+        //# (1 − k/c)², k the number of selections kept beyond c since it was last empty.
         let e = min_extent.get().max(FIRST_LINE_SPREAD);
         let n = self.config.params.averaged_scans;
         let beyond = self.first.kept.saturating_sub(n);
@@ -645,7 +646,8 @@ impl<const RAYS: usize, const SCANS: usize> FurrowDetector<RAYS, SCANS> {
         let weight = if n == 0 {
             0.0
         } else {
-            (1.0 - count(beyond) / count(n)).clamp(0.0, 1.0)
+            let left = (1.0 - count(beyond) / count(n)).clamp(0.0, 1.0);
+            left * left
         };
         let d = hi - lo;
         let faded = libm::sqrt(d * d + weight * (e * e - d * d).max(0.0));
