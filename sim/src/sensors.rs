@@ -21,7 +21,8 @@ pub enum HeadingSource {
     /// The wheels: each tick's true heading change plus
     /// `odometry_yaw_bias_rad_s · Δt` and a white noise of σ
     /// `odometry_yaw_noise_rad` per tick, so that the heading's random walk
-    /// after t seconds, σ √(t / Δt), grows with the tick rate.
+    /// after t seconds, σ √(t / Δt), grows with the tick rate; nothing while
+    /// no wheel turns (the encoders count nothing at rest).
     Wheels,
     /// A yaw-rate gyro integrated over each tick ([`GyroErrors`]).
     Gyro(GyroErrors),
@@ -198,7 +199,11 @@ impl Sensors {
                 .map_or(f64::NAN, |a| {
                     fieldguide::geometry::units::wrap_angle(a).get()
                 });
+            // The wheels' heading comes from their encoders: while no wheel
+            // turns it stays still, errors included; a gyro drifts at rest too.
+            let wheels_still = ds == 0.0 && turn == 0.0;
             let dth = match self.gyro.as_mut() {
+                None if wheels_still => 0.0,
                 None => turn + n.odometry_yaw_bias_rad_s * dt + heading_noise,
                 Some(gyro) => turn + gyro.error(dt),
             };
@@ -357,24 +362,55 @@ mod tests {
         bias_time_constant_s: 1.0,
     };
 
-    /// The odometry heading after `duration_s` standing still, read every `dt`.
-    fn heading_after(noise: SensorNoise, seed: u64, dt: f64, duration_s: f64) -> f64 {
+    /// The odometry heading after `duration_s` at `speed` m/s straight
+    /// ahead (0: standing still), read every `dt`.
+    fn heading_at(noise: SensorNoise, seed: u64, dt: f64, duration_s: f64, speed: f64) -> f64 {
         let s0 = state(0.0, 0.0, 0.0, 0.0);
         let mut sensors = Sensors::new(noise, &s0, seed);
         let mut rng = SimRng::from_seed(seed);
         let ticks = (duration_s / dt).round() as u32;
-        last_reading(&mut sensors, (0..=ticks).map(|_| s0), dt, &mut rng)
+        let states = (0..=ticks).map(|k| {
+            let d = speed * dt * f64::from(k);
+            state(d, 0.0, 0.0, d)
+        });
+        last_reading(&mut sensors, states, dt, &mut rng)
             .odometry
             .heading
             .get()
     }
 
-    /// The variance of the heading error after `duration_s` over seeds 1..=`seeds`.
-    fn heading_variance(noise: SensorNoise, dt: f64, duration_s: f64, seeds: u64) -> f64 {
+    /// The odometry heading after `duration_s` standing still, read every `dt`.
+    fn heading_after(noise: SensorNoise, seed: u64, dt: f64, duration_s: f64) -> f64 {
+        heading_at(noise, seed, dt, duration_s, 0.0)
+    }
+
+    /// The variance of the heading error after `duration_s` at `speed` over
+    /// seeds 1..=`seeds`.
+    fn heading_variance(
+        noise: SensorNoise,
+        dt: f64,
+        duration_s: f64,
+        speed: f64,
+        seeds: u64,
+    ) -> f64 {
         let sq: f64 = (1..=seeds)
-            .map(|seed| heading_after(noise, seed, dt, duration_s).powi(2))
+            .map(|seed| heading_at(noise, seed, dt, duration_s, speed).powi(2))
             .sum();
         sq / seeds as f64
+    }
+
+    #[test]
+    fn the_wheels_heading_stands_still_with_the_wheels_and_a_gyro_drifts() {
+        let mut wheels = quiet();
+        wheels.odometry_yaw_bias_rad_s = 0.001;
+        wheels.odometry_yaw_noise_rad = 0.001;
+        assert_eq!(heading_after(wheels, 5, 0.01, 20.0), 0.0);
+        assert!(heading_at(wheels, 5, 0.01, 20.0, 1.0).abs() > 0.005);
+        let drifting = gyro(GyroErrors {
+            bias_rad_s: 0.001,
+            ..EXACT_GYRO
+        });
+        assert!((heading_after(drifting, 5, 0.01, 20.0) - 0.02).abs() < 1e-9);
     }
 
     #[test]
@@ -387,8 +423,8 @@ mod tests {
             ..EXACT_GYRO
         });
         let expected = 0.01_f64.powi(2) * 40.0;
-        let fast = heading_variance(noise, 0.01, 40.0, 800);
-        let slow = heading_variance(noise, 0.05, 40.0, 800);
+        let fast = heading_variance(noise, 0.01, 40.0, 0.0, 800);
+        let slow = heading_variance(noise, 0.05, 40.0, 0.0, 800);
         for v in [fast, slow] {
             assert!((v / expected - 1.0).abs() < 0.16, "{v} vs {expected}");
         }
@@ -396,8 +432,8 @@ mod tests {
         // The wheels' noise is per tick: five times the ticks, five times the variance.
         let mut wheels = quiet();
         wheels.odometry_yaw_noise_rad = 0.001;
-        let ratio =
-            heading_variance(wheels, 0.01, 40.0, 400) / heading_variance(wheels, 0.05, 40.0, 400);
+        let ratio = heading_variance(wheels, 0.01, 40.0, 1.0, 400)
+            / heading_variance(wheels, 0.05, 40.0, 1.0, 400);
         assert!((ratio / 5.0 - 1.0).abs() < 0.3, "{ratio}");
     }
 
