@@ -109,10 +109,15 @@ fn rows(c: &mut Criterion) {
             group.bench_function(format!("crop{n}/{}", variant.name()), |b| {
                 // Scans in the order of the drive, the detector warm; at the
                 // end of the drive (untimed) it starts again from the start.
+                // The drive goes on from one sample to the next, so that
+                // every sample, short or long, takes its ticks from the whole
+                // drive in turn: a sample that always started at the drive's
+                // start would weigh its first ticks by how many iterations
+                // the warm-up chose.
+                let mut detector = start.clone();
+                let mut k = 0;
                 b.iter_custom(|iters| {
                     let mut total = Duration::ZERO;
-                    let mut detector = start.clone();
-                    let mut k = 0;
                     for _ in 0..iters {
                         if k == scans.len() {
                             detector = start.clone();
