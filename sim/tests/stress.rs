@@ -85,9 +85,34 @@ fn the_campaign_writes_its_table_and_keeps_each_worst_seed() {
     for file in ["trace.csv", "summary.json", "trajectory.svg"] {
         assert!(kept.join(file).is_file(), "{}", kept.join(file).display());
     }
+    // No hedge judged, no figure of its face.
+    assert!(!kept.join(stress::face_plot::FACE_FILE).exists());
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(kept.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["seed"], worst);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// A hedge judged along its face: its worst seed is kept with the figure of
+/// the errors as judged, the case's bounds drawn.
+#[test]
+fn a_hedge_case_keeps_the_figure_of_its_face() {
+    let case = Case {
+        scenario: "hedge-gappy.toml",
+        bounds: &[Bound::FollowedMax(0.15), Bound::EnvelopeTowards(0.12)],
+        known_failure: None,
+    };
+    let result = run(&case, Seeds::new(1, 1).unwrap());
+    let out = std::env::temp_dir().join(format!("fieldguide-face-{}", std::process::id()));
+    let kept = stress::keep_worst(&result, &out).unwrap();
+    let svg = std::fs::read_to_string(kept.join(stress::face_plot::FACE_FILE)).unwrap();
+    assert!(
+        svg.contains("the offset along the hedge, as judged"),
+        "{svg}"
+    );
+    assert!(svg.contains("±0.15 m to the followed line"), "{svg}");
+    assert!(svg.contains("0.12 m towards the hedge"), "{svg}");
+    assert!(svg.contains("gap in the hedge"), "{svg}");
     std::fs::remove_dir_all(&out).unwrap();
 }
 

@@ -109,6 +109,13 @@ pub enum Bound {
     EnvelopeTowards(f64),
 }
 
+/// What [`Bound::FollowedMax`] measures, in words.
+pub const FOLLOWED_MAX: &str = "max |y| to the followed line (m)";
+/// What [`Bound::FollowedMean`] measures, in words.
+pub const FOLLOWED_MEAN: &str = "mean |y| to the followed line (m)";
+/// What [`Bound::EnvelopeTowards`] measures, in words.
+pub const TOWARDS: &str = "max towards the hedge from the envelope's line (m)";
+
 /// A bound's figure on one run: the value measured and the limit it must
 /// not exceed (a count or a metre figure; `pass` when value ≤ limit).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -270,8 +277,8 @@ impl Bound {
                 } else {
                     errors.iter().map(|e| e.followed.abs()).sum::<f64>() / errors.len() as f64
                 };
-                let what = if max { "max" } else { "mean" };
-                judged(format!("{what} |y| to the followed line (m)"), value, limit)
+                let what = if max { FOLLOWED_MAX } else { FOLLOWED_MEAN };
+                judged(what.to_owned(), value, limit)
             }
             Self::EnvelopeTowards(limit) => {
                 let errors = super::envelope::face_errors(setup, trace);
@@ -280,11 +287,7 @@ impl Bound {
                 } else {
                     errors.iter().map(|e| -e.envelope).fold(0.0, f64::max)
                 };
-                judged(
-                    "max towards the hedge from the envelope's line (m)".to_owned(),
-                    value,
-                    limit,
-                )
+                judged(TOWARDS.to_owned(), value, limit)
             }
             Self::SwitchesAtMost(n) => judged(
                 "mode changes".to_owned(),

@@ -12,6 +12,7 @@
 
 pub mod bounds;
 pub mod envelope;
+pub mod face_plot;
 mod report;
 
 use std::path::{Path, PathBuf};
@@ -701,7 +702,8 @@ pub fn campaign(
 }
 
 /// Runs the worst seed of `result` again and writes its trace, summary and
-/// plots to `dir/<scenario>-seed-<n>/`; returns that folder.
+/// plots to `dir/<scenario>-seed-<n>/`, with [`face_plot::FACE_FILE`] for
+/// a case judged along a hedge's face; returns that folder.
 ///
 /// # Errors
 /// When the scenario cannot be built or the files cannot be written.
@@ -717,5 +719,32 @@ pub fn keep_worst(result: &CaseResult, dir: &Path) -> Result<PathBuf, SimError> 
     setup.name = format!("{}{wheels}-seed-{seed}", result.scenario);
     let run = runner::run(&setup, &mut rng);
     let summary = summarize(&setup, &run);
-    crate::output::write_run(dir, &setup, &run, &summary)
+    let kept = crate::output::write_run(dir, &setup, &run, &summary)?;
+    let limit = |what: &str| {
+        result
+            .bounds
+            .iter()
+            .find(|w| w.judged.what == what)
+            .map(|w| w.judged.limit)
+    };
+    let bounds = face_plot::FaceBounds {
+        followed: limit(bounds::FOLLOWED_MAX),
+        towards: limit(bounds::TOWARDS),
+    };
+    let errors = envelope::face_errors(&setup, &run.trace);
+    if let (Some(hedge), false, true) = (
+        setup.world.hedges.first(),
+        errors.is_empty(),
+        bounds.followed.is_some() || bounds.towards.is_some(),
+    ) {
+        let svg = face_plot::face_svg(
+            &setup.name,
+            hedge.spec.length,
+            &hedge.spec.gaps,
+            &errors,
+            bounds,
+        );
+        crate::output::write_files(&kept, &[(face_plot::FACE_FILE, svg)])?;
+    }
+    Ok(kept)
 }
