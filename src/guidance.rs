@@ -341,6 +341,8 @@ struct Carry {
     bridge: Option<Meters>,
     /// Whether the slot's behaviour is the machine's active mode.
     active: bool,
+    /// The path's heading in the odometry frame (GD-EXPECTED-HEADING).
+    expected_heading: Option<Radians>,
 }
 
 impl<D: Detector> Slot<D> {
@@ -363,6 +365,8 @@ impl<D: Detector> Slot<D> {
         let Some(bridge) = carry.bridge else {
             return estimate;
         };
+        self.bridge
+            .expect_heading(carry.expected_heading.map(Radians::get));
         let outcome = match (scan, &self.held) {
             (None, _) => bridge::ScanOutcome::None,
             (Some(_), Some(held)) if estimate.refused.is_none() => {
@@ -802,6 +806,7 @@ where
                 max_age,
                 bridge: self.config.params().bridge,
                 active: self.machine.mode() == MachineMode::Behaviour(i),
+                expected_heading: self.expected_heading,
             };
             //= spec/guidance.md#gd-expected-heading-the-path-s-heading-given-to-the-detectors
             //# Before each behaviour's scan, the pipeline MUST give its detector the

@@ -36,6 +36,11 @@ const WINDOW_BRIDGES: f64 = 2.0;
 /// (GD-BRIDGE-STEADY).
 const MIN_SPAN_BRIDGES: f64 = 0.25;
 
+/// The weight of the heading prior (GD-BRIDGE-PRIOR) in squared bridge
+/// lengths: Σ(u − ū)² of anchors spread evenly over one bridge length at
+/// [`ANCHORS_PER_BRIDGE`], n L² / 12 = 16 / 12.
+const PRIOR_WEIGHT_BRIDGES2: f64 = ANCHORS_PER_BRIDGE / 12.0;
+
 /// Anchors farther than this from the first fit are outliers, left out of
 /// the refit (GD-BRIDGE-STEADY), m.
 const OUTLIER_M: f64 = 0.15;
@@ -131,6 +136,9 @@ pub(super) struct Bridge {
     /// check may take back (GD-BRIDGE-PLAN), holding the oldest anchor
     /// dropped to make room for it, if one was.
     anchored: Option<Option<Anchor>>,
+    /// The path's heading in the odometry frame (GD-EXPECTED-HEADING), the
+    /// structure line's heading prior (GD-BRIDGE-PRIOR); `None` without one.
+    prior: Option<f64>,
 }
 
 impl Bridge {
@@ -196,6 +204,12 @@ impl Bridge {
             self.level = None;
         }
         self.disagreed
+    }
+
+    /// Sets the structure line's heading prior, the path's heading in the
+    /// odometry frame (GD-BRIDGE-PRIOR), or none.
+    pub(super) fn expect_heading(&mut self, heading: Option<f64>) {
+        self.prior = heading;
     }
 
     /// Takes back the anchor the scan of this tick put, if it put one, and
@@ -319,8 +333,16 @@ impl Bridge {
     /// The structure line (GD-BRIDGE-STEADY): the least-squares straight
     /// line through the anchors of two `bridge` lengths of odometry up to the
     /// newest one, fitted in the newest anchor's frame, then refitted
-    /// without the anchors farther than 0.15 m from it; `None` with fewer
-    /// than 3 anchors or a span under a quarter of `bridge`.
+    /// without the anchors farther than 0.15 m from it, its slope pulled
+    /// towards the path's heading when there is one (GD-BRIDGE-PRIOR);
+    /// `None` with fewer than 3 anchors or a span under a quarter of `bridge`.
+    //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+    //# When the pipeline has a path heading (GD-EXPECTED-HEADING), both fits
+    //# of the structure line (GD-BRIDGE-STEADY) MUST minimise, over the slope
+    //# m and the offset q of the line v = m u + q in the newest anchor's frame
+    //# (u along its heading, v to its left), the sum of the squared residuals
+    //# v − m u − q of their anchors plus W (m − m₀)², with m₀ the slope of the
+    //# path's heading in that frame and W = 4 b² / 3, b the bridge length.
     fn structure(&self, bridge: Meters) -> Option<StructureLine> {
         let newest = *self.anchors.back()?;
         let (s, c) = (libm::sin(newest.heading), libm::cos(newest.heading));
@@ -330,8 +352,14 @@ impl Bridge {
             (dx * c + dy * s, -dx * s + dy * c)
         };
         let window = || self.anchors.iter().filter(|a| a.at >= from).map(frame);
-        let first = fit(window(), bridge, None)?;
-        let (slope, intercept) = fit(window(), bridge, Some(first))?;
+        let prior = self.prior.map(|h| {
+            (
+                libm::tan(wrap_raw(h - newest.heading)),
+                PRIOR_WEIGHT_BRIDGES2 * bridge.get() * bridge.get(),
+            )
+        });
+        let first = fit(window(), bridge, None, prior)?;
+        let (slope, intercept) = fit(window(), bridge, Some(first), prior)?;
         let line = StructureLine {
             x: newest.x - intercept * s,
             y: newest.y + intercept * c,
@@ -385,12 +413,16 @@ impl Bridge {
 
 /// The least-squares line v = m u + q through `points` (u along the newest
 /// anchor's heading, v to its left), leaving out the points farther than
-/// 0.15 m from `first` when given; `None` with fewer than 3 points, a span
-/// of less than a quarter of `bridge`, or a degenerate fit.
+/// 0.15 m from `first` when given, with the pseudo-observation m = m₀ of
+/// weight W when `prior` is (m₀, W) (GD-BRIDGE-PRIOR): the normal equations
+/// (Σu² + W) m + Σu q = Σuv + W m₀ and Σu m + n q = Σv. `None` with fewer
+/// than 3 points, a span of less than a quarter of `bridge`, or a
+/// degenerate fit.
 fn fit(
     points: impl Iterator<Item = (f64, f64)>,
     bridge: Meters,
     first: Option<(f64, f64)>,
+    prior: Option<(f64, f64)>,
 ) -> Option<(f64, f64)> {
     let (mut n, mut su, mut sv, mut suu, mut suv) = (0.0, 0.0, 0.0, 0.0, 0.0);
     let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -409,11 +441,15 @@ fn fit(
     if n < MIN_ANCHORS || high - low < MIN_SPAN_BRIDGES * bridge.get() {
         return None;
     }
-    let denominator = n * suu - su * su;
+    //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+    //# Without a path heading, the fits MUST be those of GD-BRIDGE-STEADY
+    //# alone.
+    let (m0, w) = prior.unwrap_or((0.0, 0.0));
+    let denominator = n * (suu + w) - su * su;
     if denominator.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
         return None;
     }
-    let slope = (n * suv - su * sv) / denominator;
+    let slope = (n * (suv + w * m0) - su * sv) / denominator;
     Some((slope, (sv - slope * su) / n))
 }
 
@@ -560,6 +596,103 @@ mod tests {
         // A refused scan clears the anchors and the line.
         bridge.record(ScanOutcome::<()>::Refused, &last, 0.04, length);
         assert!(bridge.anchors.is_empty() && bridge.carried(&last, length).is_none());
+        Ok(())
+    }
+
+    /// The structure line's heading after `to` metres of detections of
+    /// the line through the origin at 0.05 rad to the x axis, with the path's
+    /// heading along x given or not (GD-BRIDGE-PRIOR).
+    fn tilted_structure(to: f64, path: Option<f64>) -> Result<f64, Precondition> {
+        let length = Meters::new(4.0)?;
+        let mut bridge = Bridge::default();
+        bridge.expect_heading(path);
+        // The line y = x tan(0.05): the robot lies y − x tan(0.05) to its
+        // left (times its cosine), and the line's heading is 0.05 rad.
+        let tilt = 0.05_f64;
+        drive(&mut bridge, length, to, |x, _| {
+            (-x * libm::tan(tilt) * libm::cos(tilt), -tilt)
+        })?;
+        bridge
+            .structure(length)
+            .map(|s| s.heading)
+            .ok_or_else(|| Precondition::new("T", "no line"))
+    }
+
+    //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+    //= type=test
+    //# When the pipeline has a path heading (GD-EXPECTED-HEADING), both fits
+    //# of the structure line (GD-BRIDGE-STEADY) MUST minimise, over the slope
+    //# m and the offset q of the line v = m u + q in the newest anchor's frame
+    //# (u along its heading, v to its left), the sum of the squared residuals
+    //# v − m u − q of their anchors plus W (m − m₀)², with m₀ the slope of the
+    //# path's heading in that frame and W = 4 b² / 3, b the bridge length.
+    //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+    //= type=test
+    //# Without a path heading, the fits MUST be those of GD-BRIDGE-STEADY
+    //# alone.
+    #[test]
+    fn the_path_heading_holds_a_short_line_and_yields_to_a_long_one() -> Result<(), Precondition> {
+        // 1.5 m of anchors (three eighths of the 4 m bridge) along a line
+        // 0.05 rad off the path: without the path's heading the structure
+        // line takes the anchors' 0.05 rad; with it, its data weigh
+        // Σ(u − ū)² ≈ 1.6 m² against W = 21.3 m², so it keeps the path's
+        // heading within 0.005 rad.
+        let plain = tilted_structure(1.5, None)?;
+        assert!((plain - 0.05).abs() < 1e-3, "{plain}");
+        let held = tilted_structure(1.5, Some(0.0))?;
+        assert!(held.abs() < 0.005, "{held}");
+        // Over two bridge lengths (8 m, Σ(u − ū)² ≈ 160 m²) the anchors win:
+        // the line is within 0.007 rad of theirs, and a path heading on the
+        // line's own side of it moves it the other way.
+        let long = tilted_structure(8.0, Some(0.0))?;
+        assert!((long - 0.05).abs() < 0.007 && long < 0.05, "{long}");
+        let beyond = tilted_structure(8.0, Some(0.1))?;
+        assert!(beyond > 0.05 && beyond - 0.05 < 0.007, "{beyond}");
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+    //= type=test
+    //# When the pipeline has a path heading (GD-EXPECTED-HEADING), both fits
+    //# of the structure line (GD-BRIDGE-STEADY) MUST minimise, over the slope
+    //# m and the offset q of the line v = m u + q in the newest anchor's frame
+    //# (u along its heading, v to its left), the sum of the squared residuals
+    //# v − m u − q of their anchors plus W (m − m₀)², with m₀ the slope of the
+    //# path's heading in that frame and W = 4 b² / 3, b the bridge length.
+    #[test]
+    fn the_fit_minimises_the_residuals_and_the_prior() -> Result<(), Precondition> {
+        let bridge = Meters::new(4.0)?;
+        let points = [
+            (-3.0, 0.02),
+            (-2.1, -0.05),
+            (-1.4, 0.11),
+            (-0.6, 0.04),
+            (0.0, 0.09),
+        ];
+        let (m0, w) = (-0.03, 4.0 / 3.0 * 16.0);
+        let cost = |m: f64, q: f64| {
+            points
+                .iter()
+                .map(|(u, v)| (v - m * u - q).powi(2))
+                .sum::<f64>()
+                + w * (m - m0).powi(2)
+        };
+        let (m, q) = fit(points.iter().copied(), bridge, None, Some((m0, w)))
+            .ok_or_else(|| Precondition::new("T", "no fit"))?;
+        let best = cost(m, q);
+        for (dm, dq) in [
+            (1e-3, 0.0),
+            (-1e-3, 0.0),
+            (0.0, 1e-3),
+            (0.0, -1e-3),
+            (1e-3, -1e-3),
+        ] {
+            assert!(cost(m + dm, q + dq) > best, "({dm}, {dq})");
+        }
+        // Without the prior, the plain least-squares line, another one.
+        let (m1, _) = fit(points.iter().copied(), bridge, None, None)
+            .ok_or_else(|| Precondition::new("T", "no fit"))?;
+        assert!((m1 - m).abs() > 0.01, "{m1} {m}");
         Ok(())
     }
 
