@@ -422,7 +422,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[9, 12], "at most 2 switches and 0.020 m on average, but 0.153 m off the followed line (0.15 m allowed) where a piece starts after a gap: the level keeps the structure line's heading while the new piece's first metres turn"),
+                known_failure: None,
             },
             Case {
                 scenario: "hedge-turned-right.toml",
@@ -432,7 +432,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "hedge-bushes-west.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[1, 7, 19], "a field of our own: 2 switches and 0.033 m on average, but up to 0.268 m off the followed line (0.15 m allowed) round the first gap, at the first piece's end (seed 19) and where the next piece starts (seeds 1, 7), and 0.249 m inside the envelope's line towards the hedge (seed 19): the structure line fitted to the first piece's lines"),
+                known_failure: None,
             },
         ],
     },
@@ -467,7 +467,7 @@ pub const CLASSES: &[Class] = &[
             Case {
                 scenario: "hedge-ragged.toml",
                 bounds: HEDGE_ENVELOPE,
-                known_failure: Known::on_seeds(&[9, 12], "at most 2 switches and 0.020 m on average, but up to 0.151 m off the followed line (0.15 m allowed; seeds 9 and 12, where a piece starts after a gap, as with the gyro; 0.210 m on seeds 5, 9, 12, 19 without GD-ODOMETRY-AID): the level seen 2-4 m ahead and the structure line are carried by the odometry"),
+                known_failure: None,
             },
         ],
     },
