@@ -41,6 +41,10 @@ const MIN_SPAN_BRIDGES: f64 = 0.25;
 /// [`ANCHORS_PER_BRIDGE`], n L² / 12 = 16 / 12.
 const PRIOR_WEIGHT_BRIDGES2: f64 = ANCHORS_PER_BRIDGE / 12.0;
 
+/// The largest angle between the path's heading and the anchors' own line
+/// for the path's heading to be a prior (GD-BRIDGE-PRIOR), rad.
+const PRIOR_RAD: f64 = 0.3;
+
 /// Anchors farther than this from the first fit are outliers, left out of
 /// the refit (GD-BRIDGE-STEADY), m.
 const OUTLIER_M: f64 = 0.15;
@@ -352,13 +356,24 @@ impl Bridge {
             (dx * c + dy * s, -dx * s + dy * c)
         };
         let window = || self.anchors.iter().filter(|a| a.at >= from).map(frame);
-        let prior = self.prior.map(|h| {
-            (
-                libm::tan(wrap_raw(h - newest.heading)),
-                PRIOR_WEIGHT_BRIDGES2 * bridge.get() * bridge.get(),
-            )
+        //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+        //# A path heading more than 0.3 rad from the heading of the anchors'
+        //# own least-squares line MUST NOT be used.
+        let plain = fit(window(), bridge, None, None)?;
+        let prior = self.prior.and_then(|h| {
+            let along = wrap_raw(h - newest.heading);
+            (libm::fabs(wrap_raw(along - libm::atan(plain.0))) <= PRIOR_RAD).then(|| {
+                (
+                    libm::tan(along),
+                    PRIOR_WEIGHT_BRIDGES2 * bridge.get() * bridge.get(),
+                )
+            })
         });
-        let first = fit(window(), bridge, None, prior)?;
+        let first = if prior.is_some() {
+            fit(window(), bridge, None, prior)?
+        } else {
+            plain
+        };
         let (slope, intercept) = fit(window(), bridge, Some(first), prior)?;
         let line = StructureLine {
             x: newest.x - intercept * s,
@@ -648,6 +663,25 @@ mod tests {
         assert!((long - 0.05).abs() < 0.007 && long < 0.05, "{long}");
         let beyond = tilted_structure(8.0, Some(0.1))?;
         assert!(beyond > 0.05 && beyond - 0.05 < 0.007, "{beyond}");
+        Ok(())
+    }
+
+    //= spec/guidance.md#gd-bridge-prior-the-path-s-heading-steadies-a-short-structure-line
+    //= type=test
+    //# A path heading more than 0.3 rad from the heading of the anchors'
+    //# own least-squares line MUST NOT be used.
+    #[test]
+    fn a_path_across_the_structure_is_no_prior() -> Result<(), Precondition> {
+        // Anchors 0.05 rad off x over 1.5 m: a path 0.15 rad from them
+        // pulls the line; one beyond 0.3 rad, or across it, leaves the
+        // anchors' own line.
+        let plain = tilted_structure(1.5, None)?;
+        let near = tilted_structure(1.5, Some(0.2))?;
+        assert!(near > 0.15, "{near}");
+        for path in [0.46, -0.4, 1.6, core::f64::consts::PI] {
+            let line = tilted_structure(1.5, Some(path))?;
+            assert!((line - plain).abs() < 1e-12, "{path}: {line} {plain}");
+        }
         Ok(())
     }
 
