@@ -50,14 +50,15 @@ fn the_straight_reading_keeps_the_robot_nearer_the_followed_line() {
             worst(&off, towards),
             worst(&on, towards)
         );
-        // The worst seed nearer by 1 cm at least and within 0.16 m, every
+        // The worst seed nearer by 1 cm at least and within the campaign's
+        // 0.15 m, every
         // seed's mean within 0.03 m, the average mean down by a third, and
         // towards the hedge no nearer than 1 cm beyond the parabola's. (The
         // structure line's heading prior, GD-BRIDGE-PRIOR, took the
         // parabola's worst ragged seed from 0.191 to 0.156 m, the straight
         // reading's from 0.153 to 0.141 m.)
         assert!(worst(&on, max) < worst(&off, max) - 0.01, "{name}");
-        assert!(worst(&on, max) < 0.16, "{name}");
+        assert!(worst(&on, max) < 0.15, "{name}");
         assert!(worst(&on, mean) < 0.03, "{name}");
         assert!(average(&on) < 2.0 / 3.0 * average(&off), "{name}");
         assert!(worst(&on, towards) < worst(&off, towards) + 0.01, "{name}");

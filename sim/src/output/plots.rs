@@ -728,7 +728,9 @@ fn shade_runs(
     }
 }
 
-fn shade(svg: &mut Svg, axes: &Axes, s0: f64, s1: f64, fill: &str) {
+/// Shades, in `fill`, the whole height of the plot between abscissae `s0`
+/// and `s1`.
+pub fn shade(svg: &mut Svg, axes: &Axes, s0: f64, s1: f64, fill: &str) {
     svg.polygon(
         axes,
         &[

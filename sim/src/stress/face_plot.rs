@@ -4,6 +4,7 @@
 //! marked. The run's `lateral_error.svg` shows the error to the nominal
 //! face's offset line, which is not the one judged.
 
+use crate::output::plots::shade;
 use crate::output::svg::{Axes, Stroke, Svg};
 
 use super::envelope::FaceErrors;
@@ -100,17 +101,7 @@ pub fn face_svg(
     let mut svg = Svg::new(&axes);
     svg.clip_to(&axes);
     for gap in gaps {
-        svg.polygon(
-            &axes,
-            &[
-                (gap[0], axes.y.0),
-                (gap[1], axes.y.0),
-                (gap[1], axes.y.1),
-                (gap[0], axes.y.1),
-            ],
-            GAP_COLOUR,
-            0.15,
-        );
+        shade(&mut svg, &axes, gap[0], gap[1], GAP_COLOUR);
     }
     svg.frame(
         &axes,
